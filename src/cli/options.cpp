@@ -1,0 +1,240 @@
+#include "options.h"
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <ostream>
+
+namespace raycast::cli {
+
+std::string_view to_string(file_format f) {
+  switch (f) {
+    case file_format::png: return "png";
+    case file_format::ppm: return "ppm";
+    case file_format::jpg: return "jpg";
+    case file_format::tif: return "tif";
+    case file_format::exr: return "exr";
+  }
+  return "?";
+}
+
+bool is_float_format(file_format f) { return f == file_format::exr; }
+
+namespace {
+
+constexpr std::string_view supported_extensions = ".png, .ppm, .pnm, .jpg, .jpeg, .tif, .tiff, .exr";
+
+std::string lower(std::string_view s) {
+  std::string r(s);
+  std::transform(r.begin(), r.end(), r.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return r;
+}
+
+std::optional<file_format> format_from_name(std::string_view name) {
+  const std::string n = lower(name);
+  if (n == "png") return file_format::png;
+  if (n == "ppm" || n == "pnm") return file_format::ppm;
+  if (n == "jpg" || n == "jpeg") return file_format::jpg;
+  if (n == "tif" || n == "tiff") return file_format::tif;
+  if (n == "exr") return file_format::exr;
+  return std::nullopt;
+}
+
+std::string in_quotes(std::string_view s) { return "'" + std::string(s) + "'"; }
+
+}  // namespace
+
+std::optional<std::string> parse_int(std::string_view text, int64_t& value) {
+  if (text.empty()) return "empty value";
+  const char* end = text.data() + text.size();
+  auto [p, ec] = std::from_chars(text.data(), end, value);
+  if (ec == std::errc::result_out_of_range) return in_quotes(text) + " is out of range";
+  if (ec != std::errc() || p != end) return in_quotes(text) + " is not an integer";
+  return std::nullopt;
+}
+
+std::optional<std::string> parse_real(std::string_view text, double& value) {
+  if (text.empty()) return "empty value";
+  const char* begin = text.data();
+  const char* end = begin + text.size();
+  if (*begin == '+') ++begin;  // from_chars takes no plus sign
+  auto [p, ec] = std::from_chars(begin, end, value);
+  if (ec == std::errc::result_out_of_range) return in_quotes(text) + " is out of range for a double";
+  if (ec != std::errc() || p != end || begin == end) return in_quotes(text) + " is not a number";
+  if (!std::isfinite(value)) return in_quotes(text) + " is not a finite number";
+  return std::nullopt;
+}
+
+std::optional<std::string> parse_triple(std::string_view text, vec3& value) {
+  std::array<std::string_view, 3> parts;
+  size_t n = 0, start = 0;
+  for (size_t k = 0; k <= text.size(); ++k) {
+    if (k == text.size() || text[k] == ',') {
+      if (n == 3) return in_quotes(text) + " has more than 3 components (want x,y,z)";
+      parts[n++] = text.substr(start, k - start);
+      start = k + 1;
+    }
+  }
+  if (n != 3) return in_quotes(text) + " has " + std::to_string(n) + " component(s), want 3 (x,y,z)";
+  for (int k = 0; k < 3; ++k) {
+    double d = 0;
+    if (auto e = parse_real(parts[k], d)) return "component " + std::to_string(k + 1) + ": " + *e;
+    value[k] = d;
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> parse_aspect(std::string_view text, double& value) {
+  const size_t colon = text.find(':');
+  if (colon == std::string_view::npos) {
+    if (auto e = parse_real(text, value)) return e;
+  } else {
+    double w = 0, h = 0;
+    if (auto e = parse_real(text.substr(0, colon), w)) return e;
+    if (auto e = parse_real(text.substr(colon + 1), h)) return e;
+    if (!(w > 0 && h > 0)) return in_quotes(text) + ": both sides of W:H must be positive";
+    value = w / h;
+  }
+  if (!(value > 0) || !std::isfinite(value)) return in_quotes(text) + " must be positive and finite";
+  return std::nullopt;
+}
+
+parse_result parse_args(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
+  CLI::App app{
+      "raycast: renders the sky of Ray Tracing in One Weekend's first camera, on the fastest\n"
+      "vector unit this CPU has.",
+      "raycast"};
+  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::Throw);
+
+  std::string output, width_s, height_s, aspect_s, vh_s, focal_s, origin_s, bottom_s, top_s, format_s;
+  std::string backend_s, precision_s, threads_s;
+  bool quiet = false, version = false;
+
+  app.add_option("-o,--output", output, "Output file; '-' writes binary PPM to standard output")
+      ->type_name("FILE");
+  app.add_option("-w,--width", width_s, "Image width in pixels [400]")->type_name("N");
+  app.add_option("--height", height_s, "Image height in pixels [int(width / aspect), at least 1]")
+      ->type_name("N");
+  app.add_option("--aspect", aspect_s, "Aspect ratio, W:H or a number [16:9]")->type_name("RATIO");
+  app.add_option("--viewport-height", vh_s, "Viewport height in world units [2.0]")->type_name("H");
+  app.add_option("--focal-length", focal_s, "Distance from the origin to the viewport [1.0]")
+      ->type_name("F");
+  app.add_option("--origin", origin_s, "Camera position [0,0,0]")->type_name("X,Y,Z");
+  app.add_option("--sky-bottom", bottom_s, "Colour looking straight down [1,1,1]")->type_name("R,G,B");
+  app.add_option("--sky-top", top_s, "Colour looking straight up [0.5,0.7,1.0]")->type_name("R,G,B");
+  app.add_option("--format", format_s, "png|ppm|jpg|tif|exr, overrides the extension")
+      ->type_name("FMT");
+  app.add_option("--backend", backend_s,
+                 "auto|reference|scalar|sse2|avx2|avx512 [auto: the best this CPU runs]")
+      ->type_name("NAME");
+  app.add_option("--precision", precision_s,
+                 std::string("exact|fast [") + std::string(to_string(default_precision)) + "]")
+      ->type_name("MODE");
+  app.add_option("--threads", threads_s, "Render threads [all cores]")->type_name("N");
+  app.add_flag("-q,--quiet", quiet, "No progress on standard error");
+  app.add_flag("--version", version, "Print the version and the backend auto picks here");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return {std::nullopt, app.exit(e, out, err)};
+    err << "raycast: error: " << e.what() << " (see --help)\n";
+    return {std::nullopt, 2};
+  }
+
+  if (version) {
+    out << "raycast " << RAYCAST_VERSION << " (auto backend here: " << to_string(best_backend())
+        << ")\n";
+    return {std::nullopt, 0};
+  }
+
+  auto usage = [&](std::string_view option, const std::string& why) {
+    err << "raycast: error: " << option << ": " << why << "\n";
+    return parse_result{std::nullopt, 2};
+  };
+  auto given = [&](std::string_view name) { return app.count(std::string(name)) > 0; };
+
+  job j;
+  camera_params cp;
+  if (given("--width"))
+    if (auto e = parse_int(width_s, cp.image_width)) return usage("--width", *e);
+  if (given("--aspect"))
+    if (auto e = parse_aspect(aspect_s, cp.aspect_ratio)) return usage("--aspect", *e);
+  if (given("--height")) {
+    int64_t h = 0;
+    if (auto e = parse_int(height_s, h)) return usage("--height", *e);
+    cp.image_height = h;
+  }
+  if (given("--viewport-height"))
+    if (auto e = parse_real(vh_s, cp.viewport_height)) return usage("--viewport-height", *e);
+  if (given("--focal-length"))
+    if (auto e = parse_real(focal_s, cp.focal_length)) return usage("--focal-length", *e);
+  if (given("--origin"))
+    if (auto e = parse_triple(origin_s, cp.origin)) return usage("--origin", *e);
+  if (given("--sky-bottom"))
+    if (auto e = parse_triple(bottom_s, j.sc.sky.bottom)) return usage("--sky-bottom", *e);
+  if (given("--sky-top"))
+    if (auto e = parse_triple(top_s, j.sc.sky.top)) return usage("--sky-top", *e);
+
+  // Range checks, each naming its option.
+  const auto max_dim = std::to_string(max_dimension);
+  if (cp.image_width < 1 || cp.image_width > max_dimension)
+    return usage("--width", "must be between 1 and " + max_dim + ", got " + width_s);
+  if (cp.image_height && (*cp.image_height < 1 || *cp.image_height > max_dimension))
+    return usage("--height", "must be between 1 and " + max_dim + ", got " + height_s);
+  if (!cp.image_height && default_height(cp.image_width, cp.aspect_ratio) > max_dimension)
+    return usage("--aspect", "width / aspect gives a height over " + max_dim);
+  if (!(cp.viewport_height > 0)) return usage("--viewport-height", "must be positive, got " + vh_s);
+  if (!(cp.focal_length > 0)) return usage("--focal-length", "must be positive, got " + focal_s);
+  if (auto e = validate(cp)) return usage("camera", *e);
+
+  if (!given("--output")) return usage("--output", "is required (a file name, or - for standard output)");
+  if (output.empty()) return usage("--output", "empty file name");
+  j.output = output;
+  if (given("--format")) {
+    auto f = format_from_name(format_s);
+    if (!f) return usage("--format", in_quotes(format_s) + " is not one of png, ppm, jpg, tif, exr");
+    j.format = *f;
+  } else if (output == "-") {
+    j.format = file_format::ppm;
+  } else {
+    const size_t slash = output.find_last_of('/');
+    const size_t dot = output.find_last_of('.');
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
+      return usage("--output", in_quotes(output) + " has no extension; supported: " +
+                                   std::string(supported_extensions) + " (or use --format)");
+    auto f = format_from_name(std::string_view(output).substr(dot + 1));
+    if (!f)
+      return usage("--output", "unknown extension " + in_quotes(output.substr(dot)) +
+                                   "; supported: " + std::string(supported_extensions));
+    j.format = *f;
+  }
+  if (output == "-" && j.format != file_format::ppm)
+    return usage("--format", "standard output takes ppm only, got " + std::string(to_string(j.format)));
+
+  if (given("--backend")) {
+    auto b = parse_backend(backend_s);
+    if (!b) return usage("--backend", in_quotes(backend_s) + " is not one of auto, reference, scalar, sse2, avx2, avx512");
+    if (auto why = backend_unavailable(*b)) return usage("--backend", *why);
+    j.render.which = *b;
+  }
+  if (given("--precision")) {
+    auto p = parse_precision(precision_s);
+    if (!p) return usage("--precision", in_quotes(precision_s) + " is not one of exact, fast");
+    j.render.prec = *p;
+  }
+  if (given("--threads")) {
+    int64_t t = 0;
+    if (auto e = parse_int(threads_s, t)) return usage("--threads", *e);
+    if (t < 1 || t > 1024) return usage("--threads", "must be between 1 and 1024, got " + threads_s);
+    j.render.threads = int(t);
+  }
+  j.quiet = quiet;
+  j.sc.cam = make_camera(cp);
+  return {std::move(j), 0};
+}
+
+}  // namespace raycast::cli

@@ -1,0 +1,43 @@
+// Writing files without damaging what is there: everything goes to a temporary
+// file beside the destination, which is renamed over it only after every write,
+// flush and close succeeded. SIGINT/SIGTERM remove the temporary file.
+#pragma once
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+
+namespace raycast::cli {
+
+// A failure to report as "raycast: error: <what>" with exit code 1; the
+// message names the file and the cause.
+struct io_error : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Writes all n bytes or throws io_error("<name>: <strerror>").
+void write_all(int fd, const void* data, size_t n, const std::string& name);
+
+class atomic_file {
+ public:
+  // Creates ".<name>.XXXXXX" beside dest. Throws io_error.
+  explicit atomic_file(const std::string& dest);
+  ~atomic_file();  // removes the temporary file unless committed
+  atomic_file(const atomic_file&) = delete;
+  atomic_file& operator=(const atomic_file&) = delete;
+
+  int fd() const { return fd_; }
+  const std::string& dest() const { return dest_; }
+  // fsync, close, rename over dest. Throws io_error (the temporary is removed).
+  void commit();
+
+ private:
+  void discard() noexcept;
+  std::string dest_, temp_;
+  int fd_ = -1;
+};
+
+// Installs the SIGINT/SIGTERM handler that removes a pending temporary file
+// and then dies of the same signal; SIGPIPE becomes an EPIPE error.
+void install_signal_handlers();
+
+}  // namespace raycast::cli

@@ -1,0 +1,37 @@
+#include "float_scene.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace raycast {
+
+float_scene prepare_float_scene(const scene& s) {
+  const camera& c = s.cam;
+  float_scene f;
+  f.width = c.image_width;
+  f.height = c.image_height;
+  f.wm1 = float(c.image_width - 1);
+  f.hm1 = float(c.image_height - 1);
+
+  double m = 0.0;
+  for (const vec3& v : {c.corner_dir, c.horizontal, c.vertical})
+    m = std::max({m, std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+  int e = 0;
+  std::frexp(m, &e);  // m = x * 2^e with x in [0.5, 1)
+  const double scale = std::ldexp(1.0, -e);
+  for (int k = 0; k < 3; ++k) {
+    f.corner[k] = float(c.corner_dir[k] * scale);
+    f.horizontal[k] = float(c.horizontal[k] * scale);
+    f.vertical[k] = float(c.vertical[k] * scale);
+    f.bottom[k] = float(s.sky.bottom[k]);
+    f.top[k] = float(s.sky.top[k]);
+    f.delta[k] = f.top[k] - f.bottom[k];
+    f.lo[k] = std::min(f.bottom[k], f.top[k]);
+    f.hi[k] = std::max(f.bottom[k], f.top[k]);
+  }
+  f.axis_aligned = f.horizontal[1] == 0 && f.horizontal[2] == 0 && f.vertical[0] == 0 &&
+                   f.vertical[2] == 0;
+  return f;
+}
+
+}  // namespace raycast

@@ -1,0 +1,31 @@
+// The scene as the float renderers see it, prepared once in double.
+//
+// The camera vectors are multiplied by one power of two so that the largest
+// component lies in [0.5, 1). That is exact, leaves every unit direction
+// bit-for-bit unchanged, and keeps squares of directions far from float
+// overflow and underflow for viewports and focal lengths from 1e-38 to 1e38.
+// The origin is not here: the sky depends on the direction only.
+#pragma once
+#include <cstdint>
+
+#include "scene.h"
+
+namespace raycast {
+
+struct float_scene {
+  int64_t width = 0, height = 0;
+  float wm1 = 0, hm1 = 0;  // W - 1 and H - 1; u = i / wm1 unless W == 1
+  float corner[3] = {};      // (lower_left_corner - origin), scaled
+  float horizontal[3] = {};  // scaled
+  float vertical[3] = {};    // scaled
+  float bottom[3] = {}, top[3] = {};
+  float delta[3] = {};          // top - bottom, in float
+  float lo[3] = {}, hi[3] = {};  // min and max of bottom and top
+  // horizontal = (hx, 0, 0) and vertical = (0, vy, 0): the lesson's camera, so
+  // a direction's y depends on the row only and z is constant.
+  bool axis_aligned = false;
+};
+
+float_scene prepare_float_scene(const scene& s);
+
+}  // namespace raycast

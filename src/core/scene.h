@@ -1,0 +1,13 @@
+// What one render needs: the camera and the sky it looks at.
+#pragma once
+#include "camera.h"
+#include "color.h"
+
+namespace raycast {
+
+struct scene {
+  camera cam;
+  raycast::sky sky;
+};
+
+}  // namespace raycast

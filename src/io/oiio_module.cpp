@@ -1,0 +1,168 @@
+// raycast_oiio.so: PNG, JPEG, TIFF and OpenEXR output through OpenImageIO.
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <string>
+
+#include "image_module.h"
+
+namespace {
+
+using OIIO::Filesystem::IOProxy;
+
+// Writes to a caller's file descriptor at explicit offsets (encoders seek);
+// remembers the first error instead of returning a short count.
+class fd_proxy final : public IOProxy {
+ public:
+  explicit fd_proxy(int fd) : IOProxy("", IOProxy::Write), fd_(fd) {}
+  const char* proxytype() const override { return "raycast_fd"; }
+  size_t write(const void* buf, size_t size) override {
+    const size_t n = pwrite(buf, size, m_pos);
+    m_pos += int64_t(size);
+    return n;
+  }
+  size_t pwrite(const void* buf, size_t size, int64_t offset) override {
+    const char* p = static_cast<const char*>(buf);
+    size_t left = size;
+    while (left > 0 && errno_ == 0) {
+      const ssize_t n = ::pwrite(fd_, p, left, offset);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) {
+        errno_ = n < 0 ? errno : EIO;
+        break;
+      }
+      p += n;
+      left -= size_t(n);
+      offset += n;
+    }
+    end_ = std::max(end_, offset);
+    return size;  // never short: the encoder runs to the end; close() reports
+  }
+  // TIFF reads back what it wrote (directories); the descriptor is read-write.
+  size_t read(void* buf, size_t size) override {
+    const size_t n = pread(buf, size, m_pos);
+    m_pos += int64_t(n);
+    return n;
+  }
+  size_t pread(void* buf, size_t size, int64_t offset) override {
+    const ssize_t n = ::pread(fd_, buf, size, offset);
+    return n < 0 ? 0 : size_t(n);
+  }
+  size_t size() const override { return size_t(end_); }
+  int error() const { return errno_; }
+
+ private:
+  int fd_;
+  int errno_ = 0;
+  int64_t end_ = 0;
+};
+
+const char* oiio_format_name(const std::string& f) {
+  if (f == "png") return "png";
+  if (f == "jpg") return "jpeg";
+  if (f == "tif") return "tiff";
+  if (f == "exr") return "openexr";
+  return nullptr;
+}
+
+void set_err(char* err, size_t len, const std::string& msg) {
+  if (err && len) std::snprintf(err, len, "%s", msg.c_str());
+}
+
+// OpenImageIO's messages can span lines; the CLI prints one.
+std::string one_line(std::string s) {
+  while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
+  for (char& c : s)
+    if (c == '\n') c = ' ';
+  return s.empty() ? "unknown OpenImageIO error" : s;
+}
+
+}  // namespace
+
+struct raycast_image_writer {
+  std::unique_ptr<fd_proxy> proxy;
+  std::unique_ptr<OIIO::ImageOutput> out;
+  OIIO::TypeDesc type;
+  int64_t width = 0;
+};
+
+namespace {
+
+// Error state after a call: OpenImageIO's own, then the proxy's (a write
+// can fail while the call still returns true).
+bool failed(raycast_image_writer* w, bool ok, char* err, size_t len) {
+  if (w->out && w->out->has_error()) {
+    set_err(err, len, one_line(w->out->geterror()));
+    return true;
+  }
+  if (w->proxy->error() != 0) {
+    set_err(err, len, std::strerror(w->proxy->error()));
+    return true;
+  }
+  if (!ok) {
+    set_err(err, len, "OpenImageIO reported failure without a message");
+    return true;
+  }
+  return false;
+}
+
+raycast_image_writer* open_writer(int fd, const char* format, int64_t width, int64_t height,
+                                  int is_float, char* err, size_t errlen) {
+  const char* name = oiio_format_name(format ? format : "");
+  if (!name) {
+    set_err(err, errlen, std::string("unsupported format ") + (format ? format : "(null)"));
+    return nullptr;
+  }
+  auto w = std::make_unique<raycast_image_writer>();
+  w->proxy = std::make_unique<fd_proxy>(fd);
+  w->out = OIIO::ImageOutput::create(name);
+  if (!w->out) {
+    set_err(err, errlen, one_line(OIIO::geterror()));
+    return nullptr;
+  }
+  w->type = is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
+  w->width = width;
+  OIIO::ImageSpec spec(int(width), int(height), 3, w->type);
+  // We carry no EXIF data, and OpenImageIO 2.4's TIFF writer fails to write
+  // its (empty) EXIF directory through an I/O proxy.
+  spec.attribute("tiff:write_exif", 0);
+  if (!w->out->set_ioproxy(w->proxy.get())) {
+    set_err(err, errlen, std::string(name) + " writer cannot write through an I/O proxy");
+    return nullptr;
+  }
+  const bool ok = w->out->open(std::string("raycast.") + format, spec);
+  if (failed(w.get(), ok, err, errlen)) return nullptr;
+  return w.release();
+}
+
+int write_rows(raycast_image_writer* w, int64_t y0, int64_t y1, const void* data, size_t stride,
+               char* err, size_t errlen) {
+  const OIIO::stride_t xstride = OIIO::stride_t(3 * w->type.size());
+  const bool ok = w->out->write_scanlines(int(y0), int(y1), 0, w->type, data, xstride,
+                                          OIIO::stride_t(stride));
+  return failed(w, ok, err, errlen) ? 1 : 0;
+}
+
+int close_writer(raycast_image_writer* w, char* err, size_t errlen) {
+  std::unique_ptr<raycast_image_writer> owned(w);
+  const bool ok = w->out->close();
+  const int rc = failed(w, ok, err, errlen) ? 1 : 0;
+  w->out.reset();  // before the proxy it writes through
+  return rc;
+}
+
+const raycast_image_module module_table = {RAYCAST_IMAGE_MODULE_ABI, open_writer, write_rows,
+                                           close_writer};
+
+}  // namespace
+
+extern "C" __attribute__((visibility("default"))) const raycast_image_module*
+raycast_image_module_get(void) {
+  return &module_table;
+}
