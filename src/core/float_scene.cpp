@@ -23,9 +23,12 @@ float_scene prepare_float_scene(const scene& s) {
     f.corner[k] = float(c.corner_dir[k] * scale);
     f.horizontal[k] = float(c.horizontal[k] * scale);
     f.vertical[k] = float(c.vertical[k] * scale);
-    f.bottom[k] = float(s.sky.bottom[k]);
-    f.top[k] = float(s.sky.top[k]);
+    f.bottom[k] = float(s.sky.bottom[k]) + 0.0f;  // + 0: a -0 colour becomes +0
+    f.top[k] = float(s.sky.top[k]) + 0.0f;
     f.delta[k] = f.top[k] - f.bottom[k];
+    const double half = 0.5 * (double(f.top[k]) - double(f.bottom[k]));
+    f.fast_qa[k] = float(255.999 * half);
+    f.fast_qb[k] = float(255.999 * (double(f.bottom[k]) + half));
     f.lo[k] = std::min(f.bottom[k], f.top[k]);
     f.hi[k] = std::max(f.bottom[k], f.top[k]);
   }

@@ -21,6 +21,9 @@ struct float_scene {
   float bottom[3] = {}, top[3] = {};
   float delta[3] = {};          // top - bottom, in float
   float lo[3] = {}, hi[3] = {};  // min and max of bottom and top
+  // Fast mode's 8-bit shading folded into one multiply-add on y/|d|:
+  // 255.999 * lerp(bottom, top, (uy + 1) / 2) = uy * fast_qa + fast_qb.
+  float fast_qa[3] = {}, fast_qb[3] = {};
   // horizontal = (hx, 0, 0) and vertical = (0, vy, 0): the lesson's camera, so
   // a direction's y depends on the row only and z is constant.
   bool axis_aligned = false;

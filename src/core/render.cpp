@@ -4,6 +4,7 @@
 
 #include <omp.h>
 
+#include "cpu.h"
 #include "reference.h"
 
 namespace raycast {
@@ -13,6 +14,9 @@ std::string_view to_string(backend b) {
     case backend::automatic: return "auto";
     case backend::reference: return "reference";
     case backend::scalar: return "scalar";
+    case backend::sse2: return "sse2";
+    case backend::avx2: return "avx2";
+    case backend::avx512: return "avx512";
   }
   return "?";
 }
@@ -20,7 +24,8 @@ std::string_view to_string(backend b) {
 std::string_view to_string(precision p) { return p == precision::exact ? "exact" : "fast"; }
 
 std::optional<backend> parse_backend(std::string_view name) {
-  for (backend b : {backend::automatic, backend::reference, backend::scalar})
+  if (name == to_string(backend::automatic)) return backend::automatic;
+  for (backend b : all_backends)
     if (name == to_string(b)) return b;
   return std::nullopt;
 }
@@ -31,9 +36,33 @@ std::optional<precision> parse_precision(std::string_view name) {
   return std::nullopt;
 }
 
-std::optional<std::string> backend_unavailable(backend) { return std::nullopt; }
+std::optional<std::string> backend_unavailable(backend b) {
+#if RAYCAST_HAVE_X86_KERNELS
+  const cpu_features& f = cpu();
+  switch (b) {
+    case backend::sse2:
+      if (!f.sse2) return std::string("this CPU has no SSE2");
+      break;
+    case backend::avx2:
+      if (!f.avx2_fma) return std::string("this CPU (or OS) cannot run AVX2 + FMA");
+      break;
+    case backend::avx512:
+      if (!f.avx512) return std::string("this CPU (or OS) cannot run AVX-512 F+BW+VL");
+      break;
+    default: break;
+  }
+#else
+  if (b == backend::sse2 || b == backend::avx2 || b == backend::avx512)
+    return std::string(to_string(b)) + " exists only in x86-64 builds";
+#endif
+  return std::nullopt;
+}
 
-backend best_backend() { return backend::scalar; }
+backend best_backend() {
+  for (backend b : {backend::avx512, backend::avx2, backend::sse2})
+    if (!backend_unavailable(b)) return b;
+  return backend::scalar;
+}
 
 int available_cores() { return std::max(1, omp_get_num_procs()); }
 
@@ -44,6 +73,47 @@ renderer::renderer(const scene& s, const render_options& opts)
       prec_(opts.prec),
       threads_(opts.threads > 0 ? opts.threads : available_cores()) {
   if (auto why = backend_unavailable(which_)) throw unsupported_backend(*why);
+#if RAYCAST_HAVE_X86_KERNELS
+  switch (which_) {
+    case backend::sse2: kernel_ = kernels::sse2::render_rows; break;
+    case backend::avx2: kernel_ = kernels::avx2::render_rows; break;
+    case backend::avx512: kernel_ = kernels::avx512::render_rows; break;
+    default: return;  // reference and scalar need no tables
+  }
+#else
+  return;
+#endif
+  const float_scene& f = fscene_;
+  args_.scene = &fscene_;
+  args_.prec = prec_;
+  // Per-column parts of the direction, in scalar.h's operations and order;
+  // padded with zeros to whole 16-lane batches.
+  const size_t padded = size_t(f.width + 15) / 16 * 16;
+  for (int k = 0; k < 3; ++k) {
+    if (f.axis_aligned && k > 0) break;  // the lesson camera reads x only
+    col_[k].assign(padded, 0.0f);
+    for (int64_t i = 0; i < f.width; ++i) {
+      const float u = f.width == 1 ? 0.5f : float(i) / f.wm1;
+      col_[k][size_t(i)] = f.corner[k] + u * f.horizontal[k];
+    }
+    args_.col[k] = col_[k].data();
+  }
+  if (f.axis_aligned) {
+    col_x2_.assign(padded, 0.0f);
+    for (size_t i = 0; i < padded; ++i) col_x2_[i] = col_[0][i] * col_[0][i];
+    args_.col_x2 = col_x2_.data();
+  }
+  bool unit = true, lerp_exact = true;
+  for (int k = 0; k < 3; ++k) {
+    args_.constant[k] = f.bottom[k] == f.top[k];
+    args_.constant_value[k] = f.bottom[k];
+    const float c01 = f.bottom[k] > 0.0f ? (f.bottom[k] < 1.0f ? f.bottom[k] : 1.0f) : 0.0f;
+    args_.constant_byte[k] = int32_t(c01 * 255.999f);
+    unit = unit && f.lo[k] >= 0.0f && f.hi[k] <= 1.0f;
+    lerp_exact = lerp_exact && f.bottom[k] + 1.0f * f.delta[k] == f.top[k];
+  }
+  args_.lerp_exact = lerp_exact;
+  args_.colours_in_unit_range = unit;
 }
 
 void renderer::render_rows(const image_band& band, int64_t r0, int64_t r1) const {
@@ -55,6 +125,9 @@ void renderer::render_rows(const image_band& band, int64_t r0, int64_t r1) const
     case backend::reference: render_reference(scene_, part); break;
     case backend::automatic:
     case backend::scalar: render_scalar(fscene_, prec_, part); break;
+    case backend::sse2:
+    case backend::avx2:
+    case backend::avx512: kernel_(args_, part, r0, r1); break;
   }
 }
 

@@ -6,7 +6,10 @@
 #include <string>
 #include <string_view>
 
+#include <vector>
+
 #include "float_scene.h"
+#include "kernels/kernel.h"
 #include "image.h"
 #include "scalar.h"
 #include "scene.h"
@@ -17,7 +20,14 @@ enum class backend : uint8_t {
   automatic,  // the best one this CPU runs
   reference,  // double, the oracle (reference.h)
   scalar,     // float, one pixel at a time (scalar.h)
+  sse2,       // 8 pixels a batch as two 4-lane halves; any x86-64
+  avx2,       // 8 pixels a batch; AVX2 + FMA
+  avx512,     // 16 pixels a batch; AVX-512 F + BW + VL
 };
+
+// Every backend, best last.
+inline constexpr backend all_backends[] = {backend::reference, backend::scalar, backend::sse2,
+                                           backend::avx2, backend::avx512};
 
 std::string_view to_string(backend b);
 std::string_view to_string(precision p);
@@ -46,6 +56,8 @@ class renderer {
  public:
   // Throws unsupported_backend when the CPU cannot run the requested backend.
   renderer(const scene& s, const render_options& opts);
+  renderer(const renderer&) = delete;  // args_ points into the tables
+  renderer& operator=(const renderer&) = delete;
 
   backend selected() const { return which_; }
   precision prec() const { return prec_; }
@@ -61,6 +73,9 @@ class renderer {
 
   scene scene_;
   float_scene fscene_;
+  kernels::kernel_args args_;
+  kernels::render_rows_fn kernel_ = nullptr;
+  std::vector<float> col_[3], col_x2_;  // per-column tables behind args_
   backend which_;
   precision prec_;
   int threads_;

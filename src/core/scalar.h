@@ -5,12 +5,25 @@
 //   u  = W == 1 ? 0.5 : float(i) / f.wm1        v likewise with j and f.hm1
 //   d  = (f.corner + u * f.horizontal) + v * f.vertical      per component
 //   n2 = (d.x * d.x + d.y * d.y) + d.z * d.z
-//   uy = n2 >= FLT_MIN ? d.y / sqrt(n2) : 0                   (exact)
-//      = n2 >= FLT_MIN ? d.y * rsqrt_nr(n2) : 0               (fast)
+//
+// exact (IEEE sqrt and divide; every backend gives these bits):
+//   uy = n2 >= FLT_MIN ? d.y / sqrt(n2) : 0
 //   t  = clamp((uy + 1) * 0.5, 0, 1)
 //   c  = clamp(t == 1 ? top : bottom + t * delta, lo, hi)     per channel
 //   8-bit: int(clamp(c, 0, 1) * 255.999f)
-// Every operation is a single IEEE operation; the file is compiled with
+//
+// fast (a hardware reciprocal-square-root estimate r and one Newton step,
+// biased up by 2^-20 so that straight up and down land on exactly +-1):
+//   r  = rsqrt_estimate(n2)
+//   uy = (d.y * r) * (A - ((n2 * r) * r) * B),  A = 1.5 (1 + 2^-20), B = 0.5 (1 + 2^-20)
+//   uy = n2 >= FLT_MIN ? clamp(uy, -1, 1) : 0
+//   8-bit: int(clamp(uy * fast_qa + fast_qb, 0, 255.999))   (one multiply-add)
+//   float: t = (uy + 1) * 0.5, then c as in exact mode
+// The estimate differs between instruction sets (12 bits on SSE and AVX2, 14
+// on AVX-512) and AVX2/AVX-512 fuse the multiply-adds, so fast mode's bits
+// differ by backend; its error bound is documented in README.md and tested.
+//
+// Every operation is a single IEEE operation; this file is compiled with
 // -ffp-contract=off, so no fused multiply-add changes a rounding.
 #pragma once
 #include "float_scene.h"
@@ -20,13 +33,17 @@ namespace raycast {
 
 enum class precision : uint8_t {
   exact,  // IEEE sqrt and divide
-  fast,   // approximate reciprocal square root + one Newton step
+  fast,   // reciprocal square root estimate + one Newton step
 };
 
 // Colour of pixel (i, j) in the documented order; out receives r, g, b.
 void scalar_pixel(const float_scene& f, precision p, int64_t i, int64_t j, float out[3]);
 
 // Fills the band's rows; single-threaded.
+// Fast mode's Newton constants (see above).
+inline constexpr float fast_nr_a = 1.5f * (1.0f + 0x1p-20f);
+inline constexpr float fast_nr_b = 0.5f * (1.0f + 0x1p-20f);
+
 void render_scalar(const float_scene& f, precision p, const image_band& band);
 
 }  // namespace raycast

@@ -1,0 +1,15 @@
+// What this CPU and OS can run: CPUID for the instructions, XGETBV for whether
+// the OS saves the wide registers. The only place that asks.
+#pragma once
+
+namespace raycast {
+
+struct cpu_features {
+  bool sse2 = false;
+  bool avx2_fma = false;  // AVX2 + FMA, with the OS saving YMM state
+  bool avx512 = false;    // AVX-512 F + BW + VL, with the OS saving ZMM and mask state
+};
+
+const cpu_features& cpu();
+
+}  // namespace raycast

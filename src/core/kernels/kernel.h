@@ -1,0 +1,40 @@
+// The interface between the renderer and the per-ISA sky kernels.
+#pragma once
+#include <cstdint>
+
+#include "float_scene.h"
+#include "image.h"
+#include "scalar.h"
+
+namespace raycast::kernels {
+
+// Everything a kernel reads, prepared once per render by the renderer.
+struct kernel_args {
+  const float_scene* scene = nullptr;
+  precision prec = precision::exact;
+  // Per column i, the part of the direction that depends on u only:
+  // col[k][i] = corner[k] + u_i * horizontal[k] (scalar.h's inner bracket).
+  // Padded with zeros to a multiple of 16 columns.
+  const float* col[3] = {};
+  // Lesson camera (scene->axis_aligned): col[0][i]^2, so a batch needs one load.
+  const float* col_x2 = nullptr;
+  // Channels whose two sky colours are equal never vary: computed once.
+  bool constant[3] = {};
+  float constant_value[3] = {};
+  int32_t constant_byte[3] = {};
+  // bottom + 1 * delta == top in float for every channel: the lerp reaches its
+  // end points exactly, so scalar.h's select and clamp never change a value.
+  bool lerp_exact = false;
+  // Sky colours within [0, 1]: the 8-bit clamp to [0, 1] is a no-op and skipped.
+  bool colours_in_unit_range = false;
+};
+
+// Fills rows [r0, r1) of the band; single-threaded. One per instruction set.
+using render_rows_fn = void (*)(const kernel_args& args, const image_band& band, int64_t r0,
+                                int64_t r1);
+
+namespace sse2 { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t); }
+namespace avx2 { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t); }
+namespace avx512 { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t); }
+
+}  // namespace raycast::kernels

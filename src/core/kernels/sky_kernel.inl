@@ -1,0 +1,218 @@
+// The sky kernel, written once against the width-generic vector layer and
+// compiled per instruction set (sky_sse2.cpp, sky_avx2.cpp, sky_avx512.cpp each
+// define RAYCAST_ISA and include their simd/ header first).
+//
+// One batch is vfloat::size pixels of a row, a structure of arrays in
+// registers: the direction's components, then t, then the channels, then bytes
+// or floats stored interleaved -- no float image in memory for 8-bit output.
+// Exact mode performs scalar.h's operations in scalar.h's order, so its output
+// is bit-identical to render_scalar; fast mode swaps sqrt + divide for an
+// estimate refined by Newton.
+#include <cfloat>
+
+#include "kernel.h"
+
+namespace raycast::kernels::RAYCAST_ISA {
+namespace {
+
+using namespace raycast::simd::RAYCAST_ISA;
+constexpr int N = vfloat::size;
+
+struct row_setup {
+  // Per row: v * vertical[k] (the rest of scalar.h's direction), and for the
+  // lesson camera the row's constant direction y and squares.
+  float vv[3];
+  float dy, y2, z2;
+};
+
+// The direction of the batch at column i0 and its squared length. The lesson
+// camera carries no x, z lanes: x^2 comes from a table, y and z are per row.
+template <bool AxisAligned>
+inline void direction(const kernel_args& a, const row_setup& rs, int64_t i0, vfloat& dy,
+                      vfloat& n2) {
+  if constexpr (AxisAligned) {
+    dy = vfloat(rs.dy);
+    n2 = (vfloat::load(a.col_x2 + i0) + vfloat(rs.y2)) + vfloat(rs.z2);
+  } else {
+    const vfloat dx = vfloat::load(a.col[0] + i0) + vfloat(rs.vv[0]);
+    dy = vfloat::load(a.col[1] + i0) + vfloat(rs.vv[1]);
+    const vfloat dz = vfloat::load(a.col[2] + i0) + vfloat(rs.vv[2]);
+    n2 = (dx * dx + dy * dy) + dz * dz;
+  }
+}
+
+// Exact mode: t = (y / |d| + 1) * 0.5; a direction too short to normalize
+// (n2 below the smallest normal float) has y = 0 and gives t = 0.5. Since
+// |y| <= sqrt(fl(y^2)) <= sqrt(n2), t is already in [0, 1]: scalar.h's clamp
+// cannot change it and is left out.
+inline vfloat exact_t(vfloat dy, vfloat n2) {
+  const vfloat uy = select(n2 >= vfloat(FLT_MIN), dy / sqrt(n2), vfloat(0.0f));
+  return (uy + vfloat(1.0f)) * vfloat(0.5f);
+}
+
+// Fast mode: y / |d| from the estimate and one (biased) Newton step, clamped
+// to [-1, 1] (scalar.h).
+inline vfloat fast_uy(vfloat dy, vfloat n2) {
+  const vfloat r = rsqrt_est(n2);
+  const vfloat g = nmadd((n2 * r) * r, vfloat(fast_nr_b), vfloat(fast_nr_a));
+  const vfloat uy = select(n2 >= vfloat(FLT_MIN), (dy * r) * g, vfloat(0.0f));
+  return clamp(uy, vfloat(-1.0f), vfloat(1.0f));
+}
+
+// What a scene lets the kernel leave out, decided once per render.
+struct variant {
+  bool axis_aligned;  // lesson camera: no x or z lanes
+  bool fast;          // rsqrt estimate + Newton instead of sqrt + divide
+  bool f32;           // linear float output instead of 8-bit
+  bool simple;        // lerp end points exact and colours in [0, 1]: no select, no clamps
+  int varying;        // bit k set: channel k varies (else it is a constant)
+};
+
+// The shading constants in registers, loaded once per call (stores to the
+// image may alias anything, so nothing is re-read from the scene per batch).
+template <bool Simple, int Varying>
+struct shader {
+  vfloat bottom[3], top[3], delta[3], lo[3], hi[3];
+  vfloat constant_value[3];
+  vint constant_byte[3];
+  vfloat fast_qa[3], fast_qb[3];
+
+  explicit shader(const kernel_args& a) {
+    const float_scene& s = *a.scene;
+    for (int k = 0; k < 3; ++k) {
+      bottom[k] = vfloat(s.bottom[k]);
+      top[k] = vfloat(s.top[k]);
+      delta[k] = vfloat(s.delta[k]);
+      lo[k] = vfloat(s.lo[k]);
+      hi[k] = vfloat(s.hi[k]);
+      constant_value[k] = vfloat(a.constant_value[k]);
+      constant_byte[k] = splat_int(a.constant_byte[k]);
+      fast_qa[k] = vfloat(s.fast_qa[k]);
+      fast_qb[k] = vfloat(s.fast_qb[k]);
+    }
+  }
+
+  // scalar.h: clamp(t == 1 ? top : bottom + t * delta, lo, hi). The lerp is
+  // monotone in t, so when its end points are exact (Simple) the select and
+  // the clamp are no-ops and are left out; a constant channel is not computed.
+  template <int K>
+  vfloat channel(vfloat t) const {
+    if constexpr (!(Varying & (1 << K))) return constant_value[K];
+    const vfloat c = bottom[K] + t * delta[K];
+    if constexpr (Simple) return c;
+    return clamp(select(t == vfloat(1.0f), top[K], c), lo[K], hi[K]);
+  }
+  template <int K>
+  vint byte(vfloat c) const {
+    if constexpr (!(Varying & (1 << K))) return constant_byte[K];
+    return to_int((Simple ? c : clamp(c, vfloat(0.0f), vfloat(1.0f))) * vfloat(255.999f));
+  }
+  // Fast mode, 8-bit: shading and quantization in one multiply-add on uy. With
+  // colours in [0, 1] and uy in [-1, 1] the result stays inside [0, 256), so
+  // the clamp is left out.
+  template <int K>
+  vint fast_byte(vfloat uy) const {
+    if constexpr (!(Varying & (1 << K))) return constant_byte[K];
+    const vfloat x = madd(uy, fast_qa[K], fast_qb[K]);
+    return to_int(Simple ? x : clamp(x, vfloat(0.0f), vfloat(255.999f)));
+  }
+};
+
+template <bool AxisAligned, bool Fast, bool Float, bool Simple, int Varying>
+void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
+  const float_scene& s = *a.scene;
+  const shader<Simple, Varying> sh(a);
+  const int64_t W = s.width;
+  for (int64_t r = r0; r < r1; ++r) {
+    const int64_t j = s.height - 1 - r;
+    const float v = s.height == 1 ? 0.5f : float(j) / s.hm1;
+    row_setup rs;
+    for (int k = 0; k < 3; ++k) rs.vv[k] = v * s.vertical[k];
+    // Lesson camera: horizontal's y and z and vertical's z are 0, so scalar.h's
+    // d.y = (corner.y + u*0) + v*vertical.y and d.z = (corner.z + 0) + 0 exactly.
+    rs.dy = s.corner[1] + rs.vv[1];
+    rs.y2 = rs.dy * rs.dy;
+    rs.z2 = s.corner[2] * s.corner[2];
+    unsigned char* out = band.row(r);
+
+    for (int64_t i0 = 0; i0 < W; i0 += N) {
+      vfloat dy, n2;
+      direction<AxisAligned>(a, rs, i0, dy, n2);
+      vfloat t, uy;
+      if constexpr (Fast) {
+        uy = fast_uy(dy, n2);
+        if constexpr (Float) t = (uy + vfloat(1.0f)) * vfloat(0.5f);
+      } else {
+        t = exact_t(dy, n2);
+      }
+
+      const int n = W - i0 < N ? int(W - i0) : N;
+      if constexpr (Float) {
+        const vfloat c0 = sh.template channel<0>(t), c1 = sh.template channel<1>(t),
+                     c2 = sh.template channel<2>(t);
+        float* dst = reinterpret_cast<float*>(out) + 3 * i0;
+        if (n == N) {
+          store_rgbf(dst, c0, c1, c2);
+        } else {
+          alignas(64) float tmp[3 * N];
+          store_rgbf(tmp, c0, c1, c2);
+          __builtin_memcpy(dst, tmp, sizeof(float) * 3 * size_t(n));
+        }
+      } else {
+        vint q0, q1, q2;
+        if constexpr (Fast) {
+          q0 = sh.template fast_byte<0>(uy);
+          q1 = sh.template fast_byte<1>(uy);
+          q2 = sh.template fast_byte<2>(uy);
+        } else {
+          q0 = sh.template byte<0>(sh.template channel<0>(t));
+          q1 = sh.template byte<1>(sh.template channel<1>(t));
+          q2 = sh.template byte<2>(sh.template channel<2>(t));
+        }
+        unsigned char* dst = out + 3 * i0;
+        if (n == N) {
+          store_rgb8(dst, q0, q1, q2);
+        } else {
+#ifdef RAYCAST_HAS_MASKED_BYTE_STORE
+          store_rgb8_first(dst, q0, q1, q2, n);
+#else
+          alignas(64) unsigned char tmp[3 * N];
+          store_rgb8(tmp, q0, q1, q2);
+          __builtin_memcpy(dst, tmp, 3 * size_t(n));
+#endif
+        }
+      }
+    }
+  }
+}
+
+// Picks the instantiation for a variant: each combination is its own loop, so
+// no per-batch branch asks again. Channel patterns other than "all vary" and
+// the lesson's "blue constant" run the all-vary loop, which is exact for them
+// too (a constant channel's lerp is bottom + t * 0 = bottom).
+template <bool... B>
+void dispatch(const variant& v, const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
+  constexpr size_t n = sizeof...(B);
+  if constexpr (n == 4) {
+    if (v.varying == 0b011) render<B..., 0b011>(a, band, r0, r1);
+    else render<B..., 0b111>(a, band, r0, r1);
+  } else {
+    const bool flag = n == 0 ? v.axis_aligned : n == 1 ? v.fast : n == 2 ? v.f32 : v.simple;
+    if (flag) dispatch<B..., true>(v, a, band, r0, r1);
+    else dispatch<B..., false>(v, a, band, r0, r1);
+  }
+}
+
+}  // namespace
+
+void render_rows(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
+  variant v{};
+  v.axis_aligned = a.scene->axis_aligned;
+  v.fast = a.prec == precision::fast;
+  v.f32 = band.format == pixel_format::rgb_f32;
+  v.simple = a.lerp_exact && (v.f32 || a.colours_in_unit_range);
+  for (int k = 0; k < 3; ++k) v.varying |= a.constant[k] ? 0 : 1 << k;
+  dispatch<>(v, a, band, r0, r1);
+}
+
+}  // namespace raycast::kernels::RAYCAST_ISA

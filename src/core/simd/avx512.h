@@ -1,0 +1,102 @@
+// AVX-512 F + BW + VL: 16 float lanes in one __m512, masks in k-registers.
+// See README.md.
+#pragma once
+#include <immintrin.h>
+
+#include <cstdint>
+
+namespace raycast::simd::avx512 {
+
+struct vmask {
+  __mmask16 m;
+};
+
+struct vfloat {
+  static constexpr int size = 16;
+  __m512 v;
+  vfloat() = default;
+  vfloat(__m512 x) : v(x) {}
+  explicit vfloat(float s) : v(_mm512_set1_ps(s)) {}
+  static vfloat load(const float* p) { return _mm512_loadu_ps(p); }
+  static vfloat iota(float base) {
+    return _mm512_add_ps(_mm512_set1_ps(base),
+                         _mm512_setr_ps(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15));
+  }
+};
+
+struct vint {
+  __m512i v;
+};
+
+inline vfloat operator+(vfloat a, vfloat b) { return _mm512_add_ps(a.v, b.v); }
+inline vfloat operator-(vfloat a, vfloat b) { return _mm512_sub_ps(a.v, b.v); }
+inline vfloat operator*(vfloat a, vfloat b) { return _mm512_mul_ps(a.v, b.v); }
+inline vfloat operator/(vfloat a, vfloat b) { return _mm512_div_ps(a.v, b.v); }
+inline vmask operator>=(vfloat a, vfloat b) { return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_GE_OQ)}; }
+inline vmask operator==(vfloat a, vfloat b) { return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_EQ_OQ)}; }
+inline vfloat min(vfloat a, vfloat b) { return _mm512_min_ps(a.v, b.v); }
+inline vfloat max(vfloat a, vfloat b) { return _mm512_max_ps(a.v, b.v); }
+inline vfloat clamp(vfloat x, vfloat lo, vfloat hi) { return min(max(x, lo), hi); }
+inline vfloat select(vmask m, vfloat a, vfloat b) { return _mm512_mask_blend_ps(m.m, b.v, a.v); }
+inline vfloat sqrt(vfloat a) { return _mm512_sqrt_ps(a.v); }
+inline vfloat madd(vfloat a, vfloat b, vfloat c) { return _mm512_fmadd_ps(a.v, b.v, c.v); }
+inline vfloat nmadd(vfloat a, vfloat b, vfloat c) { return _mm512_fnmadd_ps(a.v, b.v, c.v); }  // c - a b
+// 1/sqrt(x), hardware estimate: relative error below 2^-14.
+inline vfloat rsqrt_est(vfloat x) { return _mm512_rsqrt14_ps(x.v); }
+inline vint to_int(vfloat a) { return {_mm512_cvttps_epi32(a.v)}; }
+inline vint splat_int(int32_t x) { return {_mm512_set1_epi32(x)}; }
+
+// Interleaves 16 pixels into 48 bytes, in a register: (r g b 0) dwords, the zero
+// bytes squeezed out per 128-bit lane, then the twelve useful dwords gathered.
+inline __m512i pack_rgb8(vint r, vint g, vint b) {
+  const __m512i w = _mm512_or_si512(
+      r.v, _mm512_or_si512(_mm512_slli_epi32(g.v, 8), _mm512_slli_epi32(b.v, 16)));
+  const __m512i pack = _mm512_broadcast_i32x4(
+      _mm_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1));
+  return _mm512_permutexvar_epi32(
+      _mm512_setr_epi32(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, 15, 15, 15, 15),
+      _mm512_shuffle_epi8(w, pack));
+}
+inline void store_rgb8(unsigned char* dst, vint r, vint g, vint b) {
+  const __m512i p = pack_rgb8(r, g, b);
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst), _mm512_castsi512_si256(p));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(dst + 32), _mm512_extracti32x4_epi32(p, 2));
+}
+// The first n pixels only (n < 16): a byte-granular masked store, nothing past
+// 3n bytes is touched.
+inline void store_rgb8_first(unsigned char* dst, vint r, vint g, vint b, int n) {
+  _mm512_mask_storeu_epi8(dst, (__mmask64{1} << (3 * n)) - 1, pack_rgb8(r, g, b));
+}
+
+// Writes 48 floats r0 g0 b0 r1 ...: the in-lane triple shuffles, then the
+// 128-bit lanes in pixel order.
+inline void store_rgbf(float* dst, vfloat r, vfloat g, vfloat b) {
+  const __m512 a = _mm512_unpacklo_ps(r.v, g.v);
+  const __m512 c = _mm512_shuffle_ps(b.v, r.v, _MM_SHUFFLE(1, 1, 0, 0));
+  const __m512 o0 = _mm512_shuffle_ps(a, c, _MM_SHUFFLE(2, 0, 1, 0));
+  const __m512 d = _mm512_shuffle_ps(g.v, b.v, _MM_SHUFFLE(1, 1, 1, 1));
+  const __m512 e = _mm512_shuffle_ps(r.v, g.v, _MM_SHUFFLE(2, 2, 2, 2));
+  const __m512 o1 = _mm512_shuffle_ps(d, e, _MM_SHUFFLE(2, 0, 2, 0));
+  const __m512 f = _mm512_shuffle_ps(b.v, r.v, _MM_SHUFFLE(3, 3, 2, 2));
+  const __m512 h = _mm512_shuffle_ps(g.v, b.v, _MM_SHUFFLE(3, 3, 3, 3));
+  const __m512 o2 = _mm512_shuffle_ps(f, h, _MM_SHUFFLE(2, 0, 2, 0));
+  // oK holds part K of pixel quads A, B, C, D in its four 128-bit lanes. Output:
+  // [o0.A o1.A o2.A o0.B] [o1.B o2.B o0.C o1.C] [o2.C o0.D o1.D o2.D]; each is
+  // one two-source permute plus one masked permute for its third source.
+  const auto idx = [](int l0, int l1, int l2, int l3) {  // 128-bit lanes; 4..7: second source
+    return _mm512_setr_epi32(4 * l0, 4 * l0 + 1, 4 * l0 + 2, 4 * l0 + 3, 4 * l1, 4 * l1 + 1,
+                             4 * l1 + 2, 4 * l1 + 3, 4 * l2, 4 * l2 + 1, 4 * l2 + 2, 4 * l2 + 3,
+                             4 * l3, 4 * l3 + 1, 4 * l3 + 2, 4 * l3 + 3);
+  };
+  __m512 out0 = _mm512_permutex2var_ps(o0, idx(0, 4, 0, 1), o1);
+  out0 = _mm512_mask_permutexvar_ps(out0, 0x0F00, idx(0, 0, 0, 0), o2);
+  __m512 out1 = _mm512_permutex2var_ps(o1, idx(1, 1, 6, 2), o0);
+  out1 = _mm512_mask_permutexvar_ps(out1, 0x00F0, idx(1, 1, 1, 1), o2);
+  __m512 out2 = _mm512_permutex2var_ps(o2, idx(2, 7, 2, 3), o0);
+  out2 = _mm512_mask_permutexvar_ps(out2, 0x0F00, idx(3, 3, 3, 3), o1);
+  _mm512_storeu_ps(dst + 0, out0);
+  _mm512_storeu_ps(dst + 16, out1);
+  _mm512_storeu_ps(dst + 32, out2);
+}
+
+}  // namespace raycast::simd::avx512
