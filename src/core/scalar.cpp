@@ -43,14 +43,14 @@ pixel_dir direction(const float_scene& f, int64_t i, int64_t j) {
 }
 
 float fast_uy(pixel_dir d) {
-  if (!(d.n2 >= FLT_MIN)) return 0.0f;
-  const float r = rsqrt_estimate(d.n2);
-  const float uy = (d.dy * r) * (fast_nr_a - ((d.n2 * r) * r) * fast_nr_b);
+  const float n2 = vmax(d.n2, FLT_MIN);
+  const float r = rsqrt_estimate(n2);
+  const float uy = (d.dy * r) * (fast_nr_a - ((n2 * r) * r) * fast_nr_b);
   return clampf(uy, -1.0f, 1.0f);
 }
 
 float exact_t(pixel_dir d) {
-  const float uy = d.n2 >= FLT_MIN ? d.dy / std::sqrt(d.n2) : 0.0f;
+  const float uy = d.dy / std::sqrt(vmax(d.n2, FLT_MIN));
   return clampf((uy + 1.0f) * 0.5f, 0.0f, 1.0f);
 }
 

@@ -7,21 +7,24 @@
 //   n2 = (d.x * d.x + d.y * d.y) + d.z * d.z
 //
 // exact (IEEE sqrt and divide; every backend gives these bits):
-//   uy = n2 >= FLT_MIN ? d.y / sqrt(n2) : 0
+//   uy = d.y / sqrt(max(n2, FLT_MIN))
+//      (n2 below the smallest normal float happens only where d.y is 0, so
+//      uy = 0 there: no 0/0, and denormal flushing cannot change a result)
 //   t  = clamp((uy + 1) * 0.5, 0, 1)
 //   c  = clamp(t == 1 ? top : bottom + t * delta, lo, hi)     per channel
 //   8-bit: int(clamp(c, 0, 1) * 255.999f)
 //
 // fast (a hardware reciprocal-square-root estimate r and one Newton step,
 // biased up by 2^-20 so that straight up and down land on exactly +-1):
-//   r  = rsqrt_estimate(n2)
+//   r  = rsqrt_estimate(max(n2, FLT_MIN))
 //   uy = (d.y * r) * (A - ((n2 * r) * r) * B),  A = 1.5 (1 + 2^-20), B = 0.5 (1 + 2^-20)
-//   uy = n2 >= FLT_MIN ? clamp(uy, -1, 1) : 0
+//   uy = clamp(uy, -1, 1)
 //   8-bit: int(clamp(uy * fast_qa + fast_qb, 0, 255.999))   (one multiply-add)
 //   float: t = (uy + 1) * 0.5, then c as in exact mode
 // The estimate differs between instruction sets (12 bits on SSE and AVX2, 14
-// on AVX-512) and AVX2/AVX-512 fuse the multiply-adds, so fast mode's bits
-// differ by backend; its error bound is documented in README.md and tested.
+// on AVX-512), AVX2/AVX-512 fuse the multiply-adds, and the kernels regroup
+// (the lesson camera folds d.y into A and B and adds y^2 + z^2 first), so fast
+// mode's bits differ by backend; its error bound is in README.md and tested.
 //
 // Every operation is a single IEEE operation; this file is compiled with
 // -ffp-contract=off, so no fused multiply-add changes a rounding.

@@ -23,16 +23,20 @@ struct row_setup {
   // lesson camera the row's constant direction y and squares.
   float vv[3];
   float dy, y2, z2;
+  // Fast mode, lesson camera: y2 + z2 in one (fast mode need not keep exact
+  // mode's order), and the Newton constants times the row's y.
+  float yz2, nr_a, nr_b;
 };
 
 // The direction of the batch at column i0 and its squared length. The lesson
 // camera carries no x, z lanes: x^2 comes from a table, y and z are per row.
-template <bool AxisAligned>
+template <bool AxisAligned, bool Fast>
 inline void direction(const kernel_args& a, const row_setup& rs, int64_t i0, vfloat& dy,
                       vfloat& n2) {
   if constexpr (AxisAligned) {
     dy = vfloat(rs.dy);
-    n2 = (vfloat::load(a.col_x2 + i0) + vfloat(rs.y2)) + vfloat(rs.z2);
+    if constexpr (Fast) n2 = vfloat::load(a.col_x2 + i0) + vfloat(rs.yz2);
+    else n2 = (vfloat::load(a.col_x2 + i0) + vfloat(rs.y2)) + vfloat(rs.z2);
   } else {
     const vfloat dx = vfloat::load(a.col[0] + i0) + vfloat(rs.vv[0]);
     dy = vfloat::load(a.col[1] + i0) + vfloat(rs.vv[1]);
@@ -41,21 +45,25 @@ inline void direction(const kernel_args& a, const row_setup& rs, int64_t i0, vfl
   }
 }
 
-// Exact mode: t = (y / |d| + 1) * 0.5; a direction too short to normalize
-// (n2 below the smallest normal float) has y = 0 and gives t = 0.5. Since
-// |y| <= sqrt(fl(y^2)) <= sqrt(n2), t is already in [0, 1]: scalar.h's clamp
+// Exact mode: t = (y / |d| + 1) * 0.5, |d| = sqrt(max(n2, FLT_MIN)) (scalar.h).
+// Since |y| <= sqrt(fl(y^2)) <= |d|, t is already in [0, 1]: scalar.h's clamp
 // cannot change it and is left out.
 inline vfloat exact_t(vfloat dy, vfloat n2) {
-  const vfloat uy = select(n2 >= vfloat(FLT_MIN), dy / sqrt(n2), vfloat(0.0f));
+  const vfloat uy = dy / sqrt(max(n2, vfloat(FLT_MIN)));
   return (uy + vfloat(1.0f)) * vfloat(0.5f);
 }
 
 // Fast mode: y / |d| from the estimate and one (biased) Newton step, clamped
-// to [-1, 1] (scalar.h).
-inline vfloat fast_uy(vfloat dy, vfloat n2) {
+// to [-1, 1] (scalar.h). The lesson camera's y is constant along the row, so
+// it is folded into the Newton constants.
+template <bool AxisAligned>
+inline vfloat fast_uy(const row_setup& rs, vfloat dy, vfloat n2) {
+  n2 = max(n2, vfloat(FLT_MIN));
   const vfloat r = rsqrt_est(n2);
-  const vfloat g = nmadd((n2 * r) * r, vfloat(fast_nr_b), vfloat(fast_nr_a));
-  const vfloat uy = select(n2 >= vfloat(FLT_MIN), (dy * r) * g, vfloat(0.0f));
+  const vfloat e = (n2 * r) * r;
+  vfloat uy;
+  if constexpr (AxisAligned) uy = r * nmadd(e, vfloat(rs.nr_b), vfloat(rs.nr_a));
+  else uy = (dy * r) * nmadd(e, vfloat(fast_nr_b), vfloat(fast_nr_a));
   return clamp(uy, vfloat(-1.0f), vfloat(1.0f));
 }
 
@@ -133,14 +141,17 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
     rs.dy = s.corner[1] + rs.vv[1];
     rs.y2 = rs.dy * rs.dy;
     rs.z2 = s.corner[2] * s.corner[2];
+    rs.yz2 = rs.y2 + rs.z2;
+    rs.nr_a = fast_nr_a * rs.dy;
+    rs.nr_b = fast_nr_b * rs.dy;
     unsigned char* out = band.row(r);
 
     for (int64_t i0 = 0; i0 < W; i0 += N) {
       vfloat dy, n2;
-      direction<AxisAligned>(a, rs, i0, dy, n2);
+      direction<AxisAligned, Fast>(a, rs, i0, dy, n2);
       vfloat t, uy;
       if constexpr (Fast) {
-        uy = fast_uy(dy, n2);
+        uy = fast_uy<AxisAligned>(rs, dy, n2);
         if constexpr (Float) t = (uy + vfloat(1.0f)) * vfloat(0.5f);
       } else {
         t = exact_t(dy, n2);
