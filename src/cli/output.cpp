@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cstdlib>
 #include <cerrno>
 #include <csignal>
 #include <cstring>
@@ -49,12 +50,29 @@ void write_all(int fd, const void* data, size_t n, const std::string& name) {
 }
 
 atomic_file::atomic_file(const std::string& dest) : dest_(dest) {
-  const size_t slash = dest.find_last_of('/');
-  const std::string dir = slash == std::string::npos ? "" : dest.substr(0, slash + 1);
-  const std::string base = slash == std::string::npos ? dest : dest.substr(slash + 1);
-  if (base.empty()) throw io_error(dest + ": is a directory");
   struct stat st {};
-  if (stat(dest.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) throw io_error(dest + ": is a directory");
+  const bool exists = stat(dest.c_str(), &st) == 0;  // follows symbolic links
+  if (exists && S_ISDIR(st.st_mode)) throw io_error(dest + ": is a directory");
+  if (exists && !S_ISREG(st.st_mode)) {
+    // A device or a pipe (/dev/null, /dev/stdout, a FIFO) is written in place:
+    // renaming a file over it would replace the node, not write to it.
+    fd_ = open(dest.c_str(), O_WRONLY | O_CLOEXEC);
+    if (fd_ < 0) throw io_error(dest + ": " + errno_text(errno));
+    return;
+  }
+  // Through a symbolic link, replace the file it names and keep the link.
+  target_ = dest;
+  struct stat lst {};
+  if (exists && lstat(dest.c_str(), &lst) == 0 && S_ISLNK(lst.st_mode)) {
+    if (char* real = realpath(dest.c_str(), nullptr)) {
+      target_ = real;
+      std::free(real);
+    }
+  }
+  const size_t slash = target_.find_last_of('/');
+  const std::string dir = slash == std::string::npos ? "" : target_.substr(0, slash + 1);
+  const std::string base = slash == std::string::npos ? target_ : target_.substr(slash + 1);
+  if (base.empty()) throw io_error(dest + ": is a directory");
 
   const std::string pattern = dir + "." + base + ".XXXXXX";
   std::vector<char> tmpl(pattern.begin(), pattern.end());
@@ -76,10 +94,17 @@ atomic_file::atomic_file(const std::string& dest) : dest_(dest) {
   }
   sigprocmask(SIG_SETMASK, &old, nullptr);
   if (fd_ < 0) throw io_error(dest + ": " + errno_text(e));
-  // mkstemp makes 0600; a new file gets what the umask allows, as with open().
-  const mode_t mask = umask(0);
-  umask(mask);
-  fchmod(fd_, 0666 & ~mask);
+  // mkstemp makes 0600. Replacing a file keeps its permissions; a new file gets
+  // what the umask allows, as with open().
+  mode_t mode = 0;
+  if (exists) {
+    mode = st.st_mode & 07777;
+  } else {
+    const mode_t mask = umask(0);
+    umask(mask);
+    mode = 0666 & ~mask;
+  }
+  fchmod(fd_, mode);
 }
 
 atomic_file::~atomic_file() { discard(); }
@@ -99,7 +124,7 @@ void atomic_file::commit() {
   if (fsync(fd_) != 0 && errno != EINVAL && errno != EROFS) e = errno;
   if (close(fd_) != 0 && e == 0) e = errno;
   fd_ = -1;
-  if (e == 0 && rename(temp_.c_str(), dest_.c_str()) != 0) e = errno;
+  if (e == 0 && !temp_.empty() && rename(temp_.c_str(), target_.c_str()) != 0) e = errno;
   if (e != 0) {
     discard();
     throw io_error(dest_ + ": " + errno_text(e));

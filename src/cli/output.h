@@ -1,6 +1,9 @@
 // Writing files without damaging what is there: everything goes to a temporary
 // file beside the destination, which is renamed over it only after every write,
-// flush and close succeeded. SIGINT/SIGTERM remove the temporary file.
+// flush and close succeeded. SIGINT/SIGTERM remove the temporary file. A
+// replaced file keeps its permissions; through a symbolic link the file it
+// names is replaced. A destination that is a device or a pipe is written in
+// place (there is nothing to rename over).
 #pragma once
 #include <cstddef>
 #include <stdexcept>
@@ -19,7 +22,7 @@ void write_all(int fd, const void* data, size_t n, const std::string& name);
 
 class atomic_file {
  public:
-  // Creates ".<name>.XXXXXX" beside dest. Throws io_error.
+  // Creates ".<name>.XXXXXX" beside dest (or opens the device). Throws io_error.
   explicit atomic_file(const std::string& dest);
   ~atomic_file();  // removes the temporary file unless committed
   atomic_file(const atomic_file&) = delete;
@@ -32,7 +35,7 @@ class atomic_file {
 
  private:
   void discard() noexcept;
-  std::string dest_, temp_;
+  std::string dest_, target_, temp_;  // temp_ empty: writing a device in place
   int fd_ = -1;
 };
 

@@ -134,8 +134,12 @@ void renderer::render_rows(const image_band& band, int64_t r0, int64_t r1) const
 void renderer::render(const image_band& band) const {
   const int64_t rows = band.row_end - band.row_begin;
   if (rows <= 0) return;
-  // Bands of consecutive rows, a few per thread so uneven cores even out.
-  const int64_t nthreads = std::min<int64_t>(threads_, rows);
+  // Bands of consecutive rows, a few per thread so uneven cores even out. A
+  // thread costs tens of microseconds to start, about what 2^17 pixels take
+  // to render: smaller jobs (the default 400x225 sky) stay on one thread.
+  const int64_t pixels = rows * scene_.cam.image_width;
+  const int64_t nthreads =
+      std::min<int64_t>({threads_, rows, std::max<int64_t>(1, pixels >> 17)});
   if (nthreads <= 1) {
     render_rows(band, band.row_begin, band.row_end);
     return;
