@@ -1,0 +1,236 @@
+// Runs the built `raycast` (RAYCAST_EXE) in a fresh temporary directory,
+// capturing its exit status, standard output and standard error, and checks
+// after every run that no temporary file (".name.XXXXXX") was left behind.
+#pragma once
+#include <fcntl.h>
+#include <grp.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#ifndef RAYCAST_EXE
+#error "RAYCAST_EXE must name the raycast executable"
+#endif
+
+namespace raycast_test {
+
+namespace fs = std::filesystem;
+
+inline std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+inline void write_file(const fs::path& p, const std::string& text) {
+  std::ofstream out(p, std::ios::binary | std::ios::trunc);
+  out << text;
+}
+
+inline size_t count_lines(const std::string& s) { return size_t(std::count(s.begin(), s.end(), '\n')); }
+
+struct run_result {
+  int exit_code = -1;  // when the process exited
+  int signal = 0;      // when a signal ended it
+  std::string out, err;
+};
+
+struct run_options {
+  // RLIMIT_FSIZE for the child, with SIGXFSZ ignored: writes past it fail with
+  // EFBIG, as on a full disk.
+  std::optional<rlim_t> file_size_limit;
+  // Standard output goes here instead of the captured file.
+  std::optional<std::string> stdout_path;
+  // Run as this user and group (from root), e.g. where root would bypass a
+  // file permission under test.
+  std::optional<std::pair<uid_t, gid_t>> run_as;
+};
+
+class cli_sandbox {
+ public:
+  cli_sandbox() {
+    std::string tmpl = (fs::temp_directory_path() / "raycast-test-XXXXXX").string();
+    if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp: " + std::string(std::strerror(errno)));
+    root_ = tmpl;
+    work_ = root_ / "work";
+    fs::create_directory(work_);
+  }
+  ~cli_sandbox() {
+    std::error_code ec;
+    // Read-only directories made by tests: make them removable again.
+    for (auto it = fs::recursive_directory_iterator(root_, ec); !ec && it != fs::recursive_directory_iterator();
+         it.increment(ec))
+      if (it->is_directory(ec) && !it->is_symlink(ec)) fs::permissions(it->path(), fs::perms::owner_all, fs::perm_options::add, ec);
+    fs::remove_all(root_, ec);
+  }
+  cli_sandbox(const cli_sandbox&) = delete;
+  cli_sandbox& operator=(const cli_sandbox&) = delete;
+
+  // Lets other users reach work() (for run_options::run_as).
+  void open_to_others() const {
+    fs::permissions(root_, fs::perms::all & ~fs::perms::others_write & ~fs::perms::group_write);
+    fs::permissions(work_, fs::perms::all & ~fs::perms::others_write & ~fs::perms::group_write);
+  }
+
+  // The directory the CLI runs in and writes to; empty at the start.
+  const fs::path& work() const { return work_; }
+  std::string path(const std::string& name) const { return (work_ / name).string(); }
+
+  // Every name under work(), relative, sorted.
+  std::vector<std::string> entries() const {
+    std::vector<std::string> names;
+    std::error_code ec;
+    for (auto it = fs::recursive_directory_iterator(work_, fs::directory_options::skip_permission_denied, ec);
+         !ec && it != fs::recursive_directory_iterator(); it.increment(ec))
+      names.push_back(fs::relative(it->path(), work_).string());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+
+  // Names under work() starting with '.': temporary files left behind.
+  std::vector<std::string> leftovers() const {
+    std::vector<std::string> dot;
+    for (const std::string& n : entries())
+      if (fs::path(n).filename().string().rfind('.', 0) == 0) dot.push_back(n);
+    return dot;
+  }
+
+  pid_t start(const std::vector<std::string>& args, const run_options& opts = {}) const {
+    const std::string exe = RAYCAST_EXE;
+    std::vector<std::string> argv_s{exe};
+    argv_s.insert(argv_s.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (std::string& a : argv_s) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    const std::string out = opts.stdout_path.value_or(out_path()), err = err_path(),
+                      cwd = work_.string();
+    const pid_t pid = fork();
+    if (pid < 0) throw std::runtime_error("fork: " + std::string(std::strerror(errno)));
+    if (pid == 0) {
+      // Only async-signal-safe calls between fork and exec.
+      const int in_fd = open("/dev/null", O_RDONLY);
+      const int out_fd = open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      const int err_fd = open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      if (in_fd < 0 || out_fd < 0 || err_fd < 0) _exit(125);
+      if (dup2(in_fd, 0) < 0 || dup2(out_fd, 1) < 0 || dup2(err_fd, 2) < 0) _exit(125);
+      if (chdir(cwd.c_str()) != 0) _exit(125);
+      sigset_t none;
+      sigemptyset(&none);
+      sigprocmask(SIG_SETMASK, &none, nullptr);
+      if (opts.file_size_limit) {
+        struct sigaction ignore {};
+        ignore.sa_handler = SIG_IGN;
+        sigaction(SIGXFSZ, &ignore, nullptr);
+        const struct rlimit rl = {*opts.file_size_limit, *opts.file_size_limit};
+        if (setrlimit(RLIMIT_FSIZE, &rl) != 0) _exit(125);
+      }
+      if (opts.run_as) {
+        if (setgroups(0, nullptr) != 0 || setgid(opts.run_as->second) != 0 ||
+            setuid(opts.run_as->first) != 0)
+          _exit(125);
+      }
+      execv(argv[0], argv.data());
+      _exit(127);
+    }
+    return pid;
+  }
+
+  // Waits for the process; checks that it left no temporary file.
+  run_result finish(pid_t pid) const {
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0)
+      if (errno != EINTR) throw std::runtime_error("waitpid: " + std::string(std::strerror(errno)));
+    run_result r;
+    if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
+    if (WIFSIGNALED(status)) r.signal = WTERMSIG(status);
+    r.out = read_file(out_path());
+    r.err = read_file(err_path());
+    EXPECT_NE(r.exit_code, 125) << "could not set up the child process";
+    EXPECT_NE(r.exit_code, 127) << "could not execute " << RAYCAST_EXE;
+    const auto dot = leftovers();
+    EXPECT_TRUE(dot.empty()) << "temporary file left behind: " << dot.front();
+    return r;
+  }
+
+  run_result run(const std::vector<std::string>& args, const run_options& opts = {}) const {
+    return finish(start(args, opts));
+  }
+
+ private:
+  std::string out_path() const { return (root_ / "stdout").string(); }
+  std::string err_path() const { return (root_ / "stderr").string(); }
+
+  fs::path root_, work_;
+};
+
+// A binary PPM (P6) parsed strictly: magic, width, height, maxval, one
+// whitespace byte, then exactly width * height * 3 bytes.
+struct ppm {
+  int64_t width = 0, height = 0, maxval = 0;
+  std::string header, pixels;
+  std::string error;  // empty when it parsed
+};
+
+inline ppm parse_ppm(const std::string& data) {
+  ppm p;
+  size_t pos = 0;
+  auto skip_space = [&] {
+    while (pos < data.size()) {
+      if (data[pos] == '#') {
+        while (pos < data.size() && data[pos] != '\n') ++pos;
+      } else if (std::isspace(static_cast<unsigned char>(data[pos]))) {
+        ++pos;
+      } else {
+        break;
+      }
+    }
+  };
+  auto number = [&](int64_t& v) {
+    skip_space();
+    const size_t begin = pos;
+    v = 0;
+    while (pos < data.size() && data[pos] >= '0' && data[pos] <= '9' && v < (int64_t{1} << 40))
+      v = v * 10 + (data[pos++] - '0');
+    return pos > begin;
+  };
+  if (data.compare(0, 2, "P6") != 0) {
+    p.error = "no P6 magic";
+    return p;
+  }
+  pos = 2;
+  if (!number(p.width) || !number(p.height) || !number(p.maxval)) {
+    p.error = "bad header numbers";
+    return p;
+  }
+  if (pos >= data.size() || !std::isspace(static_cast<unsigned char>(data[pos]))) {
+    p.error = "no whitespace after maxval";
+    return p;
+  }
+  ++pos;
+  p.header = data.substr(0, pos);
+  p.pixels = data.substr(pos);
+  if (p.maxval != 255) p.error = "maxval is not 255";
+  else if (p.pixels.size() != size_t(p.width) * size_t(p.height) * 3)
+    p.error = "pixel data is " + std::to_string(p.pixels.size()) + " bytes, want " +
+              std::to_string(p.width * p.height * 3);
+  return p;
+}
+
+}  // namespace raycast_test

@@ -1,0 +1,456 @@
+// The `raycast` executable as a user runs it: what it writes, what it refuses,
+// and that a failure never leaves a damaged or half-written file behind.
+// (Images read back through OpenImageIO are checked in test_cli_images.cpp,
+// so that only those tests pay for loading the library.)
+#include <gtest/gtest.h>
+
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+
+#include <chrono>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cli_runner.h"
+#include "render_support.h"
+
+namespace {
+
+using namespace raycast;
+using raycast_test::cli_sandbox;
+using raycast_test::compare;
+using raycast_test::count_lines;
+using raycast_test::image;
+using raycast_test::parse_ppm;
+using raycast_test::read_file;
+using raycast_test::run_options;
+using raycast_test::run_result;
+using raycast_test::write_file;
+
+namespace fs = std::filesystem;
+
+const std::string default_header = "P6\n400 225\n255\n";
+
+image from_ppm_pixels(const std::string& pixels, int64_t w, int64_t h) {
+  image img(w, h, pixel_format::rgb8);
+  img.bytes.assign(pixels.begin(), pixels.end());
+  return img;
+}
+
+// What the CLI must write by default: the renderer with default options.
+const image& default_render() {
+  static const image img = raycast_test::render_with(
+      renderer(raycast_test::make_scene(), render_options{}), pixel_format::rgb8);
+  return img;
+}
+
+const image& default_reference() {
+  static const image img =
+      raycast_test::render_with_reference(raycast_test::make_scene(), pixel_format::rgb8);
+  return img;
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+// One line "raycast: error: ..." on standard error, nothing on standard output.
+void expect_one_error_line(const run_result& r, const std::string& mentions) {
+  EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+  EXPECT_FALSE(r.err.empty() || r.err.back() != '\n') << r.err;
+  EXPECT_EQ(r.err.rfind("raycast: error: ", 0), 0u) << r.err;
+  EXPECT_TRUE(contains(r.err, mentions)) << "want '" << mentions << "' in: " << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  cli_sandbox box;
+};
+
+// ---------------------------------------------------------------- info
+
+TEST_F(Cli, VersionNamesTheProgramAndTheAutoBackend) {
+  const run_result r = box.run({"--version"});
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(count_lines(r.out), 1u) << r.out;
+  EXPECT_TRUE(contains(r.out, "raycast")) << r.out;
+  EXPECT_TRUE(contains(r.out, "auto backend")) << r.out;
+  EXPECT_TRUE(contains(r.out, std::string(to_string(best_backend())))) << r.out;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  EXPECT_TRUE(box.entries().empty());
+}
+
+TEST_F(Cli, HelpExitsZeroAndListsTheOptions) {
+  const run_result r = box.run({"--help"});
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* opt : {"--output", "--width", "--height", "--aspect", "--backend", "--threads"})
+    EXPECT_TRUE(contains(r.out, opt)) << opt;
+  EXPECT_TRUE(box.entries().empty());
+}
+
+// ---------------------------------------------------------------- PPM and stdout
+
+TEST_F(Cli, DefaultPpmEqualsTheRendererAndTheReference) {
+  const run_result r = box.run({"-o", "sky.ppm"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << "no progress when standard error is not a terminal: " << r.err;
+  EXPECT_TRUE(r.out.empty());
+  EXPECT_EQ(box.entries(), std::vector<std::string>{"sky.ppm"});
+
+  const auto p = parse_ppm(read_file(box.work() / "sky.ppm"));
+  ASSERT_EQ(p.error, "");
+  EXPECT_EQ(p.header, default_header);
+  const image got = from_ppm_pixels(p.pixels, 400, 225);
+  EXPECT_EQ(got.bytes, default_render().bytes) << compare(got, default_render()).where();
+  EXPECT_LE(compare(got, default_reference()).max, 1) << compare(got, default_reference()).where();
+  // The check pixels, exactly.
+  const int want[2][5] = {{0, 0, 163, 200, 255}, {224, 399, 220, 234, 255}};
+  for (const auto& w : want)
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(got.byte(w[0], w[1], k), w[2 + k]);
+}
+
+TEST_F(Cli, StdoutStreamIsTheSameP6AsThePpmFile) {
+  const run_result file = box.run({"-o", box.path("sky.ppm")});
+  ASSERT_EQ(file.exit_code, 0) << file.err;
+  const auto p = parse_ppm(read_file(box.work() / "sky.ppm"));
+  ASSERT_EQ(p.error, "");
+  fs::remove(box.work() / "sky.ppm");
+
+  const run_result r = box.run({"-o", "-"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  ASSERT_EQ(r.out.size(), default_header.size() + 400 * 225 * 3);
+  EXPECT_EQ(r.out.substr(0, default_header.size()), default_header);
+  EXPECT_TRUE(r.out.substr(default_header.size()) == p.pixels) << "stdout pixels differ from the .ppm";
+  EXPECT_TRUE(box.entries().empty()) << "-o - wrote a file";
+}
+
+// Every camera and sky option reaches the render.
+TEST_F(Cli, OptionsReachTheRender) {
+  const run_result r = box.run({"--width", "64", "--aspect", "2:1", "--viewport-height", "3",
+                                "--focal-length", "0.5", "--origin", "5,-5,2", "--sky-bottom",
+                                "0.9,0.8,0.7", "--sky-top", "0.1,0.2,0.3", "-o", "custom.ppm"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  camera_params cp;
+  cp.image_width = 64;
+  cp.aspect_ratio = 2.0;
+  cp.viewport_height = 3;
+  cp.focal_length = 0.5;
+  cp.origin = point3(5, -5, 2);
+  const scene s = raycast_test::make_scene(cp, sky{color(0.9, 0.8, 0.7), color(0.1, 0.2, 0.3)});
+  ASSERT_EQ(s.cam.image_height, 32);
+
+  const auto p = parse_ppm(read_file(box.work() / "custom.ppm"));
+  ASSERT_EQ(p.error, "");
+  EXPECT_EQ(p.header, "P6\n64 32\n255\n");
+  const image got = from_ppm_pixels(p.pixels, 64, 32);
+  const image want = raycast_test::render_with(renderer(s, render_options{}), pixel_format::rgb8);
+  EXPECT_EQ(got.bytes, want.bytes) << compare(got, want).where();
+  const image ref = raycast_test::render_with_reference(s, pixel_format::rgb8);
+  EXPECT_LE(compare(got, ref).max, 1) << compare(got, ref).where();
+}
+
+TEST_F(Cli, ExplicitHeightAndAspectForms) {
+  ASSERT_EQ(box.run({"--width", "30", "--height", "7", "-o", "h.ppm"}).exit_code, 0);
+  EXPECT_EQ(parse_ppm(read_file(box.work() / "h.ppm")).header, "P6\n30 7\n255\n");
+  ASSERT_EQ(box.run({"--width", "30", "--aspect", "3:2", "-o", "a.ppm"}).exit_code, 0);
+  ASSERT_EQ(box.run({"--width", "30", "--aspect", "1.5", "-o", "b.ppm"}).exit_code, 0);
+  const std::string a = read_file(box.work() / "a.ppm");
+  EXPECT_EQ(parse_ppm(a).header, "P6\n30 20\n255\n");
+  EXPECT_TRUE(a == read_file(box.work() / "b.ppm")) << "--aspect 3:2 and --aspect 1.5 differ";
+}
+
+TEST_F(Cli, BackendsAndThreadCounts) {
+  const scene s = raycast_test::make_scene();
+  ASSERT_EQ(box.run({"--backend", "reference", "-o", "ref.ppm"}).exit_code, 0);
+  EXPECT_TRUE(parse_ppm(read_file(box.work() / "ref.ppm")).pixels ==
+              std::string(default_reference().bytes.begin(), default_reference().bytes.end()))
+      << "--backend reference differs from render_reference";
+
+  ASSERT_EQ(box.run({"--backend", "scalar", "--precision", "exact", "-o", "scalar.ppm"}).exit_code, 0);
+  const image scalar = raycast_test::render_with_scalar(s, precision::exact, pixel_format::rgb8);
+  EXPECT_TRUE(parse_ppm(read_file(box.work() / "scalar.ppm")).pixels ==
+              std::string(scalar.bytes.begin(), scalar.bytes.end()))
+      << "--backend scalar differs from render_scalar";
+
+  ASSERT_EQ(box.run({"--backend", "auto", "--threads", "1", "-o", "t1.ppm"}).exit_code, 0);
+  ASSERT_EQ(box.run({"--threads", "7", "-q", "-o", "t7.ppm"}).exit_code, 0);
+  const std::string t1 = read_file(box.work() / "t1.ppm");
+  EXPECT_TRUE(t1 == read_file(box.work() / "t7.ppm")) << "--threads 1 and 7 differ";
+  EXPECT_TRUE(parse_ppm(t1).pixels ==
+              std::string(default_render().bytes.begin(), default_render().bytes.end()));
+}
+
+TEST_F(Cli, FastPrecisionStaysWithinOneLsbOfTheReference) {
+  const run_result r = box.run({"--precision", "fast", "-o", "fast.ppm"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto p = parse_ppm(read_file(box.work() / "fast.ppm"));
+  ASSERT_EQ(p.error, "");
+  const image got = from_ppm_pixels(p.pixels, 400, 225);
+  EXPECT_LE(compare(got, default_reference()).max, 1) << compare(got, default_reference()).where();
+}
+
+// ---------------------------------------------------------------- formats
+
+struct format_case {
+  const char* name;
+  std::vector<std::string> args;
+  const char* file;
+  std::string magic;  // the file's first bytes
+};
+
+class CliFormat : public Cli, public ::testing::WithParamInterface<format_case> {};
+
+TEST_P(CliFormat, ExtensionOrFormatOptionPicksTheEncoder) {
+  std::vector<std::string> args = GetParam().args;
+  args.insert(args.end(), {"--width", "16", "--height", "9"});
+  const run_result r = box.run(args);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  EXPECT_EQ(box.entries(), std::vector<std::string>{GetParam().file});
+  const std::string data = read_file(box.work() / GetParam().file);
+  EXPECT_EQ(data.substr(0, GetParam().magic.size()), GetParam().magic);
+}
+
+const std::string png_magic("\x89PNG\r\n\x1a\n", 8);
+const std::string jpg_magic("\xFF\xD8\xFF", 3);
+const std::string tif_magic("II*\0", 4);  // little-endian TIFF, as x86 writes it
+const std::string exr_magic("\x76\x2F\x31\x01", 4);
+
+const format_case format_cases[] = {
+    {"png", {"-o", "a.png"}, "a.png", png_magic},
+    {"png_upper_case", {"-o", "a.PNG"}, "a.PNG", png_magic},
+    {"pnm", {"-o", "a.pnm"}, "a.pnm", "P6\n16 9\n255\n"},
+    {"jpeg", {"-o", "a.jpeg"}, "a.jpeg", jpg_magic},
+    {"tiff", {"-o", "a.tiff"}, "a.tiff", tif_magic},
+    {"exr", {"-o", "a.exr"}, "a.exr", exr_magic},
+    {"format_overrides_unknown_extension", {"-o", "a.dat", "--format", "tif"}, "a.dat", tif_magic},
+    {"format_overrides_known_extension", {"-o", "a.png", "--format", "ppm"}, "a.png", "P6\n"},
+};
+
+std::string format_name(const ::testing::TestParamInfo<format_case>& p) { return p.param.name; }
+
+INSTANTIATE_TEST_SUITE_P(Formats, CliFormat, ::testing::ValuesIn(format_cases), format_name);
+
+// ---------------------------------------------------------------- usage errors
+
+struct usage_case {
+  const char* name;
+  std::vector<std::string> args;  // "{out}" stands for <tmp>/out.png
+  const char* mentions;
+};
+
+class CliUsageError : public Cli, public ::testing::WithParamInterface<usage_case> {};
+
+TEST_P(CliUsageError, ExitsTwoWithOneLineNamingTheOptionAndWritesNothing) {
+  std::vector<std::string> args;
+  for (const std::string& a : GetParam().args) args.push_back(a == "{out}" ? box.path("out.png") : a);
+  const run_result r = box.run(args);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  expect_one_error_line(r, GetParam().mentions);
+  EXPECT_TRUE(box.entries().empty()) << "a refused run wrote " << box.entries().front();
+}
+
+const usage_case usage_cases[] = {
+    {"width_zero", {"--width", "0", "-o", "{out}"}, "--width"},
+    {"width_negative", {"--width", "-5", "-o", "{out}"}, "--width"},
+    {"width_with_unit", {"--width", "400px", "-o", "{out}"}, "--width"},
+    {"width_empty", {"--width", "", "-o", "{out}"}, "--width"},
+    {"width_exponent", {"--width", "1e3", "-o", "{out}"}, "--width"},
+    {"width_over_max", {"--width", "16777217", "-o", "{out}"}, "--width"},
+    {"width_overflow", {"--width", "99999999999999999999", "-o", "{out}"}, "--width"},
+    {"width_repeated", {"--width", "10", "--width", "20", "-o", "{out}"}, "--width"},
+    {"height_zero", {"--height", "0", "-o", "{out}"}, "--height"},
+    {"aspect_zero", {"--aspect", "0", "-o", "{out}"}, "--aspect"},
+    {"aspect_text", {"--aspect", "abc", "-o", "{out}"}, "--aspect"},
+    {"aspect_zero_denominator", {"--aspect", "16:0", "-o", "{out}"}, "--aspect"},
+    {"aspect_height_over_max", {"--aspect", "1e-7", "-o", "{out}"}, "--aspect"},
+    {"viewport_nan", {"--viewport-height", "nan", "-o", "{out}"}, "--viewport-height"},
+    {"viewport_negative", {"--viewport-height", "-1", "-o", "{out}"}, "--viewport-height"},
+    {"viewport_overflow", {"--viewport-height", "1e400", "-o", "{out}"}, "--viewport-height"},
+    {"focal_inf", {"--focal-length", "inf", "-o", "{out}"}, "--focal-length"},
+    {"focal_zero", {"--focal-length", "0", "-o", "{out}"}, "--focal-length"},
+    {"origin_two", {"--origin", "1,2", "-o", "{out}"}, "--origin"},
+    {"origin_four", {"--origin", "1,2,3,4", "-o", "{out}"}, "--origin"},
+    {"origin_text", {"--origin", "1,x,3", "-o", "{out}"}, "--origin"},
+    {"origin_inf", {"--origin", "1,inf,3", "-o", "{out}"}, "--origin"},
+    {"sky_top_two", {"--sky-top", "1,1", "-o", "{out}"}, "--sky-top"},
+    {"sky_bottom_nan", {"--sky-bottom", "1,nan,1", "-o", "{out}"}, "--sky-bottom"},
+    {"format_unknown", {"--format", "bmp", "-o", "{out}"}, "--format"},
+    {"stdout_not_ppm", {"--format", "png", "-o", "-"}, "--format"},
+    {"extension_unknown", {"-o", "out.bmp"}, "--output"},
+    {"extension_missing", {"-o", "out"}, "--output"},
+    {"output_empty", {"-o", ""}, "--output"},
+    {"output_missing", {}, "--output"},
+    {"threads_zero", {"--threads", "0", "-o", "{out}"}, "--threads"},
+    {"threads_too_many", {"--threads", "1025", "-o", "{out}"}, "--threads"},
+    {"backend_unknown", {"--backend", "nope", "-o", "{out}"}, "--backend"},
+    {"precision_unknown", {"--precision", "nope", "-o", "{out}"}, "--precision"},
+    {"unknown_option", {"--bogus", "-o", "{out}"}, "--bogus"},
+};
+
+std::string usage_name(const ::testing::TestParamInfo<usage_case>& p) { return p.param.name; }
+
+INSTANTIATE_TEST_SUITE_P(Options, CliUsageError, ::testing::ValuesIn(usage_cases), usage_name);
+
+TEST_F(Cli, UnknownExtensionListsTheSupportedOnes) {
+  const run_result r = box.run({"-o", "out.bmp"});
+  EXPECT_EQ(r.exit_code, 2);
+  for (const char* ext : {".png", ".ppm", ".jpg", ".tif", ".exr"})
+    EXPECT_TRUE(contains(r.err, ext)) << ext << " missing from: " << r.err;
+}
+
+TEST_F(Cli, UsageErrorLeavesAnExistingFileIntact) {
+  write_file(box.work() / "out.png", "precious");
+  const run_result r = box.run({"--width", "0", "-o", box.path("out.png")});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(read_file(box.work() / "out.png"), "precious");
+  EXPECT_EQ(box.entries(), std::vector<std::string>{"out.png"});
+}
+
+// ---------------------------------------------------------------- unwritable destinations
+
+TEST_F(Cli, MissingDirectoryExitsOneNamingTheFile) {
+  const std::string dest = box.path("missing_dir/a.png");
+  const run_result r = box.run({"-o", dest});
+  EXPECT_EQ(r.exit_code, 1);
+  expect_one_error_line(r, dest);
+  EXPECT_TRUE(box.entries().empty());
+}
+
+TEST_F(Cli, DestinationThatIsADirectoryExitsOne) {
+  fs::create_directory(box.work() / "a_directory_that_exists");
+  const std::string dest = box.path("a_directory_that_exists");
+  const run_result r = box.run({"-o", dest, "--format", "png"});
+  EXPECT_EQ(r.exit_code, 1);
+  expect_one_error_line(r, dest);
+  EXPECT_TRUE(fs::is_directory(dest));
+  EXPECT_EQ(box.entries(), std::vector<std::string>{"a_directory_that_exists"});
+}
+
+TEST_F(Cli, ReadOnlyDirectoryExitsOne) {
+  const fs::path dir = box.work() / "read_only";
+  fs::create_directory(dir);
+  ASSERT_EQ(chmod(dir.c_str(), 0555), 0);
+  run_options opts;
+  if (access(dir.c_str(), W_OK) == 0) {
+    if (geteuid() != 0) GTEST_SKIP() << "a 0555 directory is still writable here";
+    // Root writes anywhere: run the CLI as nobody, whom the mode does stop.
+    opts.run_as = std::pair<uid_t, gid_t>{65534, 65534};
+    box.open_to_others();
+  }
+  const std::string dest = (dir / "a.png").string();
+  const run_result r = box.run({"-o", dest}, opts);
+  EXPECT_EQ(r.exit_code, 1);
+  expect_one_error_line(r, dest);
+  EXPECT_EQ(box.entries(), std::vector<std::string>{"read_only"});
+}
+
+// /proc refuses new files even to root.
+TEST_F(Cli, DirectoryNoOneCanWriteToExitsOne) {
+  const std::string dest = "/proc/raycast-test-sky.png";
+  const run_result r = box.run({"-o", dest});
+  EXPECT_EQ(r.exit_code, 1);
+  expect_one_error_line(r, dest);
+  EXPECT_FALSE(fs::exists(dest));
+}
+
+TEST_F(Cli, DevFullExitsOne) {
+  // A device is written in place, never replaced (even where /dev is writable):
+  // see DeviceNodeDestinationIsWrittenNotReplaced, on a node of our own.
+  const run_result r = box.run({"-o", "/dev/full", "--format", "ppm"});
+  EXPECT_EQ(r.exit_code, 1);
+  expect_one_error_line(r, "/dev/full");
+  struct stat st {};
+  ASSERT_EQ(stat("/dev/full", &st), 0);
+  EXPECT_TRUE(S_ISCHR(st.st_mode));
+}
+
+// A destination that is a character device (here a node of /dev/full's
+// device, 1:7, in the temporary directory) is written to, not replaced by a
+// regular file: `raycast -o /dev/full` as root must not destroy /dev/full.
+TEST_F(Cli, DeviceNodeDestinationIsWrittenNotReplaced) {
+  const fs::path node = box.work() / "full";
+  if (mknod(node.c_str(), S_IFCHR | 0666, makedev(1, 7)) != 0)
+    GTEST_SKIP() << "cannot create a device node here: " << std::strerror(errno);
+  const run_result r = box.run({"-o", node.string(), "--format", "ppm"});
+  struct stat st {};
+  ASSERT_EQ(stat(node.c_str(), &st), 0);
+  EXPECT_TRUE(S_ISCHR(st.st_mode)) << "the device node was replaced by a regular file of "
+                                   << st.st_size << " bytes";
+  EXPECT_EQ(r.exit_code, 1) << "writing to a full device must fail";
+  expect_one_error_line(r, node.string());
+}
+
+// Through a symbolic link the file it names is replaced (the link stays), and a
+// replaced file keeps its permissions.
+TEST_F(Cli, SymlinkDestinationReplacesTargetAndKeepsMode) {
+  write_file(box.work() / "real.ppm", "precious");
+  ASSERT_EQ(chmod((box.work() / "real.ppm").c_str(), 0600), 0);
+  fs::create_symlink("real.ppm", box.work() / "link.ppm");
+  const run_result r = box.run({"-o", box.path("link.ppm")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::is_symlink(box.work() / "link.ppm"));
+  struct stat st {};
+  ASSERT_EQ(stat((box.work() / "real.ppm").c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 07777, 0600u);
+  EXPECT_EQ(st.st_size, 270015);  // header + 400 x 225 x 3
+}
+
+// ---------------------------------------------------------------- failures while writing
+
+class CliWriteFailure : public Cli, public ::testing::WithParamInterface<const char*> {};
+
+// A write that fails half-way (the file size limit stands in for a full disk)
+// exits 1 naming the file, removes the temporary file and leaves the previous
+// file at the destination exactly as it was.
+TEST_P(CliWriteFailure, KeepsTheExistingFileAndRemovesTheTemporary) {
+  const std::string name = std::string("out.") + GetParam();
+  write_file(box.work() / name, "precious");
+  run_options opts;
+  opts.file_size_limit = 1024;
+  const run_result r = box.run({"-o", box.path(name)}, opts);
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  expect_one_error_line(r, box.path(name));
+  EXPECT_EQ(read_file(box.work() / name), "precious");
+  EXPECT_EQ(box.entries(), std::vector<std::string>{name});
+}
+
+std::string extension_name(const ::testing::TestParamInfo<const char*>& p) { return p.param; }
+
+INSTANTIATE_TEST_SUITE_P(Formats, CliWriteFailure,
+                         ::testing::Values("ppm", "png", "jpg", "tif", "exr"), extension_name);
+
+TEST_F(Cli, StandardOutputWriteFailureExitsOne) {
+  run_options opts;
+  opts.stdout_path = "/dev/full";
+  const run_result r = box.run({"-o", "-"}, opts);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+  EXPECT_TRUE(contains(r.err, "standard output")) << r.err;
+  EXPECT_TRUE(box.entries().empty());
+}
+
+// SIGTERM during a write removes the temporary file and leaves the previous
+// file intact.
+TEST_F(Cli, TerminationRemovesTheTemporaryFile) {
+  write_file(box.work() / "big.png", "precious");
+  // Large enough that encoding runs for seconds; we stop it at once.
+  const pid_t pid = box.start({"--width", "8192", "--height", "8192", "-o", box.path("big.png")});
+  bool seen = false;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (!seen && std::chrono::steady_clock::now() < deadline) {
+    seen = !box.leftovers().empty();
+    if (!seen) std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  kill(pid, SIGTERM);
+  const run_result r = box.finish(pid);  // also checks that no temporary file remains
+  ASSERT_TRUE(seen) << "the temporary file never appeared";
+  EXPECT_EQ(r.signal, SIGTERM) << "exit code " << r.exit_code << ": " << r.err;
+  EXPECT_EQ(read_file(box.work() / "big.png"), "precious");
+  EXPECT_EQ(box.entries(), std::vector<std::string>{"big.png"});
+}
+
+}  // namespace
