@@ -59,7 +59,7 @@ const raycast_image_module* load_image_module(const std::string& for_file) {
   std::string tried, last_error;
   for (const std::string& candidate :
        {dir + "/raycast_oiio.so", dir + "/" RAYCAST_MODULE_RELDIR "/raycast_oiio.so"}) {
-    void* h = dlopen(candidate.c_str(), RTLD_NOW | RTLD_LOCAL);
+    void* h = dlopen(candidate.c_str(), RTLD_LAZY | RTLD_LOCAL);
     if (!h) {
       const char* e = dlerror();
       last_error = e ? e : candidate;
