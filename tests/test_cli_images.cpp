@@ -4,6 +4,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -139,6 +140,26 @@ TEST(CliImagesJpeg, JpegIsTheSkyWithinCompressionError) {
   for (size_t k = 0; k < ref.bytes.size(); ++k) sum += std::abs(int(f.img.bytes[k]) - int(ref.bytes[k]));
   EXPECT_LE(sum / double(ref.bytes.size()), 1.0);
   EXPECT_LE(compare(f.img, ref).max, 8) << compare(f.img, ref).where();
+}
+
+}  // namespace
+
+namespace {
+
+// The picture in the README is tests/golden/sky.png. The default render (here
+// as a PPM, which needs no image library) must still be exactly that picture.
+TEST(Golden, DefaultRenderIsTheReadmePicture) {
+  cli_sandbox box;
+  const run_result r = box.run({"-o", "sky.ppm"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const raycast_test::ppm p = raycast_test::parse_ppm(raycast_test::read_file(box.work() / "sky.ppm"));
+  ASSERT_TRUE(p.error.empty()) << p.error;
+  const read_back golden = read_image(RAYCAST_GOLDEN_DIR "/sky.png", pixel_format::rgb8);
+  ASSERT_TRUE(golden.error.empty()) << golden.error;
+  ASSERT_EQ(golden.img.bytes.size(), p.pixels.size());
+  EXPECT_TRUE(std::equal(p.pixels.begin(), p.pixels.end(), golden.img.bytes.begin(),
+                         [](char a, unsigned char b) { return static_cast<unsigned char>(a) == b; }))
+      << "the default sky no longer matches tests/golden/sky.png";
 }
 
 }  // namespace
