@@ -1,6 +1,8 @@
 #include "render.h"
 
 #include <algorithm>
+#include <cstdlib>
+#include <new>
 
 #include <omp.h>
 
@@ -64,6 +66,8 @@ backend best_backend() {
   return backend::scalar;
 }
 
+void renderer::free_deleter::operator()(float* p) const { std::free(p); }
+
 int available_cores() { return std::max(1, omp_get_num_procs()); }
 
 renderer::renderer(const scene& s, const render_options& opts)
@@ -89,28 +93,36 @@ renderer::renderer(const scene& s, const render_options& opts)
   // Per-column parts of the direction, in scalar.h's operations and order;
   // padded with zeros to whole 16-lane batches.
   const size_t padded = size_t(f.width + 15) / 16 * 16;
+  const auto table = [padded] {
+    float* p = static_cast<float*>(std::aligned_alloc(64, padded * sizeof(float)));
+    if (!p) throw std::bad_alloc();
+    std::fill(p, p + padded, 0.0f);
+    return aligned_floats(p);
+  };
+  const bool special = opts.specialize;
+  args_.axis_aligned = special && f.axis_aligned;
   for (int k = 0; k < 3; ++k) {
-    if (f.axis_aligned && k > 0) break;  // the lesson camera reads x only
-    col_[k].assign(padded, 0.0f);
+    if (args_.axis_aligned && k > 0) break;  // the lesson camera reads x only
+    col_[k] = table();
     for (int64_t i = 0; i < f.width; ++i) {
       const float u = f.width == 1 ? 0.5f : float(i) / f.wm1;
       col_[k][size_t(i)] = f.corner[k] + u * f.horizontal[k];
     }
-    args_.col[k] = col_[k].data();
+    args_.col[k] = col_[k].get();
   }
-  if (f.axis_aligned) {
-    col_x2_.assign(padded, 0.0f);
+  if (args_.axis_aligned) {
+    col_x2_ = table();
     for (size_t i = 0; i < padded; ++i) col_x2_[i] = col_[0][i] * col_[0][i];
-    args_.col_x2 = col_x2_.data();
+    args_.col_x2 = col_x2_.get();
   }
   bool unit = true, lerp_exact = true;
   for (int k = 0; k < 3; ++k) {
-    args_.constant[k] = f.bottom[k] == f.top[k];
+    args_.constant[k] = special && f.bottom[k] == f.top[k];
     args_.constant_value[k] = f.bottom[k];
     const float c01 = f.bottom[k] > 0.0f ? (f.bottom[k] < 1.0f ? f.bottom[k] : 1.0f) : 0.0f;
     args_.constant_byte[k] = int32_t(c01 * 255.999f);
-    unit = unit && f.lo[k] >= 0.0f && f.hi[k] <= 1.0f;
-    lerp_exact = lerp_exact && f.bottom[k] + 1.0f * f.delta[k] == f.top[k];
+    unit = unit && special && f.lo[k] >= 0.0f && f.hi[k] <= 1.0f;
+    lerp_exact = lerp_exact && special && f.bottom[k] + 1.0f * f.delta[k] == f.top[k];
   }
   args_.lerp_exact = lerp_exact;
   args_.colours_in_unit_range = unit;

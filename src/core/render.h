@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-#include <vector>
+#include <memory>
 
 #include "float_scene.h"
 #include "kernels/kernel.h"
@@ -46,6 +46,10 @@ struct render_options {
   backend which = backend::automatic;
   precision prec = default_precision;
   int threads = 0;  // 0: one per available core
+  // Let the SIMD kernels leave out what the scene does not need (x/z lanes for
+  // the lesson camera, constant channels, provably no-op clamps). Off runs the
+  // general path, bit-identical in exact mode: for tests and the benchmark.
+  bool specialize = true;
 };
 
 struct unsupported_backend : std::runtime_error {
@@ -75,7 +79,11 @@ class renderer {
   float_scene fscene_;
   kernels::kernel_args args_;
   kernels::render_rows_fn kernel_ = nullptr;
-  std::vector<float> col_[3], col_x2_;  // per-column tables behind args_
+  struct free_deleter {
+    void operator()(float* p) const;
+  };
+  using aligned_floats = std::unique_ptr<float[], free_deleter>;
+  aligned_floats col_[3], col_x2_;  // per-column tables behind args_, 64-byte aligned
   backend which_;
   precision prec_;
   int threads_;

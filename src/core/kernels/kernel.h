@@ -16,7 +16,9 @@ struct kernel_args {
   // col[k][i] = corner[k] + u_i * horizontal[k] (scalar.h's inner bracket).
   // Padded with zeros to a multiple of 16 columns.
   const float* col[3] = {};
-  // Lesson camera (scene->axis_aligned): col[0][i]^2, so a batch needs one load.
+  // Lesson camera (scene->axis_aligned, and specializing): direction y and z
+  // per row, col_x2[i] = col[0][i]^2 per column, so a batch needs one load.
+  bool axis_aligned = false;
   const float* col_x2 = nullptr;
   // Channels whose two sky colours are equal never vary: computed once.
   bool constant[3] = {};

@@ -2,9 +2,10 @@
 // compiled per instruction set (sky_sse2.cpp, sky_avx2.cpp, sky_avx512.cpp each
 // define RAYCAST_ISA and include their simd/ header first).
 //
-// One batch is vfloat::size pixels of a row, a structure of arrays in
-// registers: the direction's components, then t, then the channels, then bytes
-// or floats stored interleaved -- no float image in memory for 8-bit output.
+// One batch is vfloat::size pixels of a row (8, or 16 with AVX-512), a
+// structure of arrays in registers: the rays (ray_batch), then t, then the
+// channels, then bytes or floats stored interleaved -- no float image in
+// memory for 8-bit output.
 // Exact mode performs scalar.h's operations in scalar.h's order, so its output
 // is bit-identical to render_scalar; fast mode swaps sqrt + divide for an
 // estimate refined by Newton.
@@ -28,28 +29,35 @@ struct row_setup {
   float yz2, nr_a, nr_b;
 };
 
-// The direction of the batch at column i0 and its squared length. The lesson
-// camera carries no x, z lanes: x^2 comes from a table, y and z are per row.
+// A batch of N rays of one row as a structure of arrays in registers. The sky
+// reads only the direction's y and its squared length, so that is all a batch
+// carries: no origin lanes (the sky never reads the origin), and for the lesson
+// camera no x or z lanes either (x^2 comes from a per-column table, y and z
+// are constant along the row).
+struct ray_batch {
+  vfloat dir_y;  // d.y
+  vfloat len2;   // |d|^2 = (d.x^2 + d.y^2) + d.z^2, in scalar.h's order for exact mode
+};
+
 template <bool AxisAligned, bool Fast>
-inline void direction(const kernel_args& a, const row_setup& rs, int64_t i0, vfloat& dy,
-                      vfloat& n2) {
+inline ray_batch generate(const kernel_args& a, const row_setup& rs, int64_t i0) {
   if constexpr (AxisAligned) {
-    dy = vfloat(rs.dy);
-    if constexpr (Fast) n2 = vfloat::load(a.col_x2 + i0) + vfloat(rs.yz2);
-    else n2 = (vfloat::load(a.col_x2 + i0) + vfloat(rs.y2)) + vfloat(rs.z2);
+    const vfloat x2 = vfloat::load(a.col_x2 + i0);
+    if constexpr (Fast) return {vfloat(rs.dy), x2 + vfloat(rs.yz2)};
+    return {vfloat(rs.dy), (x2 + vfloat(rs.y2)) + vfloat(rs.z2)};
   } else {
     const vfloat dx = vfloat::load(a.col[0] + i0) + vfloat(rs.vv[0]);
-    dy = vfloat::load(a.col[1] + i0) + vfloat(rs.vv[1]);
+    const vfloat dy = vfloat::load(a.col[1] + i0) + vfloat(rs.vv[1]);
     const vfloat dz = vfloat::load(a.col[2] + i0) + vfloat(rs.vv[2]);
-    n2 = (dx * dx + dy * dy) + dz * dz;
+    return {dy, (dx * dx + dy * dy) + dz * dz};
   }
 }
 
 // Exact mode: t = (y / |d| + 1) * 0.5, |d| = sqrt(max(n2, FLT_MIN)) (scalar.h).
 // Since |y| <= sqrt(fl(y^2)) <= |d|, t is already in [0, 1]: scalar.h's clamp
 // cannot change it and is left out.
-inline vfloat exact_t(vfloat dy, vfloat n2) {
-  const vfloat uy = dy / sqrt(max(n2, vfloat(FLT_MIN)));
+inline vfloat exact_t(const ray_batch& b) {
+  const vfloat uy = b.dir_y / sqrt(max(b.len2, vfloat(FLT_MIN)));
   return (uy + vfloat(1.0f)) * vfloat(0.5f);
 }
 
@@ -57,13 +65,13 @@ inline vfloat exact_t(vfloat dy, vfloat n2) {
 // to [-1, 1] (scalar.h). The lesson camera's y is constant along the row, so
 // it is folded into the Newton constants.
 template <bool AxisAligned>
-inline vfloat fast_uy(const row_setup& rs, vfloat dy, vfloat n2) {
-  n2 = max(n2, vfloat(FLT_MIN));
+inline vfloat fast_uy(const row_setup& rs, const ray_batch& b) {
+  const vfloat n2 = max(b.len2, vfloat(FLT_MIN));
   const vfloat r = rsqrt_est(n2);
   const vfloat e = (n2 * r) * r;
   vfloat uy;
   if constexpr (AxisAligned) uy = r * nmadd(e, vfloat(rs.nr_b), vfloat(rs.nr_a));
-  else uy = (dy * r) * nmadd(e, vfloat(fast_nr_b), vfloat(fast_nr_a));
+  else uy = (b.dir_y * r) * nmadd(e, vfloat(fast_nr_b), vfloat(fast_nr_a));
   return clamp(uy, vfloat(-1.0f), vfloat(1.0f));
 }
 
@@ -147,14 +155,13 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
     unsigned char* out = band.row(r);
 
     for (int64_t i0 = 0; i0 < W; i0 += N) {
-      vfloat dy, n2;
-      direction<AxisAligned, Fast>(a, rs, i0, dy, n2);
+      const ray_batch rays = generate<AxisAligned, Fast>(a, rs, i0);
       vfloat t, uy;
       if constexpr (Fast) {
-        uy = fast_uy<AxisAligned>(rs, dy, n2);
+        uy = fast_uy<AxisAligned>(rs, rays);
         if constexpr (Float) t = (uy + vfloat(1.0f)) * vfloat(0.5f);
       } else {
-        t = exact_t(dy, n2);
+        t = exact_t(rays);
       }
 
       const int n = W - i0 < N ? int(W - i0) : N;
@@ -218,7 +225,7 @@ void dispatch(const variant& v, const kernel_args& a, const image_band& band, in
 
 void render_rows(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
   variant v{};
-  v.axis_aligned = a.scene->axis_aligned;
+  v.axis_aligned = a.axis_aligned;
   v.fast = a.prec == precision::fast;
   v.f32 = band.format == pixel_format::rgb_f32;
   v.simple = a.lerp_exact && (v.f32 || a.colours_in_unit_range);
