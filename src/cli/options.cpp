@@ -178,6 +178,8 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
     if (auto e = parse_triple(bottom_s, j.sc.sky.bottom)) return usage("--sky-bottom", *e);
   if (given("--sky-top"))
     if (auto e = parse_triple(top_s, j.sc.sky.top)) return usage("--sky-top", *e);
+  for (const auto& [name, c] : {std::pair{"--sky-bottom", j.sc.sky.bottom}, {"--sky-top", j.sc.sky.top}})
+    if (auto e = validate(raycast::sky{c, c})) return usage(name, *e);
 
   // Range checks, each naming its option.
   const auto max_dim = std::to_string(max_dimension);

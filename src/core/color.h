@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
+#include <string>
 
 #include "ray.h"
 
@@ -12,6 +14,18 @@ struct sky {
   color bottom{1.0, 1.0, 1.0};  // seen looking straight down (t = 0)
   color top{0.5, 0.7, 1.0};     // seen looking straight up (t = 1)
 };
+
+// Largest colour component magnitude accepted: far beyond any HDR sky, and
+// small enough that top - bottom and every lerp stay finite in float.
+inline constexpr double max_colour = 1e30;
+
+// Returns why the sky cannot be rendered, or nullopt.
+inline std::optional<std::string> validate(const sky& s) {
+  for (const color& c : {s.bottom, s.top})
+    for (int k = 0; k < 3; ++k)
+      if (!(std::abs(c[k]) <= max_colour)) return "colour components must be finite and within +-1e30";
+  return std::nullopt;
+}
 
 // b / |b|, scaled by its largest component first (as Eigen's stableNormalized)
 // so that no square overflows or underflows; the zero vector stays zero.

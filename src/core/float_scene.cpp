@@ -19,12 +19,17 @@ float_scene prepare_float_scene(const scene& s) {
   int e = 0;
   std::frexp(m, &e);  // m = x * 2^e with x in [0.5, 1)
   const double scale = std::ldexp(1.0, -e);
+  // Values below 2^-64 (camera components relative to the largest, and sky
+  // colours) become 0. They cannot change a float result, but as denormals
+  // somewhere in the arithmetic they could make the output depend on the
+  // FTZ/DAZ bits; above 2^-64 no product or sum in scalar.h is denormal.
+  const auto flush = [](double x) { return std::abs(x) < 0x1p-64 ? 0.0f : float(x); };
   for (int k = 0; k < 3; ++k) {
-    f.corner[k] = float(c.corner_dir[k] * scale);
-    f.horizontal[k] = float(c.horizontal[k] * scale);
-    f.vertical[k] = float(c.vertical[k] * scale);
-    f.bottom[k] = float(s.sky.bottom[k]) + 0.0f;  // + 0: a -0 colour becomes +0
-    f.top[k] = float(s.sky.top[k]) + 0.0f;
+    f.corner[k] = flush(c.corner_dir[k] * scale);
+    f.horizontal[k] = flush(c.horizontal[k] * scale);
+    f.vertical[k] = flush(c.vertical[k] * scale);
+    f.bottom[k] = flush(s.sky.bottom[k]) + 0.0f;  // + 0: a -0 colour becomes +0
+    f.top[k] = flush(s.sky.top[k]) + 0.0f;
     f.delta[k] = f.top[k] - f.bottom[k];
     const double half = 0.5 * (double(f.top[k]) - double(f.bottom[k]));
     f.fast_qa[k] = float(255.999 * half);

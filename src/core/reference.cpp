@@ -1,8 +1,17 @@
 #include "reference.h"
 
+#include <cfloat>
+#include <cmath>
 #include <cstring>
 
 namespace raycast {
+namespace {
+
+// Rounds to float; a result below the smallest normal float becomes 0 (as the
+// float renderers' colours do), so that the FTZ bit cannot change the output.
+float to_float(double c) { return std::abs(c) < double(FLT_MIN) ? 0.0f : float(c); }
+
+}  // namespace
 
 color reference_pixel(const scene& s, int64_t i, int64_t j) {
   const camera& cam = s.cam;
@@ -22,7 +31,7 @@ void render_reference(const scene& s, const image_band& band) {
         row[3 * i + 1] = to_byte(c.g);
         row[3 * i + 2] = to_byte(c.b);
       } else {
-        const float f[3] = {float(c.r), float(c.g), float(c.b)};
+        const float f[3] = {to_float(c.r), to_float(c.g), to_float(c.b)};
         std::memcpy(row + 12 * i, f, sizeof f);
       }
     }
