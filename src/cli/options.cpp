@@ -110,7 +110,7 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::Throw);
 
   std::string output, width_s, height_s, aspect_s, vh_s, focal_s, origin_s, bottom_s, top_s, format_s;
-  std::string backend_s, precision_s, threads_s;
+  std::string backend_s, precision_s, threads_s, lookfrom_s, lookat_s, vup_s, vfov_s;
   bool quiet = false, version = false;
 
   app.add_option("-o,--output", output, "Output file; '-' writes binary PPM to standard output")
@@ -123,6 +123,14 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
   app.add_option("--focal-length", focal_s, "Distance from the origin to the viewport [1.0]")
       ->type_name("F");
   app.add_option("--origin", origin_s, "Camera position [0,0,0]")->type_name("X,Y,Z");
+  app.add_option("--lookfrom", lookfrom_s, "Camera position (the same point as --origin)")
+      ->type_name("X,Y,Z");
+  app.add_option("--lookat", lookat_s, "Point the camera looks at [straight down -z]")
+      ->type_name("X,Y,Z");
+  app.add_option("--vup", vup_s, "Which way is up for the camera [0,1,0]")->type_name("X,Y,Z");
+  app.add_option("--vfov", vfov_s,
+                 "Vertical field of view in degrees, instead of --viewport-height")
+      ->type_name("DEGREES");
   app.add_option("--sky-bottom", bottom_s, "Colour looking straight down [1,1,1]")->type_name("R,G,B");
   app.add_option("--sky-top", top_s, "Colour looking straight up [0.5,0.7,1.0]")->type_name("R,G,B");
   app.add_option("--format", format_s, "png|ppm|jpg|tif|exr, overrides the extension")
@@ -172,8 +180,29 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
     if (auto e = parse_real(vh_s, cp.viewport_height)) return usage("--viewport-height", *e);
   if (given("--focal-length"))
     if (auto e = parse_real(focal_s, cp.focal_length)) return usage("--focal-length", *e);
+  if (given("--origin") && given("--lookfrom"))
+    return usage("--lookfrom", "names the same point as --origin; give one of them");
+  if (given("--vfov") && given("--viewport-height"))
+    return usage("--vfov", "replaces --viewport-height; give one of them");
   if (given("--origin"))
     if (auto e = parse_triple(origin_s, cp.origin)) return usage("--origin", *e);
+  if (given("--lookfrom"))
+    if (auto e = parse_triple(lookfrom_s, cp.origin)) return usage("--lookfrom", *e);
+  if (given("--lookat")) {
+    vec3 at;
+    if (auto e = parse_triple(lookat_s, at)) return usage("--lookat", *e);
+    cp.lookat = at;
+  }
+  if (given("--vup")) {
+    if (auto e = parse_triple(vup_s, cp.vup)) return usage("--vup", *e);
+    if (!given("--lookat")) cp.lookat = cp.origin + vec3(0.0, 0.0, -1.0);  // the lesson's view
+  }
+  if (given("--vfov")) {
+    double f = 0;
+    if (auto e = parse_real(vfov_s, f)) return usage("--vfov", *e);
+    if (!(f > 0.0 && f < 180.0)) return usage("--vfov", "must be between 0 and 180 degrees (exclusive), got " + vfov_s);
+    cp.vfov_degrees = f;
+  }
   if (given("--sky-bottom"))
     if (auto e = parse_triple(bottom_s, j.sc.sky.bottom)) return usage("--sky-bottom", *e);
   if (given("--sky-top"))
@@ -191,7 +220,17 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
     return usage("--aspect", "width / aspect gives a height over " + max_dim);
   if (!(cp.viewport_height > 0)) return usage("--viewport-height", "must be positive, got " + vh_s);
   if (!(cp.focal_length > 0)) return usage("--focal-length", "must be positive, got " + focal_s);
-  if (auto e = validate(cp)) return usage("camera", *e);
+  if (auto e = validate(cp)) {
+    // Name the option the problem comes from.
+    const std::string& why = *e;
+    const char* option = why.find("lookfrom and lookat") != std::string::npos ? "--lookat"
+                         : why.find("vup") != std::string::npos          ? "--vup"
+                         : why.find("field of view") != std::string::npos ? "--vfov"
+                         : why.find("lookat") != std::string::npos       ? "--lookat"
+                         : why.find("origin") != std::string::npos       ? "--origin"
+                                                                          : "camera";
+    return usage(option, why);
+  }
 
   if (!given("--output")) return usage("--output", "is required (a file name, or - for standard output)");
   if (output.empty()) return usage("--output", "empty file name");

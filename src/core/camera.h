@@ -1,5 +1,7 @@
 // The lesson's pinhole camera (SPEC.md, "Camera"): an axis-aligned viewport
-// `focal_length` in front of the origin, spanned by `horizontal` and `vertical`.
+// `focal_length` in front of the origin, spanned by `horizontal` and `vertical`;
+// optionally the book's positionable camera (look-at, view-up, vertical field
+// of view), which tilts that viewport.
 #pragma once
 #include <cstdint>
 #include <optional>
@@ -19,7 +21,13 @@ struct camera_params {
   std::optional<int64_t> image_height;  // default: int(width / aspect), at least 1
   double viewport_height = 2.0;
   double focal_length = 1.0;
-  point3 origin{0.0, 0.0, 0.0};
+  point3 origin{0.0, 0.0, 0.0};  // the book's lookfrom
+  // Positionable camera. Without lookat the camera looks down -z with +y up,
+  // exactly the lesson's. vfov (degrees, in (0, 180)) replaces viewport_height
+  // by 2 tan(vfov / 2) focal_length.
+  std::optional<point3> lookat;
+  vec3 vup{0.0, 1.0, 0.0};
+  std::optional<double> vfov_degrees;
 };
 
 struct camera {
@@ -33,6 +41,9 @@ struct camera {
   vec3 horizontal{0.0};
   vec3 vertical{0.0};
   point3 lower_left_corner{0.0};
+  // The camera's frame: w points backwards (from lookat to lookfrom), u to the
+  // right, v up; (1,0,0), (0,1,0), (0,0,1) for the lesson's camera.
+  vec3 axis_u{1.0, 0.0, 0.0}, axis_v{0.0, 1.0, 0.0}, axis_w{0.0, 0.0, 1.0};
   // lower_left_corner - origin, formed from its parts (-horizontal/2 -
   // vertical/2 - focal) and never by subtracting a far-away origin from a point
   // near it: the sky depends on the direction only.
@@ -58,7 +69,8 @@ struct camera {
 int64_t default_height(int64_t width, double aspect_ratio);
 
 // Returns an error message naming the parameter when the parameters cannot
-// make a camera (non-finite or non-positive sizes, dimensions over the limit).
+// make a camera (non-finite or non-positive sizes, dimensions over the limit,
+// lookfrom = lookat, vup parallel to the view direction, vfov outside (0, 180)).
 std::optional<std::string> validate(const camera_params& p);
 
 // Builds the camera; the parameters must pass validate().

@@ -1,0 +1,80 @@
+// The positionable camera's options on the command line: refused cameras exit
+// 2 with one line naming the option, and the lesson's camera is unchanged when
+// none of them is given.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "cli_runner.h"
+
+namespace {
+
+using raycast_test::cli_sandbox;
+using raycast_test::run_result;
+
+struct refused {
+  const char* name;
+  std::vector<std::string> args;
+  const char* mentions;
+};
+
+class CliCameraRefused : public ::testing::TestWithParam<refused> {
+ protected:
+  cli_sandbox box;
+};
+
+TEST_P(CliCameraRefused, ExitsTwoWithOneLineAndWritesNothing) {
+  std::vector<std::string> args = GetParam().args;
+  args.insert(args.end(), {"-o", box.path("out.png")});
+  const run_result r = box.run(args);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(r.err.rfind("raycast: error: ", 0), 0u) << r.err;
+  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "want one line: " << r.err;
+  EXPECT_NE(r.err.find(GetParam().mentions), std::string::npos) << r.err;
+  EXPECT_TRUE(box.entries().empty());
+}
+
+const refused refused_cases[] = {
+    {"lookfrom_is_lookat", {"--lookfrom", "1,2,3", "--lookat", "1,2,3"}, "--lookat"},
+    {"origin_is_lookat", {"--lookat", "0,0,0"}, "--lookat"},
+    {"vup_parallel", {"--lookat", "0,5,0"}, "--vup"},
+    {"vup_parallel_down", {"--lookat", "0,-1,0", "--vup", "0,3,0"}, "--vup"},
+    {"vup_zero", {"--vup", "0,0,0"}, "--vup"},
+    {"vup_along_default_view", {"--vup", "0,0,1"}, "--vup"},
+    {"vfov_zero", {"--vfov", "0"}, "--vfov"},
+    {"vfov_180", {"--vfov", "180"}, "--vfov"},
+    {"vfov_negative", {"--vfov", "-30"}, "--vfov"},
+    {"vfov_nan", {"--vfov", "nan"}, "--vfov"},
+    {"vfov_text", {"--vfov", "wide"}, "--vfov"},
+    {"vfov_and_viewport", {"--vfov", "90", "--viewport-height", "2"}, "--vfov"},
+    {"origin_and_lookfrom", {"--origin", "0,0,0", "--lookfrom", "0,0,0"}, "--lookfrom"},
+    {"lookat_two_numbers", {"--lookat", "1,2"}, "--lookat"},
+    {"lookat_infinite", {"--lookat", "1,inf,2"}, "--lookat"},
+    {"lookfrom_garbage", {"--lookfrom", "1,2,3x"}, "--lookfrom"},
+    {"vup_repeated", {"--vup", "0,1,0", "--vup", "1,0,0"}, "--vup"},
+};
+
+INSTANTIATE_TEST_SUITE_P(Options, CliCameraRefused, ::testing::ValuesIn(refused_cases),
+                         [](const ::testing::TestParamInfo<refused>& i) { return i.param.name; });
+
+TEST(CliCamera, TheLessonsViewSpelledOutIsTheLessonsImage) {
+  cli_sandbox box;
+  ASSERT_EQ(box.run({"-o", "plain.ppm"}).exit_code, 0);
+  ASSERT_EQ(box.run({"--lookfrom", "0,0,0", "--lookat", "0,0,-1", "--vup", "0,1,0", "-o", "spelled.ppm"})
+                .exit_code,
+            0);
+  EXPECT_EQ(raycast_test::read_file(box.work() / "plain.ppm"),
+            raycast_test::read_file(box.work() / "spelled.ppm"));
+}
+
+TEST(CliCamera, ATiltedCameraRendersSomethingElse) {
+  cli_sandbox box;
+  ASSERT_EQ(box.run({"-o", "plain.ppm"}).exit_code, 0);
+  const run_result r = box.run({"--vup", "0.3,1,0", "--vfov", "90", "-o", "tilted.ppm"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(raycast_test::read_file(box.work() / "plain.ppm"),
+            raycast_test::read_file(box.work() / "tilted.ppm"));
+}
+
+}  // namespace
