@@ -121,17 +121,18 @@ TEST_P(Equivalence, EveryWidthAndHeight) {
       const image got8 = raycast_test::render_with(r, pixel_format::rgb8);
       const image gotf = raycast_test::render_with(r, pixel_format::rgb_f32);
       if (prm.which != backend::scalar && prm.prec == precision::exact) {
-        // The general path (every lane, every channel, every clamp) gives the
-        // same bits as what the scene let the kernel specialize to.
-        render_options general{prm.which, prm.prec, 1};
-        general.specialize = false;
-        const renderer g(s, general);
-        ASSERT_EQ(got8.bytes, raycast_test::render_with(g, pixel_format::rgb8).bytes)
-            << "specialized and general paths differ (8-bit)";
-        ASSERT_EQ(gotf.bytes, raycast_test::render_with(g, pixel_format::rgb_f32).bytes)
-            << "specialized and general paths differ (float)";
+        // The general path (every lane, every channel, every clamp), and each
+        // omission alone, give the same bits as everything the scene allows.
+        for (unsigned omit : {omit_nothing, omit_lanes, omit_channels, omit_clamps}) {
+          render_options o{prm.which, prm.prec, 1};
+          o.omit = omit;
+          const renderer g(s, o);
+          ASSERT_EQ(got8.bytes, raycast_test::render_with(g, pixel_format::rgb8).bytes)
+              << "omit flags " << omit << " differ from the fully specialized path (8-bit)";
+          ASSERT_EQ(gotf.bytes, raycast_test::render_with(g, pixel_format::rgb_f32).bytes)
+              << "omit flags " << omit << " differ from the fully specialized path (float)";
+        }
       }
-
       if (prm.prec == precision::exact) {
         const image want8 = raycast_test::render_with_scalar(s, precision::exact, pixel_format::rgb8);
         const image wantf = raycast_test::render_with_scalar(s, precision::exact, pixel_format::rgb_f32);

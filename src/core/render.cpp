@@ -99,8 +99,7 @@ renderer::renderer(const scene& s, const render_options& opts)
     std::fill(p, p + padded, 0.0f);
     return aligned_floats(p);
   };
-  const bool special = opts.specialize;
-  args_.axis_aligned = special && f.axis_aligned;
+  args_.axis_aligned = (opts.omit & omit_lanes) && f.axis_aligned;
   for (int k = 0; k < 3; ++k) {
     if (args_.axis_aligned && k > 0) break;  // the lesson camera reads x only
     col_[k] = table();
@@ -117,15 +116,16 @@ renderer::renderer(const scene& s, const render_options& opts)
   }
   bool unit = true, lerp_exact = true;
   for (int k = 0; k < 3; ++k) {
-    args_.constant[k] = special && f.bottom[k] == f.top[k];
+    args_.constant[k] = (opts.omit & omit_channels) && f.bottom[k] == f.top[k];
     args_.constant_value[k] = f.bottom[k];
     const float c01 = f.bottom[k] > 0.0f ? (f.bottom[k] < 1.0f ? f.bottom[k] : 1.0f) : 0.0f;
     args_.constant_byte[k] = int32_t(c01 * 255.999f);
-    unit = unit && special && f.lo[k] >= 0.0f && f.hi[k] <= 1.0f;
-    lerp_exact = lerp_exact && special && f.bottom[k] + 1.0f * f.delta[k] == f.top[k];
+    unit = unit && f.lo[k] >= 0.0f && f.hi[k] <= 1.0f;
+    lerp_exact = lerp_exact && f.bottom[k] + 1.0f * f.delta[k] == f.top[k];
   }
-  args_.lerp_exact = lerp_exact;
-  args_.colours_in_unit_range = unit;
+  const bool clamps = opts.omit & omit_clamps;
+  args_.lerp_exact = clamps && lerp_exact;
+  args_.colours_in_unit_range = clamps && unit;
 }
 
 void renderer::render_rows(const image_band& band, int64_t r0, int64_t r1) const {

@@ -46,11 +46,18 @@ struct render_options {
   backend which = backend::automatic;
   precision prec = default_precision;
   int threads = 0;  // 0: one per available core
-  // Let the SIMD kernels leave out what the scene does not need (x/z lanes for
-  // the lesson camera, constant channels, provably no-op clamps). Off runs the
-  // general path, bit-identical in exact mode: for tests and the benchmark.
-  bool specialize = true;
+  // What the SIMD kernels may leave out when the scene does not need it (the
+  // omit_* flags below). Every combination is bit-identical in exact mode;
+  // omit_nothing runs the general path, for tests and the benchmark.
+  unsigned omit = ~0u;
 };
+
+// The omissions, each tested bit-identical to the general path and timed by
+// raycast-bench's special/ rows.
+inline constexpr unsigned omit_nothing = 0;
+inline constexpr unsigned omit_lanes = 1;     // lesson camera: no x/z lanes, y and z per row
+inline constexpr unsigned omit_channels = 2;  // a channel whose two sky colours are equal
+inline constexpr unsigned omit_clamps = 4;    // the lerp's select and clamps when provably no-ops
 
 struct unsupported_backend : std::runtime_error {
   using std::runtime_error::runtime_error;
