@@ -5,6 +5,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -160,6 +161,40 @@ TEST(Golden, DefaultRenderIsTheReadmePicture) {
   EXPECT_TRUE(std::equal(p.pixels.begin(), p.pixels.end(), golden.img.bytes.begin(),
                          [](char a, unsigned char b) { return static_cast<unsigned char>(a) == b; }))
       << "the default sky no longer matches tests/golden/sky.png";
+}
+
+}  // namespace
+
+namespace {
+
+// The README's gallery (tests/golden/gallery/commands.txt): each command still
+// renders exactly its picture.
+TEST(Golden, GalleryCommandsRenderTheirPictures) {
+  std::istringstream lines(raycast_test::read_file(RAYCAST_GOLDEN_DIR "/gallery/commands.txt"));
+  int checked = 0;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    const size_t colon = line.find(':');
+    ASSERT_NE(colon, std::string::npos) << line;
+    const std::string file = line.substr(0, colon);
+    std::vector<std::string> args;
+    std::istringstream words(line.substr(colon + 1));
+    for (std::string w; words >> w;) args.push_back(w);
+    args.insert(args.end(), {"-o", "picture.ppm"});
+    cli_sandbox box;
+    const run_result r = box.run(args);
+    ASSERT_EQ(r.exit_code, 0) << file << ": " << r.err;
+    const raycast_test::ppm p = raycast_test::parse_ppm(raycast_test::read_file(box.work() / "picture.ppm"));
+    ASSERT_TRUE(p.error.empty()) << p.error;
+    const read_back golden = read_image(RAYCAST_GOLDEN_DIR "/gallery/" + file, pixel_format::rgb8);
+    ASSERT_TRUE(golden.error.empty()) << file << ": " << golden.error;
+    ASSERT_EQ(golden.img.bytes.size(), p.pixels.size()) << file;
+    EXPECT_TRUE(std::equal(p.pixels.begin(), p.pixels.end(), golden.img.bytes.begin(),
+                           [](char a, unsigned char b) { return static_cast<unsigned char>(a) == b; }))
+        << file << " no longer matches its command";
+    ++checked;
+  }
+  EXPECT_GE(checked, 3);
 }
 
 }  // namespace
