@@ -327,6 +327,15 @@ TEST_P(Numerics, DocumentedErrorBoundsHoldAtTheirEdge) {
                                  raycast::sky{{1e4, -1e4, 0}, {-1e4, 1e4, 1}}}) {
     expect_like_reference(make(p, sk));
   }
+  // A focal length tiny next to the viewport: every direction lies almost in
+  // the viewport plane, and the pixels next to the centre are the hardest.
+  camera_params q;
+  q.image_width = 400;
+  q.image_height = 225;
+  q.viewport_height = 1e30;
+  q.focal_length = 1e-30;
+  for (const raycast::sky& sk : {raycast::sky{}, raycast::sky{{4.0, 2.0, 0.5}, {-1.0, 0.25, 16.0}}})
+    expect_like_reference(make(q, sk));
 }
 
 // Every named stiff case of the benchmark's stiff section.

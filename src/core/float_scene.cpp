@@ -12,9 +12,12 @@ float_scene prepare_float_scene(const scene& s) {
   f.height = c.image_height;
   f.wm1 = float(c.image_width - 1);
   f.hm1 = float(c.image_height - 1);
+  f.hw = float(double(c.image_width - 1) / 2.0);
+  f.hh = float(double(c.image_height - 1) / 2.0);
+  const vec3 centre = -c.focal_length * c.axis_w;
 
   double m = 0.0;
-  for (const vec3& v : {c.corner_dir, c.horizontal, c.vertical})
+  for (const vec3& v : {centre, c.horizontal, c.vertical})
     m = std::max({m, std::abs(v.x), std::abs(v.y), std::abs(v.z)});
   int e = 0;
   std::frexp(m, &e);  // m = x * 2^e with x in [0.5, 1)
@@ -25,7 +28,7 @@ float_scene prepare_float_scene(const scene& s) {
   // FTZ/DAZ bits; above 2^-64 no product or sum in scalar.h is denormal.
   const auto flush = [](double x) { return std::abs(x) < 0x1p-64 ? 0.0f : float(x); };
   for (int k = 0; k < 3; ++k) {
-    f.corner[k] = flush(c.corner_dir[k] * scale);
+    f.centre[k] = flush(centre[k] * scale);
     f.horizontal[k] = flush(c.horizontal[k] * scale);
     f.vertical[k] = flush(c.vertical[k] * scale);
     f.bottom[k] = flush(s.sky.bottom[k]) + 0.0f;  // + 0: a -0 colour becomes +0

@@ -14,8 +14,9 @@ namespace raycast {
 
 struct float_scene {
   int64_t width = 0, height = 0;
-  float wm1 = 0, hm1 = 0;  // W - 1 and H - 1; u = i / wm1 unless W == 1
-  float corner[3] = {};      // (lower_left_corner - origin), scaled
+  float wm1 = 0, hm1 = 0;  // W - 1 and H - 1
+  float hw = 0, hh = 0;    // (W - 1) / 2 and (H - 1) / 2, exact in float
+  float centre[3] = {};      // viewport centre - origin = -focal_length * w, scaled
   float horizontal[3] = {};  // scaled
   float vertical[3] = {};    // scaled
   float bottom[3] = {}, top[3] = {};

@@ -104,8 +104,7 @@ renderer::renderer(const scene& s, const render_options& opts)
     if (args_.axis_aligned && k > 0) break;  // the lesson camera reads x only
     col_[k] = table();
     for (int64_t i = 0; i < f.width; ++i) {
-      const float u = f.width == 1 ? 0.5f : float(i) / f.wm1;
-      col_[k][size_t(i)] = f.corner[k] + u * f.horizontal[k];
+      col_[k][size_t(i)] = f.centre[k] + pixel_su(f, i) * f.horizontal[k];
     }
     args_.col[k] = col_[k].get();
   }

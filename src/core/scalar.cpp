@@ -35,10 +35,9 @@ struct pixel_dir {
 };
 
 pixel_dir direction(const float_scene& f, int64_t i, int64_t j) {
-  const float u = f.width == 1 ? 0.5f : float(i) / f.wm1;
-  const float v = f.height == 1 ? 0.5f : float(j) / f.hm1;
+  const float su = pixel_su(f, i), sv = pixel_sv(f, j);
   float d[3];
-  for (int k = 0; k < 3; ++k) d[k] = (f.corner[k] + u * f.horizontal[k]) + v * f.vertical[k];
+  for (int k = 0; k < 3; ++k) d[k] = (f.centre[k] + su * f.horizontal[k]) + sv * f.vertical[k];
   return {d[1], (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2]};
 }
 
@@ -60,6 +59,14 @@ void shade(const float_scene& f, float t, float out[3]) {
 }
 
 }  // namespace
+
+float pixel_su(const float_scene& f, int64_t i) {
+  return f.width == 1 ? 0.0f : (float(i) - f.hw) / f.wm1;
+}
+
+float pixel_sv(const float_scene& f, int64_t j) {
+  return f.height == 1 ? 0.0f : (float(j) - f.hh) / f.hm1;
+}
 
 void scalar_pixel(const float_scene& f, precision p, int64_t i, int64_t j, float out[3]) {
   const pixel_dir d = direction(f, i, j);

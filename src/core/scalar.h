@@ -2,8 +2,14 @@
 // that every SIMD backend reproduces bit for bit in exact mode.
 //
 // For pixel column i, row j (j = 0 at the bottom), with the float_scene f:
-//   u  = W == 1 ? 0.5 : float(i) / f.wm1        v likewise with j and f.hm1
-//   d  = (f.corner + u * f.horizontal) + v * f.vertical      per component
+//   su = W == 1 ? 0 : (float(i) - f.hw) / f.wm1      (= u - 1/2, in [-1/2, 1/2])
+//   sv = H == 1 ? 0 : (float(j) - f.hh) / f.hm1      likewise with j, f.hh, f.hm1
+//   d  = (f.centre + su * f.horizontal) + sv * f.vertical    per component
+// Measuring from the viewport centre keeps the centre exact (no cancellation
+// of corner + u * horizontal when the focal length is tiny next to the
+// viewport) and makes mirrored pixels exact mirrors: su(W-1-i) = -su(i), so the
+// lesson camera's image is symmetric bit for bit and the kernels compute each
+// |d| once for up to four pixels.
 //   n2 = (d.x * d.x + d.y * d.y) + d.z * d.z
 //
 // exact (IEEE sqrt and divide; every backend gives these bits):
@@ -38,6 +44,10 @@ enum class precision : uint8_t {
   exact,  // IEEE sqrt and divide
   fast,   // reciprocal square root estimate + one Newton step
 };
+
+// su and sv above.
+float pixel_su(const float_scene& f, int64_t i);
+float pixel_sv(const float_scene& f, int64_t j);
 
 // Colour of pixel (i, j) in the documented order; out receives r, g, b.
 void scalar_pixel(const float_scene& f, precision p, int64_t i, int64_t j, float out[3]);

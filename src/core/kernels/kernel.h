@@ -12,8 +12,8 @@ namespace raycast::kernels {
 struct kernel_args {
   const float_scene* scene = nullptr;
   precision prec = precision::exact;
-  // Per column i, the part of the direction that depends on u only:
-  // col[k][i] = corner[k] + u_i * horizontal[k] (scalar.h's inner bracket).
+  // Per column i, the part of the direction that depends on su only:
+  // col[k][i] = centre[k] + su_i * horizontal[k] (scalar.h's inner bracket).
   // Padded with zeros to a multiple of 16 columns.
   const float* col[3] = {};
   // Lesson camera (scene->axis_aligned, and specializing): direction y and z

@@ -141,14 +141,15 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
   const int64_t W = s.width;
   for (int64_t r = r0; r < r1; ++r) {
     const int64_t j = s.height - 1 - r;
-    const float v = s.height == 1 ? 0.5f : float(j) / s.hm1;
+    const float sv = s.height == 1 ? 0.0f : (float(j) - s.hh) / s.hm1;  // scalar.h
     row_setup rs;
-    for (int k = 0; k < 3; ++k) rs.vv[k] = v * s.vertical[k];
-    // Lesson camera: horizontal's y and z and vertical's z are 0, so scalar.h's
-    // d.y = (corner.y + u*0) + v*vertical.y and d.z = (corner.z + 0) + 0 exactly.
-    rs.dy = s.corner[1] + rs.vv[1];
+    for (int k = 0; k < 3; ++k) rs.vv[k] = sv * s.vertical[k];
+    // Lesson camera: centre = (0, 0, -f), horizontal = (hx, 0, 0), vertical =
+    // (0, vy, 0), so scalar.h's d.y = (0 + su*0) + sv*vy and d.z = (-f + su*0)
+    // + sv*0: sv*vy and -f up to the sign of a zero, which no square sees.
+    rs.dy = (s.centre[1] + 0.0f) + rs.vv[1];
     rs.y2 = rs.dy * rs.dy;
-    rs.z2 = s.corner[2] * s.corner[2];
+    rs.z2 = s.centre[2] * s.centre[2];
     rs.yz2 = rs.y2 + rs.z2;
     rs.nr_a = fast_nr_a * rs.dy;
     rs.nr_b = fast_nr_b * rs.dy;
