@@ -127,40 +127,44 @@ renderer::renderer(const scene& s, const render_options& opts)
   args_.colours_in_unit_range = clamps && unit;
 }
 
-void renderer::render_rows(const image_band& band, int64_t r0, int64_t r1) const {
+void renderer::render_rows(const image_band& band, int64_t r0, int64_t r1, bool paired) const {
+  if (kernel_) {
+    kernel_(args_, band, r0, r1, paired);
+    return;
+  }
   image_band part = band;
   part.data = band.row(r0);
   part.row_begin = r0;
   part.row_end = r1;
-  switch (which_) {
-    case backend::reference: render_reference(scene_, part); break;
-    case backend::automatic:
-    case backend::scalar: render_scalar(fscene_, prec_, part); break;
-    case backend::sse2:
-    case backend::avx2:
-    case backend::avx512: kernel_(args_, part, r0, r1); break;
-  }
+  if (which_ == backend::reference) render_reference(scene_, part);
+  else render_scalar(fscene_, prec_, part);
 }
 
 void renderer::render(const image_band& band) const {
   const int64_t rows = band.row_end - band.row_begin;
   if (rows <= 0) return;
+  // The lesson camera's image is symmetric top to bottom: when the band holds
+  // both rows of each mirrored pair, the kernel renders them together
+  // (kernels/kernel.h), and the work is split over the top rows of the pairs.
+  const bool paired = kernel_ && args_.axis_aligned &&
+                      band.row_begin + band.row_end == scene_.cam.image_height;
+  const int64_t units = paired ? (rows + 1) / 2 : rows;
   // Bands of consecutive rows, a few per thread so uneven cores even out. A
   // thread costs tens of microseconds to start, about what 2^17 pixels take
   // to render: smaller jobs (the default 400x225 sky) stay on one thread.
   const int64_t pixels = rows * scene_.cam.image_width;
   const int64_t nthreads =
-      std::min<int64_t>({threads_, rows, std::max<int64_t>(1, pixels >> 17)});
+      std::min<int64_t>({threads_, units, std::max<int64_t>(1, pixels >> 17)});
   if (nthreads <= 1) {
-    render_rows(band, band.row_begin, band.row_end);
+    render_rows(band, band.row_begin, band.row_begin + units, paired);
     return;
   }
-  const int64_t chunks = std::min<int64_t>(rows, nthreads * 4);
+  const int64_t chunks = std::min<int64_t>(units, nthreads * 4);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(int(nthreads))
   for (int64_t c = 0; c < chunks; ++c) {
-    const int64_t r0 = band.row_begin + rows * c / chunks;
-    const int64_t r1 = band.row_begin + rows * (c + 1) / chunks;
-    render_rows(band, r0, r1);
+    const int64_t r0 = band.row_begin + units * c / chunks;
+    const int64_t r1 = band.row_begin + units * (c + 1) / chunks;
+    render_rows(band, r0, r1, paired);
   }
 }
 

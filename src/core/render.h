@@ -80,7 +80,7 @@ class renderer {
   void render(const image_band& band) const;
 
  private:
-  void render_rows(const image_band& band, int64_t r0, int64_t r1) const;
+  void render_rows(const image_band& band, int64_t r0, int64_t r1, bool paired) const;
 
   scene scene_;
   float_scene fscene_;

@@ -32,11 +32,13 @@ struct kernel_args {
 };
 
 // Fills rows [r0, r1) of the band; single-threaded. One per instruction set.
+// With `paired` (lesson camera only; the band must hold both), each row r also
+// fills its mirror row H-1-r, which shares every |d| (sky_kernel.inl).
 using render_rows_fn = void (*)(const kernel_args& args, const image_band& band, int64_t r0,
-                                int64_t r1);
+                                int64_t r1, bool paired);
 
-namespace sse2 { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t); }
-namespace avx2 { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t); }
-namespace avx512 { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t); }
+namespace sse2 { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
+namespace avx2 { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
+namespace avx512 { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
 
 }  // namespace raycast::kernels

@@ -53,13 +53,10 @@ inline ray_batch generate(const kernel_args& a, const row_setup& rs, int64_t i0)
   }
 }
 
-// Exact mode: t = (y / |d| + 1) * 0.5, |d| = sqrt(max(n2, FLT_MIN)) (scalar.h).
-// Since |y| <= sqrt(fl(y^2)) <= |d|, t is already in [0, 1]: scalar.h's clamp
-// cannot change it and is left out.
-inline vfloat exact_t(const ray_batch& b) {
-  const vfloat uy = b.dir_y / sqrt(max(b.len2, vfloat(FLT_MIN)));
-  return (uy + vfloat(1.0f)) * vfloat(0.5f);
-}
+// Exact mode: uy = y / |d|, |d| = sqrt(max(n2, FLT_MIN)) (scalar.h). Since
+// |y| <= sqrt(fl(y^2)) <= |d|, t = (uy + 1) * 0.5 is already in [0, 1]:
+// scalar.h's clamp of t cannot change it and is left out.
+inline vfloat exact_uy(const ray_batch& b) { return b.dir_y / sqrt(max(b.len2, vfloat(FLT_MIN))); }
 
 // Fast mode: y / |d| from the estimate and one (biased) Newton step, clamped
 // to [-1, 1] (scalar.h). The lesson camera's y is constant along the row, so
@@ -134,11 +131,76 @@ struct shader {
   }
 };
 
+// Shades one batch of one row from its uy and stores it at column i0 (n
+// pixels), or, mirrored, with its lanes reversed so that lane L lands on
+// column i0 + N - 1 - L.
+template <bool Fast, bool Float, bool Simple, int Varying>
+inline void shade_store(const shader<Simple, Varying>& sh, vfloat uy, unsigned char* out, int64_t i0,
+                        int n, bool mirrored) {
+  constexpr bool vary0 = Varying & 1, vary1 = Varying & 2, vary2 = Varying & 4;
+  if constexpr (Float) {
+    const vfloat t = (uy + vfloat(1.0f)) * vfloat(0.5f);
+    vfloat c0 = sh.template channel<0>(t), c1 = sh.template channel<1>(t), c2 = sh.template channel<2>(t);
+    if (mirrored) {
+      if constexpr (vary0) c0 = reverse(c0);
+      if constexpr (vary1) c1 = reverse(c1);
+      if constexpr (vary2) c2 = reverse(c2);
+    }
+    float* dst = reinterpret_cast<float*>(out) + 3 * i0;
+    if (n == N) {
+      store_rgbf(dst, c0, c1, c2);
+    } else {
+      alignas(64) float tmp[3 * N];
+      store_rgbf(tmp, c0, c1, c2);
+      __builtin_memcpy(dst, tmp, sizeof(float) * 3 * size_t(n));
+    }
+  } else {
+    vint q0, q1, q2;
+    if constexpr (Fast) {
+      q0 = sh.template fast_byte<0>(uy);
+      q1 = sh.template fast_byte<1>(uy);
+      q2 = sh.template fast_byte<2>(uy);
+    } else {
+      const vfloat t = (uy + vfloat(1.0f)) * vfloat(0.5f);
+      q0 = sh.template byte<0>(sh.template channel<0>(t));
+      q1 = sh.template byte<1>(sh.template channel<1>(t));
+      q2 = sh.template byte<2>(sh.template channel<2>(t));
+    }
+    if (mirrored) {
+      if constexpr (vary0) q0 = reverse(q0);
+      if constexpr (vary1) q1 = reverse(q1);
+      if constexpr (vary2) q2 = reverse(q2);
+    }
+    unsigned char* dst = out + 3 * i0;
+    if (n == N) {
+      store_rgb8(dst, q0, q1, q2);
+    } else {
+#ifdef RAYCAST_HAS_MASKED_BYTE_STORE
+      store_rgb8_first(dst, q0, q1, q2, n);
+#else
+      alignas(64) unsigned char tmp[3 * N];
+      store_rgb8(tmp, q0, q1, q2);
+      __builtin_memcpy(dst, tmp, 3 * size_t(n));
+#endif
+    }
+  }
+}
+
+// Rows [r0, r1); with `paired`, each row r together with its mirror H-1-r.
+//
+// The lesson camera's image is symmetric bit for bit (scalar.h: su(W-1-i) =
+// -su(i), sv(H-1-j) = -sv(j)): column W-1-i has the same |d| and y as column
+// i, and row H-1-r has the same |d| and -y. So a batch's |d| (the square root
+// and divide, or the estimate and Newton step) serves up to four batches:
+// itself, its mirror in the row, and both of those in the mirrored row. Only
+// the middle of a row, less than two batches wide, is computed unmirrored.
 template <bool AxisAligned, bool Fast, bool Float, bool Simple, int Varying>
-void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
+void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1, bool paired) {
   const float_scene& s = *a.scene;
   const shader<Simple, Varying> sh(a);
   const int64_t W = s.width;
+  // Pixels at each end of a row computed once for both ends (whole batches).
+  const int64_t mirrored = AxisAligned ? W / (2 * N) * N : 0;
   for (int64_t r = r0; r < r1; ++r) {
     const int64_t j = s.height - 1 - r;
     const float sv = s.height == 1 ? 0.0f : (float(j) - s.hh) / s.hm1;  // scalar.h
@@ -153,55 +215,23 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
     rs.yz2 = rs.y2 + rs.z2;
     rs.nr_a = fast_nr_a * rs.dy;
     rs.nr_b = fast_nr_b * rs.dy;
-    unsigned char* out = band.row(r);
+    unsigned char* const out = band.row(r);
+    unsigned char* const twin = paired && s.height - 1 - r != r ? band.row(s.height - 1 - r) : nullptr;
 
-    for (int64_t i0 = 0; i0 < W; i0 += N) {
+    const auto batch = [&](int64_t i0, int n, bool mirror) {
       const ray_batch rays = generate<AxisAligned, Fast>(a, rs, i0);
-      vfloat t, uy;
-      if constexpr (Fast) {
-        uy = fast_uy<AxisAligned>(rs, rays);
-        if constexpr (Float) t = (uy + vfloat(1.0f)) * vfloat(0.5f);
-      } else {
-        t = exact_t(rays);
+      const vfloat uy = Fast ? fast_uy<AxisAligned>(rs, rays) : exact_uy(rays);
+      const vfloat uy_twin = vfloat(0.0f) - uy;  // the mirrored row's y is -y
+      shade_store<Fast, Float>(sh, uy, out, i0, n, false);
+      if (twin) shade_store<Fast, Float>(sh, uy_twin, twin, i0, n, false);
+      if (mirror) {
+        shade_store<Fast, Float>(sh, uy, out, W - i0 - N, N, true);
+        if (twin) shade_store<Fast, Float>(sh, uy_twin, twin, W - i0 - N, N, true);
       }
-
-      const int n = W - i0 < N ? int(W - i0) : N;
-      if constexpr (Float) {
-        const vfloat c0 = sh.template channel<0>(t), c1 = sh.template channel<1>(t),
-                     c2 = sh.template channel<2>(t);
-        float* dst = reinterpret_cast<float*>(out) + 3 * i0;
-        if (n == N) {
-          store_rgbf(dst, c0, c1, c2);
-        } else {
-          alignas(64) float tmp[3 * N];
-          store_rgbf(tmp, c0, c1, c2);
-          __builtin_memcpy(dst, tmp, sizeof(float) * 3 * size_t(n));
-        }
-      } else {
-        vint q0, q1, q2;
-        if constexpr (Fast) {
-          q0 = sh.template fast_byte<0>(uy);
-          q1 = sh.template fast_byte<1>(uy);
-          q2 = sh.template fast_byte<2>(uy);
-        } else {
-          q0 = sh.template byte<0>(sh.template channel<0>(t));
-          q1 = sh.template byte<1>(sh.template channel<1>(t));
-          q2 = sh.template byte<2>(sh.template channel<2>(t));
-        }
-        unsigned char* dst = out + 3 * i0;
-        if (n == N) {
-          store_rgb8(dst, q0, q1, q2);
-        } else {
-#ifdef RAYCAST_HAS_MASKED_BYTE_STORE
-          store_rgb8_first(dst, q0, q1, q2, n);
-#else
-          alignas(64) unsigned char tmp[3 * N];
-          store_rgb8(tmp, q0, q1, q2);
-          __builtin_memcpy(dst, tmp, 3 * size_t(n));
-#endif
-        }
-      }
-    }
+    };
+    for (int64_t i0 = 0; i0 < mirrored; i0 += N) batch(i0, N, true);
+    for (int64_t i0 = mirrored; i0 < W - mirrored; i0 += N)
+      batch(i0, W - mirrored - i0 < N ? int(W - mirrored - i0) : N, false);
   }
 }
 
@@ -210,28 +240,29 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
 // the lesson's "blue constant" run the all-vary loop, which is exact for them
 // too (a constant channel's lerp is bottom + t * 0 = bottom).
 template <bool... B>
-void dispatch(const variant& v, const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
+void dispatch(const variant& v, const kernel_args& a, const image_band& band, int64_t r0, int64_t r1,
+              bool paired) {
   constexpr size_t n = sizeof...(B);
   if constexpr (n == 4) {
-    if (v.varying == 0b011) render<B..., 0b011>(a, band, r0, r1);
-    else render<B..., 0b111>(a, band, r0, r1);
+    if (v.varying == 0b011) render<B..., 0b011>(a, band, r0, r1, paired);
+    else render<B..., 0b111>(a, band, r0, r1, paired);
   } else {
     const bool flag = n == 0 ? v.axis_aligned : n == 1 ? v.fast : n == 2 ? v.f32 : v.simple;
-    if (flag) dispatch<B..., true>(v, a, band, r0, r1);
-    else dispatch<B..., false>(v, a, band, r0, r1);
+    if (flag) dispatch<B..., true>(v, a, band, r0, r1, paired);
+    else dispatch<B..., false>(v, a, band, r0, r1, paired);
   }
 }
 
 }  // namespace
 
-void render_rows(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
+void render_rows(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1, bool paired) {
   variant v{};
   v.axis_aligned = a.axis_aligned;
   v.fast = a.prec == precision::fast;
   v.f32 = band.format == pixel_format::rgb_f32;
   v.simple = a.lerp_exact && (v.f32 || a.colours_in_unit_range);
   for (int k = 0; k < 3; ++k) v.varying |= a.constant[k] ? 0 : 1 << k;
-  dispatch<>(v, a, band, r0, r1);
+  dispatch<>(v, a, band, r0, r1, paired && v.axis_aligned);
 }
 
 }  // namespace raycast::kernels::RAYCAST_ISA

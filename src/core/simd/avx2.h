@@ -42,6 +42,13 @@ inline vfloat nmadd(vfloat a, vfloat b, vfloat c) { return _mm256_fnmadd_ps(a.v,
 // 1/sqrt(x), hardware estimate: relative error below 1.5 * 2^-12.
 inline vfloat rsqrt_est(vfloat x) { return _mm256_rsqrt_ps(x.v); }
 inline vint to_int(vfloat a) { return {_mm256_cvttps_epi32(a.v)}; }
+// Lanes in the opposite order (the mirrored pixels of a batch).
+inline vfloat reverse(vfloat a) {
+  return _mm256_permutevar8x32_ps(a.v, _mm256_setr_epi32(7, 6, 5, 4, 3, 2, 1, 0));
+}
+inline vint reverse(vint a) {
+  return {_mm256_permutevar8x32_epi32(a.v, _mm256_setr_epi32(7, 6, 5, 4, 3, 2, 1, 0))};
+}
 inline vint splat_int(int32_t x) { return {_mm256_set1_epi32(x)}; }
 
 // r, g, b hold bytes (0..255) in 32-bit lanes; writes 24 bytes r0 g0 b0 r1 ...

@@ -44,6 +44,12 @@ inline vfloat nmadd(vfloat a, vfloat b, vfloat c) { return _mm512_fnmadd_ps(a.v,
 // 1/sqrt(x), hardware estimate: relative error below 2^-14.
 inline vfloat rsqrt_est(vfloat x) { return _mm512_rsqrt14_ps(x.v); }
 inline vint to_int(vfloat a) { return {_mm512_cvttps_epi32(a.v)}; }
+// Lanes in the opposite order (the mirrored pixels of a batch).
+inline __m512i reverse_index() {
+  return _mm512_setr_epi32(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0);
+}
+inline vfloat reverse(vfloat a) { return _mm512_permutexvar_ps(reverse_index(), a.v); }
+inline vint reverse(vint a) { return {_mm512_permutexvar_epi32(reverse_index(), a.v)}; }
 inline vint splat_int(int32_t x) { return {_mm512_set1_epi32(x)}; }
 
 // Interleaves 16 pixels into 48 bytes, in a register: (r g b 0) dwords, the zero

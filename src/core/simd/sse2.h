@@ -51,6 +51,15 @@ inline vfloat nmadd(vfloat a, vfloat b, vfloat c) { return c - a * b; }
 // 1/sqrt(x), hardware estimate: relative error below 1.5 * 2^-12.
 inline vfloat rsqrt_est(vfloat x) { return {_mm_rsqrt_ps(x.lo), _mm_rsqrt_ps(x.hi)}; }
 inline vint to_int(vfloat a) { return {_mm_cvttps_epi32(a.lo), _mm_cvttps_epi32(a.hi)}; }
+// Lanes in the opposite order (the mirrored pixels of a batch): each half
+// reversed, and the halves swapped.
+inline vfloat reverse(vfloat a) {
+  return {_mm_shuffle_ps(a.hi, a.hi, _MM_SHUFFLE(0, 1, 2, 3)),
+          _mm_shuffle_ps(a.lo, a.lo, _MM_SHUFFLE(0, 1, 2, 3))};
+}
+inline vint reverse(vint a) {
+  return {_mm_shuffle_epi32(a.hi, _MM_SHUFFLE(0, 1, 2, 3)), _mm_shuffle_epi32(a.lo, _MM_SHUFFLE(0, 1, 2, 3))};
+}
 inline vint splat_int(int32_t x) { return {_mm_set1_epi32(x), _mm_set1_epi32(x)}; }
 
 // 4 lanes of bytes -> 12 bytes r0 g0 b0 r1 ... at dst. No pshufb in SSE2:
