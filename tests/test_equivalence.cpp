@@ -123,7 +123,8 @@ TEST_P(Equivalence, EveryWidthAndHeight) {
       if (prm.which != backend::scalar && prm.prec == precision::exact) {
         // The general path (every lane, every channel, every clamp), and each
         // omission alone, give the same bits as everything the scene allows.
-        for (unsigned omit : {omit_nothing, omit_lanes, omit_channels, omit_clamps}) {
+        for (unsigned omit : {omit_nothing, omit_lanes, omit_channels, omit_clamps,
+                              omit_lanes | omit_mirrored}) {
           render_options o{prm.which, prm.prec, 1};
           o.omit = omit;
           const renderer g(s, o);

@@ -100,6 +100,7 @@ renderer::renderer(const scene& s, const render_options& opts)
     return aligned_floats(p);
   };
   args_.axis_aligned = (opts.omit & omit_lanes) && f.axis_aligned;
+  args_.mirror = args_.axis_aligned && (opts.omit & omit_mirrored);
   for (int k = 0; k < 3; ++k) {
     if (args_.axis_aligned && k > 0) break;  // the lesson camera reads x only
     col_[k] = table();
@@ -146,7 +147,7 @@ void renderer::render(const image_band& band) const {
   // The lesson camera's image is symmetric top to bottom: when the band holds
   // both rows of each mirrored pair, the kernel renders them together
   // (kernels/kernel.h), and the work is split over the top rows of the pairs.
-  const bool paired = kernel_ && args_.axis_aligned &&
+  const bool paired = kernel_ && args_.mirror &&
                       band.row_begin + band.row_end == scene_.cam.image_height;
   const int64_t units = paired ? (rows + 1) / 2 : rows;
   // Bands of consecutive rows, a few per thread so uneven cores even out. A

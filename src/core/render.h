@@ -58,6 +58,7 @@ inline constexpr unsigned omit_nothing = 0;
 inline constexpr unsigned omit_lanes = 1;     // lesson camera: no x/z lanes, y and z per row
 inline constexpr unsigned omit_channels = 2;  // a channel whose two sky colours are equal
 inline constexpr unsigned omit_clamps = 4;    // the lerp's select and clamps when provably no-ops
+inline constexpr unsigned omit_mirrored = 8;  // lesson camera: mirrored pixels reuse their twin's |d|
 
 struct unsupported_backend : std::runtime_error {
   using std::runtime_error::runtime_error;

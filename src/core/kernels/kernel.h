@@ -20,6 +20,8 @@ struct kernel_args {
   // per row, col_x2[i] = col[0][i]^2 per column, so a batch needs one load.
   bool axis_aligned = false;
   const float* col_x2 = nullptr;
+  // Lesson camera: mirrored columns (and, with `paired`, rows) share one |d|.
+  bool mirror = false;
   // Channels whose two sky colours are equal never vary: computed once.
   bool constant[3] = {};
   float constant_value[3] = {};

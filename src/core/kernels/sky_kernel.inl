@@ -200,7 +200,7 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
   const shader<Simple, Varying> sh(a);
   const int64_t W = s.width;
   // Pixels at each end of a row computed once for both ends (whole batches).
-  const int64_t mirrored = AxisAligned ? W / (2 * N) * N : 0;
+  const int64_t mirrored = AxisAligned && a.mirror ? W / (2 * N) * N : 0;
   for (int64_t r = r0; r < r1; ++r) {
     const int64_t j = s.height - 1 - r;
     const float sv = s.height == 1 ? 0.0f : (float(j) - s.hh) / s.hm1;  // scalar.h
@@ -262,7 +262,7 @@ void render_rows(const kernel_args& a, const image_band& band, int64_t r0, int64
   v.f32 = band.format == pixel_format::rgb_f32;
   v.simple = a.lerp_exact && (v.f32 || a.colours_in_unit_range);
   for (int k = 0; k < 3; ++k) v.varying |= a.constant[k] ? 0 : 1 << k;
-  dispatch<>(v, a, band, r0, r1, paired && v.axis_aligned);
+  dispatch<>(v, a, band, r0, r1, paired && v.axis_aligned && a.mirror);
 }
 
 }  // namespace raycast::kernels::RAYCAST_ISA

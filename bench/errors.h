@@ -1,0 +1,65 @@
+// The ways of computing the sky the bench compares, and their error against
+// the double reference, measured band by band so that no full-size extra
+// image is ever needed.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "autovec.h"
+#include "image.h"
+#include "render.h"
+#include "stiff_cases.h"
+
+namespace raycast::bench {
+
+// One way of computing the sky: a core backend at a precision, or the
+// autovec peer (which has only `exact`).
+struct path {
+  std::string backend;  // the row name's BACKEND: reference, scalar, autovec, ...
+  raycast::backend core = raycast::backend::reference;  // unused for autovec
+  raycast::precision prec = raycast::precision::exact;
+  bool autovec = false;
+
+  std::string label() const;  // "backend/precision"
+};
+
+// Every path this CPU runs, in the rows' order: reference, scalar, autovec,
+// sse2, avx2, avx512; exact before fast.
+std::vector<path> available_paths();
+
+struct skipped_backend {
+  std::string name, reason;
+};
+// Backends this CPU cannot run, with raycast::backend_unavailable's reason.
+std::vector<skipped_backend> skipped_backends();
+
+// Renders a path's image (any band of rows) with a fixed thread count.
+class painter {
+ public:
+  // omit: render_options::omit for the core backends (the special/ rows).
+  painter(const path& p, const scene& s, int threads, unsigned omit = ~0u);
+  void render(const image_band& band) const;
+
+ private:
+  std::unique_ptr<renderer> core_;
+  autovec_camera autovec_;
+  int threads_ = 1;
+};
+
+scene make_scene(const camera_params& cam, const raycast::sky& sky = {});
+
+struct error_stats {
+  double max_abs_err = 0;   // linear colour, float output (NaN counts as infinite)
+  double rms_err = 0;       // linear colour, over every channel
+  int max_lsb = 0;          // 8-bit output, largest |byte - reference byte|
+  double lsb_mismatch = 0;  // fraction of 8-bit channels that differ
+  int64_t nan_count = 0;    // NaN channels in the float output
+};
+
+// Each path's error against reference_pixel over the whole image of s; the
+// reference path reports zeros. Bands of rows are spread over all cores.
+std::vector<error_stats> measure_errors(const scene& s, const std::vector<path>& paths);
+
+}  // namespace raycast::bench

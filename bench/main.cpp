@@ -1,0 +1,333 @@
+// raycast-bench: every way of computing the sky, timed with Google Benchmark,
+// next to memset (the store-bandwidth bound) and with its error against the
+// double reference; then an error-vs-run-time summary and the stiff cases.
+#include <benchmark/benchmark.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "errors.h"
+#include "report.h"
+
+namespace raycast::bench {
+namespace {
+
+struct options {
+  bool quick = false;
+  std::string plot;
+  std::optional<std::pair<int64_t, int64_t>> summary_size;
+  int summary_threads = 1;
+};
+
+struct size2 {
+  int64_t w, h;
+};
+
+const std::vector<path>& paths() {
+  static const std::vector<path> all = available_paths();
+  return all;
+}
+
+camera_params sized(int64_t w, int64_t h) {
+  camera_params p;
+  p.image_width = w;
+  p.image_height = h;
+  return p;
+}
+
+// One buffer for every row, grown when a row needs more and touched once, so
+// that no timed iteration pays for page faults.
+unsigned char* scratch(size_t bytes) {
+  static std::unique_ptr<unsigned char[]> buf;
+  static size_t capacity = 0;
+  if (bytes > capacity) {
+    buf.reset();
+    buf.reset(new unsigned char[bytes]);
+    std::memset(buf.get(), 0, bytes);
+    capacity = bytes;
+  }
+  return buf.get();
+}
+
+// Errors of every path at one size, measured the first time a row of that
+// size asks (outside any timed loop), so each path and size costs one pass.
+const error_stats& errors_for(size_t path_index, int64_t w, int64_t h) {
+  static std::map<std::pair<int64_t, int64_t>, std::vector<error_stats>> cache;
+  auto it = cache.find({w, h});
+  if (it == cache.end())
+    it = cache.emplace(std::pair{w, h}, measure_errors(make_scene(sized(w, h)), paths())).first;
+  return it->second[path_index];
+}
+
+void bench_render(benchmark::State& state, size_t path_index, size2 size, int threads,
+                  pixel_format format) {
+  const error_stats& e = errors_for(path_index, size.w, size.h);
+  const scene s = make_scene(sized(size.w, size.h));
+  const painter paint(paths()[path_index], s, threads);
+  const size_t stride = size_t(size.w) * bytes_per_pixel(format);
+  const image_band band{scratch(stride * size_t(size.h)), stride, format, 0, size.h};
+  for (auto _ : state) {
+    paint.render(band);
+    benchmark::ClobberMemory();
+  }
+  state.counters["max_abs_err"] = e.max_abs_err;
+  state.counters["rms_err"] = e.rms_err;
+  state.counters["max_lsb"] = e.max_lsb;
+  state.counters["lsb_mismatch"] = e.lsb_mismatch;
+}
+
+// The kernel with only some of its omissions (render_options::omit).
+struct variant {
+  const char* name;
+  unsigned omit;
+};
+const std::vector<variant>& variants() {
+  static const std::vector<variant> v = {
+      {"general", omit_nothing},
+      {"lanes", omit_lanes},
+      {"lanes+mirror", omit_lanes | omit_mirrored},
+      {"channels", omit_channels},
+      {"clamps", omit_clamps},
+      {"all", ~0u},
+  };
+  return v;
+}
+
+void bench_special(benchmark::State& state, size_t path_index, size2 size, unsigned omit) {
+  const scene s = make_scene(sized(size.w, size.h));
+  const painter paint(paths()[path_index], s, 1, omit);
+  const size_t stride = size_t(size.w) * 3;
+  const image_band band{scratch(stride * size_t(size.h)), stride, pixel_format::rgb8, 0, size.h};
+  for (auto _ : state) {
+    paint.render(band);
+    benchmark::ClobberMemory();
+  }
+}
+
+// special/ rows: the SIMD backends at one size with each omission alone, the
+// general path (none) first so the others can report vs_general.
+void register_special_rows(size2 sz) {
+  for (size_t p = 0; p < paths().size(); ++p) {
+    const path& pa = paths()[p];
+    if (pa.autovec || pa.core == backend::reference || pa.core == backend::scalar) continue;
+    for (const variant& v : variants())
+      benchmark::RegisterBenchmark(
+          special_row_name(pa.backend, to_string(pa.prec), sz.w, sz.h, v.name).c_str(),
+          bench_special, p, sz, v.omit)
+          ->Unit(benchmark::kMicrosecond);
+  }
+}
+
+void bench_memset(benchmark::State& state, size2 size) {
+  const size_t bytes = size_t(size.w) * size_t(size.h) * 3;
+  unsigned char* buf = scratch(bytes);
+  for (auto _ : state) {
+    std::memset(buf, 0x5a, bytes);
+    benchmark::DoNotOptimize(buf);
+    benchmark::ClobberMemory();
+  }
+  state.SetBytesProcessed(int64_t(state.iterations()) * int64_t(bytes));
+}
+
+// Rows grouped by size, threads and output, memset and the reference first:
+// the reporter needs their times for the other rows' speedup and vs_memset.
+void register_rows(const std::vector<size2>& sizes, const std::vector<int>& threads) {
+  for (const size2& sz : sizes) {
+    benchmark::RegisterBenchmark(memset_row_name(sz.w, sz.h).c_str(), bench_memset, sz)
+        ->Unit(benchmark::kMicrosecond);
+    for (int t : threads)
+      for (pixel_format f : {pixel_format::rgb8, pixel_format::rgb_f32})
+        for (size_t p = 0; p < paths().size(); ++p) {
+          const std::string name =
+              render_row_name(paths()[p].backend, to_string(paths()[p].prec), sz.w, sz.h, t,
+                              f == pixel_format::rgb8 ? "rgb8" : "f32");
+          benchmark::RegisterBenchmark(name.c_str(), bench_render, p, sz, t, f)
+              ->Unit(benchmark::kMicrosecond);
+        }
+  }
+}
+
+void print_help() {
+  std::printf(
+      "raycast-bench: time every sky renderer and compare it with the double reference\n"
+      "  --quick                 seconds-long pass over 400x225 and 1920x1080\n"
+      "  --plot FILE.svg         write the error-vs-time scatter as SVG\n"
+      "  --summary-size WxH      size of the summary table (default 3840x2160;\n"
+      "                          --quick: 1920x1080)\n"
+      "  --summary-threads N     threads of the summary table (default 1)\n"
+      "Google Benchmark's flags:\n");
+  benchmark::PrintDefaultHelp();
+}
+
+[[noreturn]] void usage_error(const std::string& what) {
+  std::fprintf(stderr, "raycast-bench: %s (see --help)\n", what.c_str());
+  std::exit(2);
+}
+
+// Takes this program's flags out of argv; Google Benchmark's stay.
+options parse_own_flags(int& argc, char** argv) {
+  options o;
+  int kept = 1;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    auto value = [&](const std::string& flag) -> std::optional<std::string> {
+      if (arg == flag) {
+        if (i + 1 >= argc) usage_error(flag + " needs a value");
+        return std::string(argv[++i]);
+      }
+      if (arg.rfind(flag + "=", 0) == 0) return arg.substr(flag.size() + 1);
+      return std::nullopt;
+    };
+    if (arg == "--quick") {
+      o.quick = true;
+    } else if (auto v = value("--plot")) {
+      o.plot = *v;
+    } else if (auto sz = value("--summary-size")) {
+      long long w = 0, h = 0;
+      char tail = 0;
+      if (std::sscanf(sz->c_str(), "%lldx%lld%c", &w, &h, &tail) != 2 || w < 1 || h < 1)
+        usage_error("--summary-size wants WxH, got '" + *sz + "'");
+      o.summary_size = std::pair<int64_t, int64_t>(w, h);
+    } else if (auto n = value("--summary-threads")) {
+      char tail = 0;
+      if (std::sscanf(n->c_str(), "%d%c", &o.summary_threads, &tail) != 1 || o.summary_threads < 1)
+        usage_error("--summary-threads wants a positive integer, got '" + *n + "'");
+    } else {
+      argv[kept++] = argv[i];
+    }
+  }
+  argc = kept;
+  argv[argc] = nullptr;
+  return o;
+}
+
+// The value of a Google Benchmark flag given as --name=value, if present.
+std::optional<std::string> flag_value(int argc, char** argv, const std::string& name) {
+  std::optional<std::string> v;
+  for (int i = 1; i < argc; ++i)
+    if (std::string(argv[i]).rfind(name + "=", 0) == 0) v = std::string(argv[i] + name.size() + 1);
+  return v;
+}
+
+// --benchmark_list_tests, alone or with a true value: names only, no tables.
+bool listing_only(int argc, char** argv) {
+  bool list = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--benchmark_list_tests") list = true;
+    if (a.rfind("--benchmark_list_tests=", 0) == 0) {
+      const std::string v = a.substr(a.find('=') + 1);
+      list = !(v == "false" || v == "0" || v == "no" || v == "off" || v == "f" || v == "n");
+    }
+  }
+  return list;
+}
+
+std::unique_ptr<benchmark::BenchmarkReporter> make_file_reporter(const std::string& format) {
+  if (format == "console")
+    return std::make_unique<benchmark::ConsoleReporter>(benchmark::ConsoleReporter::OO_None);
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wdeprecated-declarations"
+  if (format == "csv") return std::make_unique<benchmark::CSVReporter>();
+#pragma GCC diagnostic pop
+  return std::make_unique<benchmark::JSONReporter>();
+}
+
+std::vector<stiff_result> run_stiff_cases() {
+  std::vector<stiff_result> results;
+  for (const stiff_case& c : stiff_cases()) {
+    stiff_result r;
+    r.name = c.name;
+    r.width = c.cam.image_width;
+    r.height = c.cam.image_height.value_or(default_height(c.cam.image_width, c.cam.aspect_ratio));
+    if (auto why = validate(c.cam))
+      r.invalid = *why;
+    else
+      r.errors = measure_errors(make_scene(c.cam, c.sky), paths());
+    results.push_back(std::move(r));
+  }
+  return results;
+}
+
+// Google Benchmark's flags, with a short default min time: it keeps the full
+// run within two minutes, and a row whose single iteration takes longer (the
+// reference and scalar rows at 15360x8640) runs exactly once, by the
+// library's own rule, so row names stay free of /iterations: suffixes.
+void init_benchmark(int argc, char** argv, bool quick) {
+  std::vector<char*> args(argv, argv + argc);
+  static std::string min_time = quick ? "--benchmark_min_time=0.02" : "--benchmark_min_time=0.1";
+  if (!flag_value(argc, argv, "--benchmark_min_time"))
+    args.insert(args.begin() + 1, min_time.data());
+  int n = int(args.size());
+  args.push_back(nullptr);
+  benchmark::Initialize(&n, args.data(), print_help);
+  if (benchmark::ReportUnrecognizedArguments(n, args.data())) std::exit(2);
+}
+
+// Runs the registered rows through reporters that fill the cross-row counters.
+void run_rows(int argc, char** argv, run_table& table) {
+  counter_filler display(benchmark::CreateDefaultDisplayReporter(), table);
+  std::unique_ptr<benchmark::BenchmarkReporter> file_inner;
+  std::unique_ptr<counter_filler> file;
+  if (flag_value(argc, argv, "--benchmark_out")) {
+    file_inner =
+        make_file_reporter(flag_value(argc, argv, "--benchmark_out_format").value_or("json"));
+    file = std::make_unique<counter_filler>(file_inner.get(), table);
+  }
+  benchmark::RunSpecifiedBenchmarks(&display, file.get());
+  benchmark::Shutdown();
+}
+
+int run(int argc, char** argv) {
+  const options opt = parse_own_flags(argc, argv);
+  init_benchmark(argc, argv, opt.quick);
+  std::vector<size2> sizes = {{400, 225}, {1920, 1080}};
+  if (!opt.quick) sizes.insert(sizes.end(), {{3840, 2160}, {15360, 8640}});
+  std::vector<int> threads = {1};
+  if (available_cores() > 1) threads.push_back(available_cores());
+  register_rows(sizes, threads);
+  register_special_rows(opt.quick ? size2{1920, 1080} : size2{3840, 2160});
+
+  run_table table;
+  run_rows(argc, argv, table);
+  if (listing_only(argc, argv)) return 0;
+
+  // Machine-readable stdout stays machine-readable: the tables go to stderr.
+  const std::string format = flag_value(argc, argv, "--benchmark_format").value_or("console");
+  std::ostream& os = format == "console" ? std::cout : std::cerr;
+  summary_options so;
+  const std::pair<int64_t, int64_t> size =
+      opt.summary_size.value_or(opt.quick ? std::pair<int64_t, int64_t>{1920, 1080}
+                                          : std::pair<int64_t, int64_t>{3840, 2160});
+  so.width = size.first;
+  so.height = size.second;
+  so.threads = opt.summary_threads;
+  so.cpu = cpu_model();
+  so.date = today();
+  const std::vector<summary_row> rows = summary_rows(table, so);
+  print_summary(os, rows, so, skipped_backends());
+  if (!opt.plot.empty()) {
+    if (!write_svg(opt.plot, rows, so)) {
+      std::fprintf(stderr, "raycast-bench: cannot write %s\n", opt.plot.c_str());
+      return 1;
+    }
+    os << "Plot written to " << opt.plot << "\n";
+  }
+  std::vector<std::string> names;
+  for (const variant& v : variants()) names.push_back(v.name);
+  print_specialization(os, table, names);
+  print_stiff(os, paths(), run_stiff_cases());
+  os.flush();
+  return 0;
+}
+
+}  // namespace
+}  // namespace raycast::bench
+
+int main(int argc, char** argv) { return raycast::bench::run(argc, argv); }

@@ -1,0 +1,484 @@
+#include "report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <ostream>
+#include <sstream>
+
+namespace raycast::bench {
+namespace {
+
+using Run = benchmark::BenchmarkReporter::Run;
+
+__attribute__((format(printf, 1, 2))) std::string strf(const char* format, ...) {
+  char buf[512];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(buf, sizeof buf, format, args);
+  va_end(args);
+  return buf;
+}
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> parts;
+  std::stringstream in(s);
+  for (std::string part; std::getline(in, part, sep);) parts.push_back(part);
+  return parts;
+}
+
+bool parse_size(const std::string& s, int64_t& w, int64_t& h) {
+  long long a = 0, b = 0;
+  char tail = 0;
+  if (std::sscanf(s.c_str(), "%lldx%lld%c", &a, &b, &tail) != 2 || a < 1 || b < 1) return false;
+  w = a;
+  h = b;
+  return true;
+}
+
+double run_seconds(const Run& r) {
+  return r.GetAdjustedRealTime() / benchmark::GetTimeUnitMultiplier(r.time_unit);
+}
+
+// "" for an iteration run, the statistic's name for an aggregate.
+std::string aggregate_key(const Run& r) {
+  return r.run_type == Run::RT_Aggregate ? r.aggregate_name : std::string();
+}
+
+// Time counters make sense for single runs and for the mean and median.
+bool has_time(const Run& r) {
+  if (r.error_occurred) return false;
+  if (r.run_type != Run::RT_Aggregate) return true;
+  return r.aggregate_unit == benchmark::kTime &&
+         (r.aggregate_name == "mean" || r.aggregate_name == "median");
+}
+
+}  // namespace
+
+std::optional<row_name> parse_row_name(const std::string& name) {
+  const std::vector<std::string> p = split(name, '/');
+  row_name n;
+  if (p.size() == 6 && p[0] == "render" && p[4].size() > 1 && p[4][0] == 't') {
+    n.kind = p[0];
+    n.backend = p[1];
+    n.precision = p[2];
+    n.threads = std::atoi(p[4].c_str() + 1);
+    n.out = p[5];
+    if (!parse_size(p[3], n.width, n.height) || n.threads < 1) return std::nullopt;
+    return n;
+  }
+  if (p.size() == 7 && p[0] == "special" && p[4] == "t1") {
+    n.kind = p[0];
+    n.backend = p[1];
+    n.precision = p[2];
+    n.out = p[5];
+    n.variant = p[6];
+    if (!parse_size(p[3], n.width, n.height)) return std::nullopt;
+    return n;
+  }
+  if (p.size() == 4 && p[0] == "bound" && p[1] == "memset") {
+    n.kind = p[0];
+    n.backend = p[1];
+    n.out = p[3];
+    if (!parse_size(p[2], n.width, n.height)) return std::nullopt;
+    return n;
+  }
+  return std::nullopt;
+}
+
+std::string render_row_name(const std::string& backend, std::string_view precision, int64_t w,
+                            int64_t h, int threads, std::string_view out) {
+  return strf("render/%s/%.*s/%lldx%lld/t%d/%.*s", backend.c_str(), int(precision.size()),
+              precision.data(), static_cast<long long>(w), static_cast<long long>(h), threads,
+              int(out.size()), out.data());
+}
+
+std::string special_row_name(const std::string& backend, std::string_view precision, int64_t w,
+                             int64_t h, std::string_view variant) {
+  return strf("special/%s/%.*s/%lldx%lld/t1/rgb8/%.*s", backend.c_str(), int(precision.size()),
+              precision.data(), static_cast<long long>(w), static_cast<long long>(h),
+              int(variant.size()), variant.data());
+}
+
+std::string memset_row_name(int64_t w, int64_t h) {
+  return strf("bound/memset/%lldx%lld/rgb8", static_cast<long long>(w), static_cast<long long>(h));
+}
+
+std::optional<double> run_table::seconds(const std::string& name) const {
+  const auto it = seconds_.find(name);
+  if (it == seconds_.end()) return std::nullopt;
+  return it->second;
+}
+
+void run_table::fill(std::vector<Run>& runs) {
+  if (runs.empty()) return;
+  const std::string fn = runs.front().run_name.function_name;
+  double sum = 0;
+  int n = 0;
+  for (const Run& r : runs) {
+    if (!has_time(r)) continue;
+    if (r.run_type == Run::RT_Aggregate) {
+      seconds_[fn + "|" + r.aggregate_name] = run_seconds(r);
+    } else {
+      sum += run_seconds(r);
+      ++n;
+    }
+  }
+  if (n > 0) seconds_[fn + "|"] = sum / n;
+
+  const std::optional<row_name> name = parse_row_name(fn);
+  if (!name) return;
+  const double px = double(name->width) * double(name->height);
+  const std::string ref =
+      render_row_name("reference", "exact", name->width, name->height, name->threads, name->out);
+  const std::string bound = memset_row_name(name->width, name->height);
+  for (Run& r : runs) {
+    const double sec = run_seconds(r);
+    if (!has_time(r) || !(sec > 0)) continue;
+    const std::string key = std::string(1, '|').append(aggregate_key(r));
+    r.counters["ns_per_px"] = sec * 1e9 / px;
+    r.counters["Mpix_per_s"] = px / sec * 1e-6;
+    if (name->kind == "special") {
+      const std::string general =
+          special_row_name(name->backend, name->precision, name->width, name->height, "general");
+      if (auto t = seconds(general + key)) r.counters["vs_general"] = *t / sec;
+      continue;
+    }
+    if (name->kind != "render") continue;
+    if (name->backend == "reference")
+      r.counters["speedup"] = 1.0;
+    else if (auto t = seconds(ref + key))
+      r.counters["speedup"] = *t / sec;
+    if (auto t = seconds(bound + key)) r.counters["vs_memset"] = sec / *t;
+  }
+
+  if (name->kind != "render") return;
+  measured_row row;
+  row.name = *name;
+  for (const Run& r : runs) {
+    const bool iteration = r.run_type == Run::RT_Iteration && !r.error_occurred;
+    const bool mean = r.run_type == Run::RT_Aggregate && r.aggregate_name == "mean";
+    if (!iteration && !(mean && n == 0)) continue;
+    row.seconds = iteration ? sum / n : run_seconds(r);
+    row.from_iterations = iteration;
+    for (const auto& [k, c] : r.counters) row.counters[k] = c.value;
+  }
+  if (row.seconds <= 0) return;
+  auto it = rows_.find(fn);
+  if (it == rows_.end() || row.from_iterations || !it->second.from_iterations) rows_[fn] = row;
+}
+
+bool counter_filler::ReportContext(const Context& context) {
+  inner_->SetOutputStream(&GetOutputStream());
+  inner_->SetErrorStream(&GetErrorStream());
+  return inner_->ReportContext(context);
+}
+
+void counter_filler::ReportRuns(const std::vector<Run>& runs) {
+  std::vector<Run> filled = runs;
+  table_.fill(filled);
+  inner_->ReportRuns(filled);
+}
+
+void counter_filler::Finalize() { inner_->Finalize(); }
+
+std::vector<summary_row> summary_rows(const run_table& table, const summary_options& opt) {
+  std::vector<summary_row> rows;
+  const std::string ref_name =
+      render_row_name("reference", "exact", opt.width, opt.height, opt.threads, opt.out);
+  const auto ref = table.rows().find(ref_name);
+  for (const auto& [fn, m] : table.rows()) {
+    const row_name& n = m.name;
+    if (n.width != opt.width || n.height != opt.height || n.threads != opt.threads ||
+        n.out != opt.out)
+      continue;
+    summary_row s;
+    s.label = n.backend + "/" + n.precision;
+    s.ns_per_px = m.seconds * 1e9 / (double(n.width) * double(n.height));
+    if (ref != table.rows().end()) s.speedup = ref->second.seconds / m.seconds;
+    auto counter = [&](const char* k) {
+      const auto it = m.counters.find(k);
+      return it == m.counters.end() ? 0.0 : it->second;
+    };
+    s.max_abs_err = counter("max_abs_err");
+    s.max_lsb = int(counter("max_lsb"));
+    s.lsb_mismatch = counter("lsb_mismatch");
+    rows.push_back(s);
+  }
+  std::sort(rows.begin(), rows.end(),
+            [](const summary_row& a, const summary_row& b) { return a.ns_per_px < b.ns_per_px; });
+  for (summary_row& r : rows) {
+    r.pareto = std::none_of(rows.begin(), rows.end(), [&](const summary_row& o) {
+      return o.ns_per_px < r.ns_per_px && o.max_abs_err <= r.max_abs_err;
+    });
+  }
+  return rows;
+}
+
+namespace {
+
+std::string size_text(int64_t w, int64_t h) {
+  return strf("%lldx%lld", static_cast<long long>(w), static_cast<long long>(h));
+}
+
+std::string error_text(double e) {
+  if (e == 0) return "0";
+  if (!std::isfinite(e)) return "inf";
+  return strf("%.1e", e);
+}
+
+}  // namespace
+
+void print_summary(std::ostream& os, const std::vector<summary_row>& rows,
+                   const summary_options& opt, const std::vector<skipped_backend>& skipped) {
+  os << "\nError vs run time: " << opt.cpu << ", " << opt.date << ", "
+     << size_text(opt.width, opt.height) << ", " << opt.threads << " thread"
+     << (opt.threads == 1 ? "" : "s") << " (of " << available_cores() << " cores), " << opt.out
+     << " output\n"
+     << "  errors vs the double reference over the whole image: max_abs_err in linear colour\n"
+     << "  (from the f32 rendering), max_lsb and lsb_mismatch from the 8-bit bytes;\n"
+     << "  * = Pareto-optimal: no other row is both faster and at most as wrong (max_abs_err)\n";
+  if (rows.empty()) {
+    os << "  (no rows measured at this size, thread count and output; see --benchmark_filter)\n";
+  } else {
+    os << strf("    %-20s %9s %9s %12s %8s %13s\n", "backend/precision", "ns/px", "speedup",
+               "max_abs_err", "max_lsb", "lsb_mismatch");
+    for (const summary_row& r : rows) {
+      const std::string speedup = r.speedup ? strf("%.1fx", *r.speedup) : "-";
+      os << strf("  %c %-20s %9.3f %9s %12s %8d %12.4f%%\n", r.pareto ? '*' : ' ', r.label.c_str(),
+                 r.ns_per_px, speedup.c_str(), error_text(r.max_abs_err).c_str(), r.max_lsb,
+                 100.0 * r.lsb_mismatch);
+    }
+  }
+  os << "Skipped backends: ";
+  if (skipped.empty()) os << "none (this CPU runs every backend)";
+  for (size_t i = 0; i < skipped.size(); ++i)
+    os << (i ? "; " : "") << skipped[i].name << " (" << skipped[i].reason << ")";
+  os << "\n";
+}
+
+namespace {
+
+std::string xml_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+// "10" with a superscript exponent.
+std::string decade_label(int e) {
+  return strf("10<tspan dy=\"-7\" font-size=\"10\">%d</tspan>", e);
+}
+
+}  // namespace
+
+bool write_svg(const std::string& file, const std::vector<summary_row>& rows,
+               const summary_options& opt) {
+  std::ofstream out(file);
+  if (!out) return false;
+  constexpr double W = 960, H = 640, left = 90, right = 150, top = 80, bottom = 70;
+  constexpr double floor_err = 1e-9;
+  double xlo = 1e300, xhi = 0, yhi = floor_err * 10;
+  for (const summary_row& r : rows) {
+    xlo = std::min(xlo, r.ns_per_px);
+    xhi = std::max(xhi, r.ns_per_px);
+    if (std::isfinite(r.max_abs_err)) yhi = std::max(yhi, r.max_abs_err);
+  }
+  if (rows.empty()) xlo = xhi = 1;
+  const int x0 = int(std::floor(std::log10(xlo))),
+            x1 = std::max(x0 + 1, int(std::ceil(std::log10(xhi))));
+  const int y0 = int(std::log10(floor_err)), y1 = std::max(y0 + 1, int(std::ceil(std::log10(yhi))));
+  const double pw = W - left - right, ph = H - top - bottom;
+  auto px = [&](double ns) { return left + (std::log10(ns) - x0) / (x1 - x0) * pw; };
+  auto py = [&](double e) {
+    const double y = std::isfinite(e) ? std::log10(std::max(e, floor_err)) : y1;
+    return top + ph - (y - y0) / (y1 - y0) * ph;
+  };
+
+  out << strf(
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" "
+      "viewBox=\"0 0 %.0f %.0f\" font-family=\"sans-serif\" font-size=\"12\">\n",
+      W, H, W, H);
+  out << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  out << strf("<text x=\"%.0f\" y=\"28\" text-anchor=\"middle\" font-size=\"16\">", W / 2)
+      << "raycast: error vs run time — " << xml_escape(opt.cpu) << ", " << opt.date << "</text>\n";
+  out << strf("<text x=\"%.0f\" y=\"50\" text-anchor=\"middle\" fill=\"#444\">", W / 2)
+      << size_text(opt.width, opt.height) << ", " << opt.threads << " thread"
+      << (opt.threads == 1 ? "" : "s") << ", " << opt.out
+      << " output; error vs the double reference; filled = Pareto-optimal</text>\n";
+  // Grid, ticks and axis titles.
+  for (int e = x0; e <= x1; ++e) {
+    const double x = px(std::pow(10.0, e));
+    out << strf("<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#ddd\"/>\n", x, top,
+                x, top + ph);
+    out << strf("<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">", x, top + ph + 20)
+        << decade_label(e) << "</text>\n";
+  }
+  for (int e = y0; e <= y1; ++e) {
+    const double y = py(std::pow(10.0, e));
+    out << strf("<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#ddd\"/>\n", left,
+                y, left + pw, y);
+    out << strf("<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">", left - 8, y + 4)
+        << (e == y0 ? std::string("0") : decade_label(e)) << "</text>\n";
+  }
+  out << strf(
+      "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"none\" "
+      "stroke=\"#333\"/>\n",
+      left, top, pw, ph);
+  out << strf(
+      "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">time per pixel (ns, log)</text>\n",
+      left + pw / 2, H - 22);
+  out << strf(
+      "<text transform=\"translate(24 %.1f) rotate(-90)\" text-anchor=\"middle\">"
+      "max abs error, linear colour (log; 0 at the bottom)</text>\n",
+      top + ph / 2);
+  // The Pareto front as a dashed staircase (the edge of what it dominates).
+  std::string front, front_y;
+  for (const summary_row& r : rows) {
+    if (!r.pareto) continue;
+    if (!front.empty()) front += strf("%.1f,%s ", px(r.ns_per_px), front_y.c_str());
+    front_y = strf("%.1f", py(r.max_abs_err));
+    front += strf("%.1f,%s ", px(r.ns_per_px), front_y.c_str());
+  }
+  if (!front.empty())
+    out << "<polyline points=\"" << front
+        << "\" fill=\"none\" stroke=\"#1f4e9c\" stroke-dasharray=\"4 4\" opacity=\"0.6\"/>\n";
+  struct box {
+    double x0, y0, x1, y1;
+    bool hits(const box& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
+  };
+  std::vector<box> taken;
+  for (const summary_row& r : rows) {
+    const double x = px(r.ns_per_px), y = py(r.max_abs_err);
+    taken.push_back({x - 6, y - 6, x + 6, y + 6});
+    out << strf(
+        "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"5\" fill=\"%s\" stroke=\"#1f4e9c\" "
+        "stroke-width=\"1.5\"/>\n",
+        x, y, r.pareto ? "#1f4e9c" : "white");
+  }
+  // Each label beside its point, at the first place that covers no point and
+  // no earlier label: right, left, below, above, then further out.
+  for (const summary_row& r : rows) {
+    const double x = px(r.ns_per_px), y = py(r.max_abs_err);
+    const double w = 6.8 * double(r.label.size());
+    const char* anchor = "start";
+    double tx = x + 8, ty = y + 4;
+    box b{};
+    for (int k = 0; k < 24; ++k) {
+      const int ring = k / 4;  // 0, then 13 px further out each time, alternating
+      const double side = 13.0 * double((ring + 1) / 2) * (ring % 2 ? 1 : -1);
+      const double away = 13.0 * double(ring);
+      switch (k % 4) {
+        case 0: anchor = "start", tx = x + 8, ty = y + 4 + side; break;
+        case 1: anchor = "end", tx = x - 8, ty = y + 4 + side; break;
+        case 2: anchor = "middle", tx = x, ty = y + 19 + away; break;
+        default: anchor = "middle", tx = x, ty = y - 10 - away; break;
+      }
+      const double left_x = k % 4 == 0 ? tx : k % 4 == 1 ? tx - w : tx - w / 2;
+      b = {left_x, ty - 10, left_x + w, ty + 3};
+      const bool inside = b.x0 >= 0 && b.x1 <= W && b.y0 >= top - 20 && b.y1 <= H - 30;
+      if (inside &&
+          std::none_of(taken.begin(), taken.end(), [&](const box& o) { return o.hits(b); }))
+        break;
+    }
+    taken.push_back(b);
+    out << strf("<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"%s\">%s</text>\n", tx, ty, anchor,
+                xml_escape(r.label).c_str());
+  }
+  out << "</svg>\n";
+  return bool(out);
+}
+
+void print_stiff(std::ostream& os, const std::vector<path>& paths,
+                 const std::vector<stiff_result>& results) {
+  std::vector<size_t> cols;  // every path but the reference, which is the oracle
+  for (size_t p = 0; p < paths.size(); ++p)
+    if (paths[p].autovec || paths[p].core != backend::reference) cols.push_back(p);
+  auto table = [&](const char* title, auto cell) {
+    os << title << "\n" << strf("  %-40s %-9s", "case", "size");
+    for (size_t p : cols) os << strf(" %9s", paths[p].backend.c_str());
+    os << "\n" << strf("  %-40s %-9s", "", "");
+    for (size_t p : cols) os << strf(" %9s", std::string(to_string(paths[p].prec)).c_str());
+    os << "\n";
+    for (const stiff_result& r : results) {
+      os << strf("  %-40s %-9s", r.name.c_str(), size_text(r.width, r.height).c_str());
+      if (!r.invalid.empty()) os << "  refused: " << r.invalid;
+      for (size_t p : cols)
+        if (r.invalid.empty()) os << strf(" %9s", cell(r.errors[p]).c_str());
+      os << "\n";
+    }
+  };
+  os << "\nStiff cases (not timed): error vs the double reference (raycast::reference_pixel)\n";
+  table("max_abs_err, linear colour (f32 output):",
+        [](const error_stats& e) { return error_text(e.max_abs_err); });
+  table("max_lsb (rgb8 output):", [](const error_stats& e) { return strf("%d", e.max_lsb); });
+  table("NaN count (f32 output; should be 0):",
+        [](const error_stats& e) { return strf("%lld", static_cast<long long>(e.nan_count)); });
+}
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("model name", 0) != 0) continue;
+    const size_t colon = line.find(':');
+    if (colon == std::string::npos) break;
+    const size_t start = line.find_first_not_of(" \t", colon + 1);
+    return start == std::string::npos ? "unknown CPU" : line.substr(start);
+  }
+  return "unknown CPU";
+}
+
+std::string today() {
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  localtime_r(&now, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%d", &tm);
+  return buf;
+}
+
+}  // namespace raycast::bench
+
+namespace raycast::bench {
+
+void print_specialization(std::ostream& os, const run_table& table,
+                          const std::vector<std::string>& variants) {
+  std::map<std::pair<std::string, std::string>, std::map<std::string, double>> grid;
+  int64_t w = 0, h = 0;
+  for (const auto& [key, sec] : table.all_seconds()) {
+    const std::string fn = key.substr(0, key.find('|'));
+    if (key.back() != '|') continue;  // plain runs only, not aggregates
+    const std::optional<row_name> n = parse_row_name(fn);
+    if (!n || n->kind != "special") continue;
+    w = n->width;
+    h = n->height;
+    grid[{n->backend, n->precision}][n->variant] = sec * 1e9 / (double(w) * double(h));
+  }
+  if (grid.empty()) return;
+  os << "\nWhat each omission saves (special/ rows): ns/px at " << w << "x" << h
+     << ", 1 thread, rgb8; general = no omission, all = every one (the default)\n";
+  os << strf("  %-18s", "backend/precision");
+  for (const std::string& v : variants) os << strf("%14s", v.c_str());
+  os << "\n";
+  for (const auto& [bp, cells] : grid) {
+    os << strf("  %-18s", (bp.first + "/" + bp.second).c_str());
+    for (const std::string& v : variants) {
+      const auto it = cells.find(v);
+      os << (it == cells.end() ? strf("%14s", "-") : strf("%14.3f", it->second));
+    }
+    os << "\n";
+  }
+}
+
+}  // namespace raycast::bench

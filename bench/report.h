@@ -1,0 +1,114 @@
+// What the bench prints: counters that need other rows' times (filled in a
+// reporter wrapper), the error-vs-run-time summary, its SVG plot, and the
+// stiff-case tables.
+#pragma once
+#include <benchmark/benchmark.h>
+
+#include <iosfwd>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "errors.h"
+
+namespace raycast::bench {
+
+// A row name split into its parts: render/BACKEND/PRECISION/WxH/tTHREADS/OUT
+// or bound/memset/WxH/rgb8.
+struct row_name {
+  std::string kind, backend, precision, out;
+  int64_t width = 0, height = 0;
+  int threads = 1;
+  std::string variant;  // special/ rows: which omissions the kernel may make
+};
+std::optional<row_name> parse_row_name(const std::string& name);
+std::string render_row_name(const std::string& backend, std::string_view precision, int64_t w,
+                            int64_t h, int threads, std::string_view out);
+std::string memset_row_name(int64_t w, int64_t h);
+// special/BACKEND/PRECISION/WxH/t1/rgb8/VARIANT: the kernel with only some of
+// the omissions of render_options::omit (general = none, all = every one).
+std::string special_row_name(const std::string& backend, std::string_view precision, int64_t w,
+                             int64_t h, std::string_view variant);
+
+// One measured render row, for the summary: the mean time per iteration over
+// its repetitions and the counters its benchmark set.
+struct measured_row {
+  row_name name;
+  double seconds = 0;
+  std::map<std::string, double> counters;
+  bool from_iterations = false;
+};
+
+// Times of every row reported so far, shared by the display and file reporters.
+class run_table {
+ public:
+  // Adds ns_per_px, Mpix_per_s, speedup and vs_memset to the runs of one
+  // benchmark and records them.
+  void fill(std::vector<benchmark::BenchmarkReporter::Run>& runs);
+  const std::map<std::string, measured_row>& rows() const { return rows_; }
+  std::optional<double> seconds(const std::string& name) const;
+  const std::map<std::string, double>& all_seconds() const { return seconds_; }
+
+ private:
+  std::map<std::string, double> seconds_;  // "name|aggregate" -> seconds per iteration
+  std::map<std::string, measured_row> rows_;
+};
+
+// Forwards every call to another reporter, the counters filled in first.
+class counter_filler : public benchmark::BenchmarkReporter {
+ public:
+  counter_filler(benchmark::BenchmarkReporter* inner, run_table& table)
+      : inner_(inner), table_(table) {}
+  bool ReportContext(const Context& context) override;
+  void ReportRuns(const std::vector<Run>& runs) override;
+  void Finalize() override;
+
+ private:
+  benchmark::BenchmarkReporter* inner_;
+  run_table& table_;
+};
+
+struct summary_options {
+  int64_t width = 3840, height = 2160;
+  int threads = 1;
+  std::string out = "rgb8";
+  std::string cpu, date;
+};
+
+struct summary_row {
+  std::string label;  // backend/precision
+  double ns_per_px = 0;
+  std::optional<double> speedup;
+  double max_abs_err = 0, lsb_mismatch = 0;
+  int max_lsb = 0;
+  bool pareto = false;
+};
+
+// The rows at the summary's size, threads and output, sorted by time, with
+// the Pareto-optimal ones (no other row both faster and at most as wrong in
+// max_abs_err) marked.
+std::vector<summary_row> summary_rows(const run_table& table, const summary_options& opt);
+void print_summary(std::ostream& os, const std::vector<summary_row>& rows,
+                   const summary_options& opt, const std::vector<skipped_backend>& skipped);
+// Log-log scatter of ns/px against max_abs_err; false when the file cannot be written.
+bool write_svg(const std::string& file, const std::vector<summary_row>& rows,
+               const summary_options& opt);
+
+struct stiff_result {
+  std::string name;
+  int64_t width = 0, height = 0;
+  std::string invalid;              // validate()'s message when the camera is refused
+  std::vector<error_stats> errors;  // per path
+};
+// What each omission saves: ns/px of the special/ rows, general first.
+void print_specialization(std::ostream& os, const run_table& table,
+                          const std::vector<std::string>& variants);
+
+void print_stiff(std::ostream& os, const std::vector<path>& paths,
+                 const std::vector<stiff_result>& results);
+
+std::string cpu_model();
+std::string today();
+
+}  // namespace raycast::bench
