@@ -58,6 +58,11 @@ struct run_options {
   std::optional<rlim_t> file_size_limit;
   // Standard output goes here instead of the captured file.
   std::optional<std::string> stdout_path;
+  // Standard output is this descriptor of the parent (e.g. a pipe's write end;
+  // the parent closes its own copy after start()).
+  std::optional<int> stdout_fd;
+  // Standard output is closed, as after `>&-`.
+  bool close_stdout = false;
   // Run as this user and group (from root), e.g. where root would bypass a
   // file permission under test.
   std::optional<std::pair<uid_t, gid_t>> run_as;
@@ -125,11 +130,15 @@ class cli_sandbox {
     if (pid < 0) throw std::runtime_error("fork: " + std::string(std::strerror(errno)));
     if (pid == 0) {
       // Only async-signal-safe calls between fork and exec.
-      const int in_fd = open("/dev/null", O_RDONLY);
-      const int out_fd = open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-      const int err_fd = open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      // O_CLOEXEC: only the dup2'ed copies 0, 1, 2 reach raycast.
+      const int in_fd = open("/dev/null", O_RDONLY | O_CLOEXEC);
+      const int out_fd = open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+      const int err_fd = open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
       if (in_fd < 0 || out_fd < 0 || err_fd < 0) _exit(125);
       if (dup2(in_fd, 0) < 0 || dup2(out_fd, 1) < 0 || dup2(err_fd, 2) < 0) _exit(125);
+      if (opts.stdout_fd && dup2(*opts.stdout_fd, 1) < 0) _exit(125);
+      for (int fd = 0; fd <= 2; ++fd) fcntl(fd, F_SETFD, 0);  // dup2 onto itself keeps O_CLOEXEC
+      if (opts.close_stdout) close(1);
       if (chdir(cwd.c_str()) != 0) _exit(125);
       sigset_t none;
       sigemptyset(&none);

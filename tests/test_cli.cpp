@@ -7,7 +7,9 @@
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
 
+#include <algorithm>
 #include <chrono>
+#include <ostream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -237,10 +239,14 @@ INSTANTIATE_TEST_SUITE_P(Formats, CliFormat, ::testing::ValuesIn(format_cases), 
 // ---------------------------------------------------------------- usage errors
 
 struct usage_case {
-  const char* name;
+  std::string name;
   std::vector<std::string> args;  // "{out}" stands for <tmp>/out.png
   const char* mentions;
 };
+
+void PrintTo(const usage_case& c, std::ostream* os) {
+  for (const std::string& a : c.args) *os << (a.empty() ? "''" : a) << " ";
+}
 
 class CliUsageError : public Cli, public ::testing::WithParamInterface<usage_case> {};
 
@@ -255,6 +261,7 @@ TEST_P(CliUsageError, ExitsTwoWithOneLineNamingTheOptionAndWritesNothing) {
 
 const usage_case usage_cases[] = {
     {"width_zero", {"--width", "0", "-o", "{out}"}, "--width"},
+    {"width_equals_empty", {"--width=", "-o", "{out}"}, "--width"},
     {"width_negative", {"--width", "-5", "-o", "{out}"}, "--width"},
     {"width_with_unit", {"--width", "400px", "-o", "{out}"}, "--width"},
     {"width_empty", {"--width", "", "-o", "{out}"}, "--width"},
@@ -309,6 +316,86 @@ const usage_case usage_cases[] = {
 std::string usage_name(const ::testing::TestParamInfo<usage_case>& p) { return p.param.name; }
 
 INSTANTIATE_TEST_SUITE_P(Options, CliUsageError, ::testing::ValuesIn(usage_cases), usage_name);
+
+// Every option that takes a value, each way a value can be wrong: given twice
+// (even the same value), empty, missing at the end of the line, of the wrong
+// type, and out of range where it has a range.
+struct valued_option {
+  const char* name;         // the long name, as the message names it
+  const char* spelling;     // as given on the command line (a short form where there is one)
+  const char* good;         // a valid value ("{out}" for the output)
+  const char* wrong_type;   // not a value of the option's type; null: any text is
+  const char* out_of_range; // of the right type but outside what is allowed; null: no range
+};
+
+const valued_option valued_options[] = {
+    {"--output", "-o", "{out}", nullptr, nullptr},
+    {"--width", "-w", "16", "sixteen", "-16"},
+    {"--height", "--height", "9", "9.5", "-1"},
+    {"--aspect", "--aspect", "2:1", "wide", "-2:1"},
+    {"--viewport-height", "--viewport-height", "2", "2m", "-2"},
+    {"--focal-length", "--focal-length", "1", "0x1p", "-1"},
+    {"--origin", "--origin", "0,0,0", "a,b,c", "0,0,1e400"},
+    {"--lookfrom", "--lookfrom", "0,0,0", "0:0:0", "1e400,0,0"},
+    {"--lookat", "--lookat", "0,0,-1", "here", "0,0,-inf"},
+    {"--vup", "--vup", "0,1,0", "up", "0,0,0"},
+    {"--vfov", "--vfov", "90", "ninety", "180"},
+    {"--sky-bottom", "--sky-bottom", "1,1,1", "white", "1,1,1e31"},
+    {"--sky-top", "--sky-top", "0.5,0.7,1", "blue", "-1e31,0,0"},
+    {"--format", "--format", "ppm", "bmp", nullptr},
+    {"--backend", "--backend", "scalar", "fastest", nullptr},
+    {"--precision", "--precision", "exact", "double", nullptr},
+    {"--threads", "--threads", "2", "2.0", "1025"},
+};
+
+std::vector<usage_case> every_option_cases() {
+  std::vector<usage_case> cases;
+  for (const valued_option& o : valued_options) {
+    const std::string id = std::string(o.name).substr(2);
+    const bool is_output = id == "output";
+    auto add = [&](const std::string& kind, std::vector<std::string> args) {
+      if (!is_output) args.insert(args.end(), {"-o", "{out}"});
+      std::string name = id + "_" + kind;
+      std::replace(name.begin(), name.end(), '-', '_');
+      cases.push_back({name, std::move(args), o.name});
+    };
+    add("repeated", {o.spelling, o.good, o.name, o.good});
+    add("empty", {o.spelling, ""});
+    if (is_output)
+      cases.push_back({"output_missing_value", {"-o"}, o.name});
+    else
+      cases.push_back({id + "_missing_value", {"-o", "{out}", o.spelling}, o.name});
+    if (o.wrong_type) add("wrong_type", {o.spelling, o.wrong_type});
+    if (o.out_of_range) add("out_of_range", {o.spelling, o.out_of_range});
+  }
+  for (usage_case& c : cases) std::replace(c.name.begin(), c.name.end(), '-', '_');
+  return cases;
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryOption, CliUsageError, ::testing::ValuesIn(every_option_cases()),
+                         usage_name);
+
+// Flags take no value: given twice they mean the same as once.
+TEST_F(Cli, FlagsMayBeRepeated) {
+  const run_result r = box.run({"-q", "--quiet", "-o", "sky.ppm"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(box.entries(), std::vector<std::string>{"sky.ppm"});
+}
+
+// However the format is unsupported, the message lists the supported ones.
+TEST_F(Cli, EveryUnsupportedFormatListsTheSupportedOnes) {
+  const std::vector<std::vector<std::string>> ways = {
+      {"-o", "out.bmp"}, {"-o", "out"},  {"-o", "out.tar.gz"}, {"-o", "out.png.bak"},
+      {"-o", "dir.png/out"}, {"-o", "out.png", "--format", "gif"}, {"-o", "out."}};
+  for (const auto& args : ways) {
+    const run_result r = box.run(args);
+    EXPECT_EQ(r.exit_code, 2) << args.back() << ": " << r.err;
+    EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+    for (const char* f : {"png", "ppm", "jpg", "tif", "exr"})
+      EXPECT_TRUE(contains(r.err, f)) << f << " missing from: " << r.err;
+  }
+  EXPECT_TRUE(box.entries().empty());
+}
 
 TEST_F(Cli, UnknownExtensionListsTheSupportedOnes) {
   const run_result r = box.run({"-o", "out.bmp"});

@@ -88,10 +88,7 @@ class module_sink final : public image_sink {
     if (!writer_) throw io_error(j.output + ": " + err);
   }
   ~module_sink() override {
-    if (writer_) {
-      char err[512];
-      module_->close(writer_, err, sizeof err);
-    }
+    if (writer_) module_->abandon(writer_);  // finish() was not reached: a failure
   }
   void write_rows(int64_t y0, int64_t y1, const unsigned char* data, size_t stride) override {
     char err[512] = "";

@@ -2,10 +2,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <memory>
 #include <new>
+#include <string>
+#include <string_view>
 
 #include "image_sink.h"
 #include "options.h"
@@ -64,21 +68,60 @@ int run(const cli::job& j) {
   return 0;
 }
 
+// The message without control characters (\xNN instead): a file name may hold
+// a line break, and an error is one line.
+std::string printable(std::string_view s) {
+  static constexpr char hex[] = "0123456789abcdef";
+  std::string r;
+  for (const unsigned char c : s) {
+    if (c < 0x20 || c == 0x7f) {
+      r += "\\x";
+      r += hex[c >> 4];
+      r += hex[c & 15];
+    } else {
+      r += char(c);
+    }
+  }
+  return r;
+}
+
+void print_error(std::string_view what) {
+  std::cerr << "raycast: error: " << printable(what) << "\n";
+}
+
+// --help and --version print to standard output: a failed write there (closed,
+// full, a reader gone) is a failure too, reported like any other.
+bool standard_output_flushed() {
+  errno = 0;
+  std::cout.flush();
+  if (std::fflush(stdout) == 0 && !std::ferror(stdout) && std::cout.good()) return true;
+  const int e = errno;
+  print_error(std::string("standard output: ") + (e != 0 ? std::strerror(e) : "write error"));
+  return false;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  cli::parse_result parsed = cli::parse_args(argc, argv, std::cout, std::cerr);
-  if (!parsed.run) return parsed.exit_code;
+  cli::reserve_standard_streams();
   cli::install_signal_handlers();
+  cli::parse_result parsed = cli::parse_args(argc, argv, std::cout, std::cerr);
+  if (!parsed.run) {
+    if (parsed.exit_code == 0 && !standard_output_flushed()) return 1;
+    return parsed.exit_code;
+  }
   try {
     return run(*parsed.run);
   } catch (const cli::io_error& e) {
-    std::cerr << "raycast: error: " << e.what() << "\n";
+    print_error(e.what());
   } catch (const unsupported_backend& e) {
-    std::cerr << "raycast: error: --backend: " << e.what() << "\n";
+    print_error(std::string("--backend: ") + e.what());
     return 2;
   } catch (const std::bad_alloc&) {
-    std::cerr << "raycast: error: " << parsed.run->output << ": out of memory\n";
+    print_error(parsed.run->output + ": out of memory");
+  } catch (const std::exception& e) {
+    // Anything else still unwinds, so the temporary file is removed.
+    print_error(parsed.run->output + ": " + e.what());
   }
   return 1;
 }

@@ -6,6 +6,8 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <string>
+#include <vector>
 #include <ostream>
 
 namespace raycast::cli {
@@ -44,6 +46,23 @@ std::optional<file_format> format_from_name(std::string_view name) {
 }
 
 std::string in_quotes(std::string_view s) { return "'" + std::string(s) + "'"; }
+
+// A usage error is one line: control characters in what the user typed (a
+// line break in a file name) are written as \xNN.
+std::string printable(std::string_view s) {
+  static constexpr char hex[] = "0123456789abcdef";
+  std::string r;
+  for (const unsigned char c : s) {
+    if (c < 0x20 || c == 0x7f) {
+      r += "\\x";
+      r += hex[c >> 4];
+      r += hex[c & 15];
+    } else {
+      r += char(c);
+    }
+  }
+  return r;
+}
 
 }  // namespace
 
@@ -146,10 +165,25 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
   app.add_flag("--version", version, "Print the version and the backend auto picks here");
 
   try {
-    app.parse(argc, argv);
+    // CLI11 2.1 reads "--name=" (nothing after the '=') as "--name" and takes
+    // the next argument as its value: "--width= -o a.png" would render at
+    // width "-o". Pass it on as "--name" "", an empty value, refused as such.
+    std::vector<std::string> split;
+    for (int k = 0; k < argc; ++k) {
+      const std::string_view a = argv[k];
+      if (k > 0 && a.size() > 3 && a.substr(0, 2) == "--" && a.find('=') == a.size() - 1) {
+        split.emplace_back(a.substr(0, a.size() - 1));
+        split.emplace_back();
+      } else {
+        split.emplace_back(a);
+      }
+    }
+    std::vector<const char*> split_argv;
+    for (const std::string& a : split) split_argv.push_back(a.c_str());
+    app.parse(int(split_argv.size()), split_argv.data());
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return {std::nullopt, app.exit(e, out, err)};
-    err << "raycast: error: " << e.what() << " (see --help)\n";
+    err << "raycast: error: " << printable(e.what()) << " (see --help)\n";
     return {std::nullopt, 2};
   }
 
@@ -160,7 +194,7 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
   }
 
   auto usage = [&](std::string_view option, const std::string& why) {
-    err << "raycast: error: " << option << ": " << why << "\n";
+    err << "raycast: error: " << option << ": " << printable(why) << "\n";
     return parse_result{std::nullopt, 2};
   };
   auto given = [&](std::string_view name) { return app.count(std::string(name)) > 0; };

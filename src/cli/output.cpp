@@ -38,6 +38,17 @@ void install_signal_handlers() {
   std::signal(SIGPIPE, SIG_IGN);
 }
 
+void reserve_standard_streams() noexcept {
+  for (int fd = 0; fd <= 2; ++fd) {
+    if (fcntl(fd, F_GETFD) != -1 || errno != EBADF) continue;
+    const int null_fd = open("/dev/null", O_RDONLY);  // the lowest free number: fd
+    if (null_fd >= 0 && null_fd != fd) {
+      dup2(null_fd, fd);
+      close(null_fd);
+    }
+  }
+}
+
 void write_all(int fd, const void* data, size_t n, const std::string& name) {
   const char* p = static_cast<const char*>(data);
   while (n > 0) {
@@ -52,7 +63,7 @@ void write_all(int fd, const void* data, size_t n, const std::string& name) {
 atomic_file::atomic_file(const std::string& dest) : dest_(dest) {
   struct stat st {};
   const bool exists = stat(dest.c_str(), &st) == 0;  // follows symbolic links
-  if (exists && S_ISDIR(st.st_mode)) throw io_error(dest + ": is a directory");
+  if (exists && S_ISDIR(st.st_mode)) throw io_error(dest + ": " + errno_text(EISDIR));
   if (exists && !S_ISREG(st.st_mode)) {
     // A device or a pipe (/dev/null, /dev/stdout, a FIFO) is written in place:
     // renaming a file over it would replace the node, not write to it.
@@ -72,7 +83,7 @@ atomic_file::atomic_file(const std::string& dest) : dest_(dest) {
   const size_t slash = target_.find_last_of('/');
   const std::string dir = slash == std::string::npos ? "" : target_.substr(0, slash + 1);
   const std::string base = slash == std::string::npos ? target_ : target_.substr(slash + 1);
-  if (base.empty()) throw io_error(dest + ": is a directory");
+  if (base.empty()) throw io_error(dest + ": " + errno_text(EISDIR));
 
   const std::string pattern = dir + "." + base + ".XXXXXX";
   std::vector<char> tmpl(pattern.begin(), pattern.end());
@@ -113,8 +124,10 @@ void atomic_file::discard() noexcept {
   if (fd_ >= 0) close(fd_);
   fd_ = -1;
   if (!temp_.empty()) {
-    g_has_pending.store(false);
+    // Unlink first, then forget: a signal in between unlinks a name that is
+    // already gone (harmless); the other order could leave the file behind.
     unlink(temp_.c_str());
+    g_has_pending.store(false);
     temp_.clear();
   }
 }

@@ -39,8 +39,15 @@ class atomic_file {
   int fd_ = -1;
 };
 
-// Installs the SIGINT/SIGTERM handler that removes a pending temporary file
-// and then dies of the same signal; SIGPIPE becomes an EPIPE error.
+// Installs the SIGINT/SIGTERM/SIGHUP handler that removes a pending temporary
+// file and then dies of the same signal; SIGPIPE becomes an EPIPE error, so a
+// reader that stops early is reported as "standard output: Broken pipe".
 void install_signal_handlers();
+
+// A standard stream (0, 1, 2) that is closed when raycast starts is opened
+// read-only on /dev/null, so that no file raycast opens later takes its number
+// and a write to it fails with EBADF: `raycast -o - >&-` reports "standard
+// output: Bad file descriptor" instead of writing the image somewhere else.
+void reserve_standard_streams() noexcept;
 
 }  // namespace raycast::cli

@@ -18,7 +18,7 @@
 extern "C" {
 #endif
 
-#define RAYCAST_IMAGE_MODULE_ABI 1
+#define RAYCAST_IMAGE_MODULE_ABI 2
 
 typedef struct raycast_image_writer raycast_image_writer;
 
@@ -35,6 +35,12 @@ typedef struct raycast_image_module {
   // Finishes the file and frees the writer, whatever happens. Returns 0 when
   // every byte reached the file descriptor.
   int (*close)(raycast_image_writer* w, char* err, size_t errlen);
+  // Frees the writer of an image that will be discarded (a write failed, or
+  // anything else stopped the render). The encoder is still closed, which can
+  // take a moment (libjpeg encodes the missing rows), but nothing it says
+  // about the file it could not finish reaches standard error: the caller
+  // reports the failure, once.
+  void (*abandon)(raycast_image_writer* w);
 } raycast_image_module;
 
 // The one exported symbol.

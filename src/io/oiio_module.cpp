@@ -1,6 +1,7 @@
 // raycast_oiio.so: PNG, JPEG, TIFF and OpenEXR output through OpenImageIO.
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -71,6 +72,33 @@ const char* oiio_format_name(const std::string& f) {
   return nullptr;
 }
 
+// While alive, standard error goes to /dev/null: for the encoders' complaints
+// about a file that is being thrown away (libpng 1.6 under OpenImageIO 2.4
+// prints "libpng error: No IDATs written into file" itself when a PNG is
+// closed before its first row). The CLI is single-threaded here.
+class stderr_silenced {
+ public:
+  stderr_silenced() {
+    std::fflush(stderr);
+    saved_ = fcntl(STDERR_FILENO, F_DUPFD_CLOEXEC, 3);
+    const int null_fd = open("/dev/null", O_WRONLY | O_CLOEXEC);
+    if (saved_ >= 0 && null_fd >= 0) dup2(null_fd, STDERR_FILENO);
+    if (null_fd >= 0) close(null_fd);
+  }
+  ~stderr_silenced() {
+    std::fflush(stderr);
+    if (saved_ >= 0) {
+      dup2(saved_, STDERR_FILENO);
+      close(saved_);
+    }
+  }
+  stderr_silenced(const stderr_silenced&) = delete;
+  stderr_silenced& operator=(const stderr_silenced&) = delete;
+
+ private:
+  int saved_ = -1;
+};
+
 void set_err(char* err, size_t len, const std::string& msg) {
   if (err && len) std::snprintf(err, len, "%s", msg.c_str());
 }
@@ -94,15 +122,19 @@ struct raycast_image_writer {
 
 namespace {
 
-// Error state after a call: OpenImageIO's own, then the proxy's (a write
-// can fail while the call still returns true).
+// Error state after a call. A failed write recorded by the proxy comes first:
+// it is the cause, and what OpenImageIO may say after it (TIFF reading back a
+// directory that never reached the disk, say) is a consequence. OpenImageIO's
+// own message is always collected, so that none is left pending.
 bool failed(raycast_image_writer* w, bool ok, char* err, size_t len) {
-  if (w->out && w->out->has_error()) {
-    set_err(err, len, one_line(w->out->geterror()));
-    return true;
-  }
+  const std::string oiio_error =
+      w->out && w->out->has_error() ? one_line(w->out->geterror()) : std::string();
   if (w->proxy->error() != 0) {
     set_err(err, len, std::strerror(w->proxy->error()));
+    return true;
+  }
+  if (!oiio_error.empty()) {
+    set_err(err, len, oiio_error);
     return true;
   }
   if (!ok) {
@@ -110,6 +142,15 @@ bool failed(raycast_image_writer* w, bool ok, char* err, size_t len) {
     return true;
   }
   return false;
+}
+
+void abandon_writer(raycast_image_writer* w) {
+  std::unique_ptr<raycast_image_writer> owned(w);
+  if (!w || !w->out) return;
+  const stderr_silenced quiet;
+  w->out->close();
+  if (w->out->has_error()) w->out->geterror();  // leave no message pending
+  w->out.reset();  // before the proxy it writes through
 }
 
 raycast_image_writer* open_writer(int fd, const char* format, int64_t width, int64_t height,
@@ -137,7 +178,10 @@ raycast_image_writer* open_writer(int fd, const char* format, int64_t width, int
     return nullptr;
   }
   const bool ok = w->out->open(std::string("raycast.") + format, spec);
-  if (failed(w.get(), ok, err, errlen)) return nullptr;
+  if (failed(w.get(), ok, err, errlen)) {
+    abandon_writer(w.release());
+    return nullptr;
+  }
   return w.release();
 }
 
@@ -158,7 +202,7 @@ int close_writer(raycast_image_writer* w, char* err, size_t errlen) {
 }
 
 const raycast_image_module module_table = {RAYCAST_IMAGE_MODULE_ABI, open_writer, write_rows,
-                                           close_writer};
+                                           close_writer, abandon_writer};
 
 }  // namespace
 
