@@ -28,12 +28,20 @@ struct aligned_free {
   void operator()(unsigned char* p) const { std::free(p); }
 };
 
-// The lesson's "Scanlines remaining", shown only to a person at a terminal.
+// The lesson's "Scanlines remaining" with a bar and the phase (rendering or
+// writing a band), shown only to a person at a terminal.
 class progress {
  public:
-  explicit progress(bool enabled) : on_(enabled) {}
-  void remaining(int64_t rows) {
-    if (on_) std::fprintf(stderr, "\rScanlines remaining: %lld ", static_cast<long long>(rows));
+  progress(bool enabled, int64_t rows) : on_(enabled), rows_(rows) {}
+  void show(int64_t rows_done, const char* phase) {
+    if (!on_) return;
+    constexpr int width = 30;
+    const int filled = int(width * rows_done / rows_);
+    std::fprintf(stderr, "\rScanlines remaining: %lld [%.*s%*s] %3d%% %-9s",
+                 static_cast<long long>(rows_ - rows_done), filled,
+                 "##############################", width - filled, "",
+                 int(100 * rows_done / rows_), phase);
+    std::fflush(stderr);
   }
   ~progress() {
     if (on_) std::fputs("\r\033[K", stderr);  // leave a clean line behind
@@ -41,6 +49,7 @@ class progress {
 
  private:
   bool on_;
+  int64_t rows_;
 };
 
 int run(const cli::job& j) {
@@ -57,36 +66,21 @@ int run(const cli::job& j) {
                         " bytes for a band of rows");
 
   auto sink = cli::open_sink(j);
-  progress bar(!j.quiet && isatty(STDERR_FILENO));
+  progress bar(!j.quiet && isatty(STDERR_FILENO), H);
   for (int64_t y0 = 0; y0 < H; y0 += band_rows) {
-    bar.remaining(H - y0);
     const int64_t y1 = std::min(H, y0 + band_rows);
+    bar.show(y0, "rendering");
     r.render(image_band{buffer.get(), stride, fmt, y0, y1});
+    bar.show(y0, "writing");
     sink->write_rows(y0, y1, buffer.get(), stride);
   }
   sink->finish();
   return 0;
 }
 
-// The message without control characters (\xNN instead): a file name may hold
-// a line break, and an error is one line.
-std::string printable(std::string_view s) {
-  static constexpr char hex[] = "0123456789abcdef";
-  std::string r;
-  for (const unsigned char c : s) {
-    if (c < 0x20 || c == 0x7f) {
-      r += "\\x";
-      r += hex[c >> 4];
-      r += hex[c & 15];
-    } else {
-      r += char(c);
-    }
-  }
-  return r;
-}
 
 void print_error(std::string_view what) {
-  std::cerr << "raycast: error: " << printable(what) << "\n";
+  std::cerr << "raycast: error: " << cli::printable(what) << "\n";
 }
 
 // --help and --version print to standard output: a failed write there (closed,

@@ -47,8 +47,9 @@ std::optional<file_format> format_from_name(std::string_view name) {
 
 std::string in_quotes(std::string_view s) { return "'" + std::string(s) + "'"; }
 
-// A usage error is one line: control characters in what the user typed (a
-// line break in a file name) are written as \xNN.
+
+}  // namespace
+
 std::string printable(std::string_view s) {
   static constexpr char hex[] = "0123456789abcdef";
   std::string r;
@@ -63,8 +64,6 @@ std::string printable(std::string_view s) {
   }
   return r;
 }
-
-}  // namespace
 
 std::optional<std::string> parse_int(std::string_view text, int64_t& value) {
   if (text.empty()) return "empty value";

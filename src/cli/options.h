@@ -32,6 +32,10 @@ struct parse_result {
 
 parse_result parse_args(int argc, const char* const* argv, std::ostream& out, std::ostream& err);
 
+// Text with control characters written as \xNN: an error message is one line
+// even when a file name holds a line break.
+std::string printable(std::string_view s);
+
 // Strict number parsing, exposed for tests: the whole text must be the number,
 // finite and in range; returns an error reason otherwise.
 std::optional<std::string> parse_int(std::string_view text, int64_t& value);
