@@ -131,58 +131,60 @@ struct shader {
   }
 };
 
-// Shades one batch of one row from its uy and stores it at column i0 (n
-// pixels), or, mirrored, with its lanes reversed so that lane L lands on
-// column i0 + N - 1 - L.
-template <bool Fast, bool Float, bool Simple, int Varying>
-inline void shade_store(const shader<Simple, Varying>& sh, vfloat uy, unsigned char* out, int64_t i0,
-                        int n, bool mirrored) {
-  constexpr bool vary0 = Varying & 1, vary1 = Varying & 2, vary2 = Varying & 4;
-  if constexpr (Float) {
-    const vfloat t = (uy + vfloat(1.0f)) * vfloat(0.5f);
-    vfloat c0 = sh.template channel<0>(t), c1 = sh.template channel<1>(t), c2 = sh.template channel<2>(t);
-    if (mirrored) {
-      if constexpr (vary0) c0 = reverse(c0);
-      if constexpr (vary1) c1 = reverse(c1);
-      if constexpr (vary2) c2 = reverse(c2);
-    }
-    float* dst = reinterpret_cast<float*>(out) + 3 * i0;
-    if (n == N) {
-      store_rgbf(dst, c0, c1, c2);
-    } else {
-      alignas(64) float tmp[3 * N];
-      store_rgbf(tmp, c0, c1, c2);
-      __builtin_memcpy(dst, tmp, sizeof(float) * 3 * size_t(n));
-    }
+// 8-bit: shades one batch of one row from its uy and interleaves it in a
+// register; Reversed puts its pixels in the opposite order (the mirrored batch).
+template <bool Fast, bool Reversed, bool Simple, int Varying>
+inline rgb8_pack shade_rgb8(const shader<Simple, Varying>& sh, vfloat uy) {
+  if constexpr (Fast) {
+    return pack_rgb8<Reversed>(sh.template fast_byte<0>(uy), sh.template fast_byte<1>(uy),
+                               sh.template fast_byte<2>(uy));
   } else {
-    vint q0, q1, q2;
-    if constexpr (Fast) {
-      q0 = sh.template fast_byte<0>(uy);
-      q1 = sh.template fast_byte<1>(uy);
-      q2 = sh.template fast_byte<2>(uy);
-    } else {
-      const vfloat t = (uy + vfloat(1.0f)) * vfloat(0.5f);
-      q0 = sh.template byte<0>(sh.template channel<0>(t));
-      q1 = sh.template byte<1>(sh.template channel<1>(t));
-      q2 = sh.template byte<2>(sh.template channel<2>(t));
-    }
-    if (mirrored) {
-      if constexpr (vary0) q0 = reverse(q0);
-      if constexpr (vary1) q1 = reverse(q1);
-      if constexpr (vary2) q2 = reverse(q2);
-    }
-    unsigned char* dst = out + 3 * i0;
-    if (n == N) {
-      store_rgb8(dst, q0, q1, q2);
-    } else {
+    const vfloat t = (uy + vfloat(1.0f)) * vfloat(0.5f);
+    return pack_rgb8<Reversed>(sh.template byte<0>(sh.template channel<0>(t)),
+                               sh.template byte<1>(sh.template channel<1>(t)),
+                               sh.template byte<2>(sh.template channel<2>(t)));
+  }
+}
+
+// Float: shades one batch of one row and stores n pixels at column i0;
+// mirrored, with its lanes reversed so that lane L lands on column
+// i0 + N - 1 - L.
+template <bool Simple, int Varying>
+inline void shade_store_f32(const shader<Simple, Varying>& sh, vfloat uy, unsigned char* out,
+                            int64_t i0, int n, bool mirrored) {
+  const vfloat t = (uy + vfloat(1.0f)) * vfloat(0.5f);
+  vfloat c0 = sh.template channel<0>(t), c1 = sh.template channel<1>(t), c2 = sh.template channel<2>(t);
+  if (mirrored) {
+    if constexpr ((Varying & 1) != 0) c0 = reverse(c0);
+    if constexpr ((Varying & 2) != 0) c1 = reverse(c1);
+    if constexpr ((Varying & 4) != 0) c2 = reverse(c2);
+  }
+  float* dst = reinterpret_cast<float*>(out) + 3 * i0;
+  if (n == N) {
+    store_rgbf(dst, c0, c1, c2);
+  } else {
+    alignas(64) float tmp[3 * N];
+    store_rgbf(tmp, c0, c1, c2);
+    __builtin_memcpy(dst, tmp, sizeof(float) * 3 * size_t(n));
+  }
+}
+
+template <bool Fast, bool Simple, int Varying>
+inline void shade_store_rgb8(const shader<Simple, Varying>& sh, vfloat uy, unsigned char* out,
+                             int64_t i0, int n, bool mirrored) {
+  unsigned char* dst = out + 3 * i0;
+  if (mirrored) {
+    store(dst, shade_rgb8<Fast, true>(sh, uy));
+  } else if (n == N) {
+    store(dst, shade_rgb8<Fast, false>(sh, uy));
+  } else {
 #ifdef RAYCAST_HAS_MASKED_BYTE_STORE
-      store_rgb8_first(dst, q0, q1, q2, n);
+    store_first(dst, shade_rgb8<Fast, false>(sh, uy), n);
 #else
-      alignas(64) unsigned char tmp[3 * N];
-      store_rgb8(tmp, q0, q1, q2);
-      __builtin_memcpy(dst, tmp, 3 * size_t(n));
+    alignas(64) unsigned char tmp[3 * N];
+    store(tmp, shade_rgb8<Fast, false>(sh, uy));
+    __builtin_memcpy(dst, tmp, 3 * size_t(n));
 #endif
-    }
   }
 }
 
@@ -194,6 +196,8 @@ inline void shade_store(const shader<Simple, Varying>& sh, vfloat uy, unsigned c
 // and divide, or the estimate and Newton step) serves up to four batches:
 // itself, its mirror in the row, and both of those in the mirrored row. Only
 // the middle of a row, less than two batches wide, is computed unmirrored.
+// 8-bit rows go four batches at a time where they can, so a backend can store
+// them as whole cache-line-sized writes (store4).
 template <bool AxisAligned, bool Fast, bool Float, bool Simple, int Varying>
 void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1, bool paired) {
   const float_scene& s = *a.scene;
@@ -215,23 +219,45 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
     rs.yz2 = rs.y2 + rs.z2;
     rs.nr_a = fast_nr_a * rs.dy;
     rs.nr_b = fast_nr_b * rs.dy;
-    unsigned char* const out = band.row(r);
-    unsigned char* const twin = paired && s.height - 1 - r != r ? band.row(s.height - 1 - r) : nullptr;
-
-    const auto batch = [&](int64_t i0, int n, bool mirror) {
+    unsigned char* const rows[2] = {
+        band.row(r), paired && s.height - 1 - r != r ? band.row(s.height - 1 - r) : nullptr};
+    const auto uy_at = [&](int64_t i0) {
       const ray_batch rays = generate<AxisAligned, Fast>(a, rs, i0);
-      const vfloat uy = Fast ? fast_uy<AxisAligned>(rs, rays) : exact_uy(rays);
-      const vfloat uy_twin = vfloat(0.0f) - uy;  // the mirrored row's y is -y
-      shade_store<Fast, Float>(sh, uy, out, i0, n, false);
-      if (twin) shade_store<Fast, Float>(sh, uy_twin, twin, i0, n, false);
-      if (mirror) {
-        shade_store<Fast, Float>(sh, uy, out, W - i0 - N, N, true);
-        if (twin) shade_store<Fast, Float>(sh, uy_twin, twin, W - i0 - N, N, true);
-      }
+      return Fast ? fast_uy<AxisAligned>(rs, rays) : exact_uy(rays);
     };
-    for (int64_t i0 = 0; i0 < mirrored; i0 += N) batch(i0, N, true);
-    for (int64_t i0 = mirrored; i0 < W - mirrored; i0 += N)
-      batch(i0, W - mirrored - i0 < N ? int(W - mirrored - i0) : N, false);
+    // The mirrored row's y is -y (and so its uy is -uy).
+    const auto row_uy = [](vfloat uy, int k) { return k == 0 ? uy : vfloat(0.0f) - uy; };
+
+    int64_t i0 = 0;
+    if constexpr (!Float) {
+      for (; i0 + 4 * N <= mirrored; i0 += 4 * N) {
+        const vfloat uy[4] = {uy_at(i0), uy_at(i0 + N), uy_at(i0 + 2 * N), uy_at(i0 + 3 * N)};
+        for (int k = 0; k < 2 && rows[k]; ++k) {
+          rgb8_pack p[4], m[4];
+          for (int b = 0; b < 4; ++b) {
+            p[b] = shade_rgb8<Fast, false>(sh, row_uy(uy[b], k));
+            m[b] = shade_rgb8<Fast, true>(sh, row_uy(uy[b], k));
+          }
+          store4(rows[k] + 3 * i0, p[0], p[1], p[2], p[3]);
+          store4(rows[k] + 3 * (W - i0 - 4 * N), m[3], m[2], m[1], m[0]);
+        }
+      }
+    }
+    for (; i0 < W - mirrored; i0 += N) {
+      const bool mirror = i0 < mirrored;
+      const int n = mirror || W - mirrored - i0 >= N ? N : int(W - mirrored - i0);
+      const vfloat uy = uy_at(i0);
+      for (int k = 0; k < 2 && rows[k]; ++k) {
+        const vfloat u = row_uy(uy, k);
+        if constexpr (Float) {
+          shade_store_f32(sh, u, rows[k], i0, n, false);
+          if (mirror) shade_store_f32(sh, u, rows[k], W - i0 - N, N, true);
+        } else {
+          shade_store_rgb8<Fast>(sh, u, rows[k], i0, n, false);
+          if (mirror) shade_store_rgb8<Fast>(sh, u, rows[k], W - i0 - N, N, true);
+        }
+      }
+    }
   }
 }
 

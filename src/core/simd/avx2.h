@@ -51,18 +51,33 @@ inline vint reverse(vint a) {
 }
 inline vint splat_int(int32_t x) { return {_mm256_set1_epi32(x)}; }
 
-// r, g, b hold bytes (0..255) in 32-bit lanes; writes 24 bytes r0 g0 b0 r1 ...
-inline void store_rgb8(unsigned char* dst, vint r, vint g, vint b) {
-  const __m256i w = _mm256_or_si256(
+// 8 pixels of RGB8, interleaved in a register: 24 bytes in dwords 0-5.
+struct rgb8_pack {
+  __m256i v;
+};
+
+// r, g, b hold bytes (0..255) in 32-bit lanes. Per 128-bit lane: 4 x (r g b 0)
+// -> 12 packed bytes, then the two lanes' 3 dwords side by side. Reversed
+// puts the pixels in the opposite order (the mirrored batch).
+template <bool Reversed = false>
+inline rgb8_pack pack_rgb8(vint r, vint g, vint b) {
+  __m256i w = _mm256_or_si256(
       r.v, _mm256_or_si256(_mm256_slli_epi32(g.v, 8), _mm256_slli_epi32(b.v, 16)));
-  // Per 128-bit lane: 4 x (r g b 0) -> 12 packed bytes, then the two lanes' 3
-  // dwords side by side.
+  if constexpr (Reversed) w = _mm256_permutevar8x32_epi32(w, _mm256_setr_epi32(7, 6, 5, 4, 3, 2, 1, 0));
   const __m256i pack = _mm256_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1,  //
                                         0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1);
-  const __m256i packed = _mm256_permutevar8x32_epi32(_mm256_shuffle_epi8(w, pack),
-                                                     _mm256_setr_epi32(0, 1, 2, 4, 5, 6, 7, 7));
-  _mm_storeu_si128(reinterpret_cast<__m128i*>(dst), _mm256_castsi256_si128(packed));
-  _mm_storel_epi64(reinterpret_cast<__m128i*>(dst + 16), _mm256_extracti128_si256(packed, 1));
+  return {_mm256_permutevar8x32_epi32(_mm256_shuffle_epi8(w, pack),
+                                      _mm256_setr_epi32(0, 1, 2, 4, 5, 6, 7, 7))};
+}
+inline void store(unsigned char* dst, rgb8_pack p) {
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(dst), _mm256_castsi256_si128(p.v));
+  _mm_storel_epi64(reinterpret_cast<__m128i*>(dst + 16), _mm256_extracti128_si256(p.v, 1));
+}
+inline void store4(unsigned char* dst, rgb8_pack a, rgb8_pack b, rgb8_pack c, rgb8_pack d) {
+  store(dst, a);
+  store(dst + 24, b);
+  store(dst + 48, c);
+  store(dst + 72, d);
 }
 
 // Writes 24 floats r0 g0 b0 r1 g1 b1 ...

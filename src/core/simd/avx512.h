@@ -52,26 +52,50 @@ inline vfloat reverse(vfloat a) { return _mm512_permutexvar_ps(reverse_index(), 
 inline vint reverse(vint a) { return {_mm512_permutexvar_epi32(reverse_index(), a.v)}; }
 inline vint splat_int(int32_t x) { return {_mm512_set1_epi32(x)}; }
 
-// Interleaves 16 pixels into 48 bytes, in a register: (r g b 0) dwords, the zero
-// bytes squeezed out per 128-bit lane, then the twelve useful dwords gathered.
-inline __m512i pack_rgb8(vint r, vint g, vint b) {
+// 16 pixels of RGB8, interleaved in a register: 48 bytes in dwords 0-11.
+struct rgb8_pack {
+  __m512i v;
+};
+
+// Interleaves r, g, b (bytes in 32-bit lanes) in a register: (r g b 0) dwords,
+// the zero bytes squeezed out per 128-bit lane, then the twelve useful dwords
+// gathered. Reversed, the same two shuffles with other constants put the
+// pixels in the opposite order (the mirrored batch) at no extra cost.
+template <bool Reversed = false>
+inline rgb8_pack pack_rgb8(vint r, vint g, vint b) {
   const __m512i w = _mm512_or_si512(
       r.v, _mm512_or_si512(_mm512_slli_epi32(g.v, 8), _mm512_slli_epi32(b.v, 16)));
-  const __m512i pack = _mm512_broadcast_i32x4(
-      _mm_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1));
-  return _mm512_permutexvar_epi32(
-      _mm512_setr_epi32(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, 15, 15, 15, 15),
-      _mm512_shuffle_epi8(w, pack));
+  if constexpr (Reversed) {
+    const __m512i pack = _mm512_broadcast_i32x4(
+        _mm_setr_epi8(12, 13, 14, 8, 9, 10, 4, 5, 6, 0, 1, 2, -1, -1, -1, -1));
+    return {_mm512_permutexvar_epi32(
+        _mm512_setr_epi32(12, 13, 14, 8, 9, 10, 4, 5, 6, 0, 1, 2, 15, 15, 15, 15),
+        _mm512_shuffle_epi8(w, pack))};
+  } else {
+    const __m512i pack = _mm512_broadcast_i32x4(
+        _mm_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1));
+    return {_mm512_permutexvar_epi32(
+        _mm512_setr_epi32(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, 15, 15, 15, 15),
+        _mm512_shuffle_epi8(w, pack))};
+  }
 }
-inline void store_rgb8(unsigned char* dst, vint r, vint g, vint b) {
-  const __m512i p = pack_rgb8(r, g, b);
-  _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst), _mm512_castsi512_si256(p));
-  _mm_storeu_si128(reinterpret_cast<__m128i*>(dst + 32), _mm512_extracti32x4_epi32(p, 2));
+inline void store(unsigned char* dst, rgb8_pack p) {
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst), _mm512_castsi512_si256(p.v));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(dst + 32), _mm512_extracti32x4_epi32(p.v, 2));
 }
 // The first n pixels only (n < 16): a byte-granular masked store, nothing past
 // 3n bytes is touched.
-inline void store_rgb8_first(unsigned char* dst, vint r, vint g, vint b, int n) {
-  _mm512_mask_storeu_epi8(dst, (__mmask64{1} << (3 * n)) - 1, pack_rgb8(r, g, b));
+inline void store_first(unsigned char* dst, rgb8_pack p, int n) {
+  _mm512_mask_storeu_epi8(dst, (__mmask64{1} << (3 * n)) - 1, p.v);
+}
+// Four packs side by side (192 bytes) as three full 64-byte stores.
+inline void store4(unsigned char* dst, rgb8_pack a, rgb8_pack b, rgb8_pack c, rgb8_pack d) {
+  const __m512i lo = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 16, 17, 18, 19);
+  const __m512i mid = _mm512_setr_epi32(4, 5, 6, 7, 8, 9, 10, 11, 16, 17, 18, 19, 20, 21, 22, 23);
+  const __m512i hi = _mm512_setr_epi32(8, 9, 10, 11, 16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27);
+  _mm512_storeu_si512(dst, _mm512_permutex2var_epi32(a.v, lo, b.v));
+  _mm512_storeu_si512(dst + 64, _mm512_permutex2var_epi32(b.v, mid, c.v));
+  _mm512_storeu_si512(dst + 128, _mm512_permutex2var_epi32(c.v, hi, d.v));
 }
 
 // Writes 48 floats r0 g0 b0 r1 ...: the in-lane triple shuffles, then the

@@ -62,23 +62,46 @@ inline vint reverse(vint a) {
 }
 inline vint splat_int(int32_t x) { return {_mm_set1_epi32(x), _mm_set1_epi32(x)}; }
 
-// 4 lanes of bytes -> 12 bytes r0 g0 b0 r1 ... at dst. No pshufb in SSE2:
-// pack each dword as (r g b 0), squeeze the zero byte out of each 64-bit half
-// with shifts, then close the gap between the halves.
-inline void store_rgb8_half(unsigned char* dst, __m128i r, __m128i g, __m128i b) {
+// 8 pixels of RGB8, interleaved in registers: 12 bytes in each half.
+struct rgb8_pack {
+  __m128i lo, hi;
+};
+
+// 4 lanes of bytes -> 12 bytes r0 g0 b0 r1 ... No pshufb in SSE2: pack each
+// dword as (r g b 0), squeeze the zero byte out of each 64-bit half with
+// shifts, then close the gap between the halves.
+inline __m128i pack_rgb8_half(__m128i r, __m128i g, __m128i b) {
   const __m128i w = _mm_or_si128(r, _mm_or_si128(_mm_slli_epi32(g, 8), _mm_slli_epi32(b, 16)));
   const __m128i low3 = _mm_set1_epi64x(0x0000000000FFFFFFll);
   const __m128i next3 = _mm_set1_epi64x(0x0000FFFFFF000000ll);
   const __m128i six = _mm_or_si128(_mm_and_si128(w, low3), _mm_and_si128(_mm_srli_epi64(w, 8), next3));
   const __m128i lo_q = _mm_set_epi64x(0, -1);
-  const __m128i twelve = _mm_or_si128(_mm_and_si128(six, lo_q), _mm_srli_si128(_mm_andnot_si128(lo_q, six), 2));
+  return _mm_or_si128(_mm_and_si128(six, lo_q), _mm_srli_si128(_mm_andnot_si128(lo_q, six), 2));
+}
+// Reversed puts the pixels in the opposite order (the mirrored batch).
+template <bool Reversed = false>
+inline rgb8_pack pack_rgb8(vint r, vint g, vint b) {
+  if constexpr (Reversed) {
+    r = reverse(r);
+    g = reverse(g);
+    b = reverse(b);
+  }
+  return {pack_rgb8_half(r.lo, g.lo, b.lo), pack_rgb8_half(r.hi, g.hi, b.hi)};
+}
+inline void store12(unsigned char* dst, __m128i twelve) {
   _mm_storel_epi64(reinterpret_cast<__m128i*>(dst), twelve);
   const int32_t tail = _mm_cvtsi128_si32(_mm_srli_si128(twelve, 8));
   __builtin_memcpy(dst + 8, &tail, 4);
 }
-inline void store_rgb8(unsigned char* dst, vint r, vint g, vint b) {
-  store_rgb8_half(dst, r.lo, g.lo, b.lo);
-  store_rgb8_half(dst + 12, r.hi, g.hi, b.hi);
+inline void store(unsigned char* dst, rgb8_pack p) {
+  store12(dst, p.lo);
+  store12(dst + 12, p.hi);
+}
+inline void store4(unsigned char* dst, rgb8_pack a, rgb8_pack b, rgb8_pack c, rgb8_pack d) {
+  store(dst, a);
+  store(dst + 24, b);
+  store(dst + 48, c);
+  store(dst + 72, d);
 }
 
 inline void store_rgbf_half(float* dst, __m128 r, __m128 g, __m128 b) {
