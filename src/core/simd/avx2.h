@@ -17,9 +17,6 @@ struct vfloat {
   vfloat(__m256 x) : v(x) {}
   explicit vfloat(float s) : v(_mm256_set1_ps(s)) {}
   static vfloat load(const float* p) { return _mm256_loadu_ps(p); }
-  static vfloat iota(float base) {  // base, base + 1, ...; exact below 2^24
-    return _mm256_add_ps(_mm256_set1_ps(base), _mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7));
-  }
 };
 
 struct vint {
@@ -30,7 +27,6 @@ inline vfloat operator+(vfloat a, vfloat b) { return _mm256_add_ps(a.v, b.v); }
 inline vfloat operator-(vfloat a, vfloat b) { return _mm256_sub_ps(a.v, b.v); }
 inline vfloat operator*(vfloat a, vfloat b) { return _mm256_mul_ps(a.v, b.v); }
 inline vfloat operator/(vfloat a, vfloat b) { return _mm256_div_ps(a.v, b.v); }
-inline vmask operator>=(vfloat a, vfloat b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_GE_OQ)}; }
 inline vmask operator==(vfloat a, vfloat b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_EQ_OQ)}; }
 inline vfloat min(vfloat a, vfloat b) { return _mm256_min_ps(a.v, b.v); }
 inline vfloat max(vfloat a, vfloat b) { return _mm256_max_ps(a.v, b.v); }

@@ -18,10 +18,6 @@ struct vfloat {
   vfloat(__m512 x) : v(x) {}
   explicit vfloat(float s) : v(_mm512_set1_ps(s)) {}
   static vfloat load(const float* p) { return _mm512_loadu_ps(p); }
-  static vfloat iota(float base) {
-    return _mm512_add_ps(_mm512_set1_ps(base),
-                         _mm512_setr_ps(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15));
-  }
 };
 
 struct vint {
@@ -32,7 +28,6 @@ inline vfloat operator+(vfloat a, vfloat b) { return _mm512_add_ps(a.v, b.v); }
 inline vfloat operator-(vfloat a, vfloat b) { return _mm512_sub_ps(a.v, b.v); }
 inline vfloat operator*(vfloat a, vfloat b) { return _mm512_mul_ps(a.v, b.v); }
 inline vfloat operator/(vfloat a, vfloat b) { return _mm512_div_ps(a.v, b.v); }
-inline vmask operator>=(vfloat a, vfloat b) { return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_GE_OQ)}; }
 inline vmask operator==(vfloat a, vfloat b) { return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_EQ_OQ)}; }
 inline vfloat min(vfloat a, vfloat b) { return _mm512_min_ps(a.v, b.v); }
 inline vfloat max(vfloat a, vfloat b) { return _mm512_max_ps(a.v, b.v); }

@@ -17,10 +17,6 @@ struct vfloat {
   vfloat(__m128 l, __m128 h) : lo(l), hi(h) {}
   explicit vfloat(float s) : lo(_mm_set1_ps(s)), hi(lo) {}
   static vfloat load(const float* p) { return {_mm_loadu_ps(p), _mm_loadu_ps(p + 4)}; }
-  static vfloat iota(float base) {
-    const __m128 b = _mm_set1_ps(base);
-    return {_mm_add_ps(b, _mm_setr_ps(0, 1, 2, 3)), _mm_add_ps(b, _mm_setr_ps(4, 5, 6, 7))};
-  }
 };
 
 struct vint {
@@ -37,7 +33,6 @@ RAYCAST_SSE2_BINARY(min, _mm_min_ps)
 RAYCAST_SSE2_BINARY(max, _mm_max_ps)
 #undef RAYCAST_SSE2_BINARY
 
-inline vmask operator>=(vfloat a, vfloat b) { return {_mm_cmpge_ps(a.lo, b.lo), _mm_cmpge_ps(a.hi, b.hi)}; }
 inline vmask operator==(vfloat a, vfloat b) { return {_mm_cmpeq_ps(a.lo, b.lo), _mm_cmpeq_ps(a.hi, b.hi)}; }
 inline vfloat clamp(vfloat x, vfloat lo, vfloat hi) { return min(max(x, lo), hi); }
 inline __m128 blend(__m128 m, __m128 a, __m128 b) {  // m ? a : b, no SSE4.1 blendv
