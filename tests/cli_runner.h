@@ -66,6 +66,8 @@ struct run_options {
   // Run as this user and group (from root), e.g. where root would bypass a
   // file permission under test.
   std::optional<std::pair<uid_t, gid_t>> run_as;
+  // Extra environment entries, "NAME=value".
+  std::vector<std::string> env;
 };
 
 class cli_sandbox {
@@ -124,6 +126,11 @@ class cli_sandbox {
     std::vector<char*> argv;
     for (std::string& a : argv_s) argv.push_back(a.data());
     argv.push_back(nullptr);
+    std::vector<std::string> env_s = opts.env;
+    for (char** e = environ; *e; ++e) env_s.emplace_back(*e);  // ours first: they win
+    std::vector<char*> envp;
+    for (std::string& e : env_s) envp.push_back(e.data());
+    envp.push_back(nullptr);
     const std::string out = opts.stdout_path.value_or(out_path()), err = err_path(),
                       cwd = work_.string();
     const pid_t pid = fork();
@@ -155,7 +162,7 @@ class cli_sandbox {
             setuid(opts.run_as->first) != 0)
           _exit(125);
       }
-      execv(argv[0], argv.data());
+      execve(argv[0], argv.data(), envp.data());
       _exit(127);
     }
     return pid;

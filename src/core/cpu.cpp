@@ -1,5 +1,8 @@
 #include "cpu.h"
 
+#include <cstdlib>
+#include <string>
+
 #if defined(__x86_64__) || defined(__i386__)
 #include <cpuid.h>
 #include <cstdint>
@@ -36,10 +39,23 @@ cpu_features detect() {
 cpu_features detect() { return {}; }
 #endif
 
+// RAYCAST_MAX_ISA=sse2|avx2|avx512|scalar caps what this process believes the
+// CPU has, so the dispatch and the refusal of unsupported backends can be
+// exercised as on an older CPU (tests, and users comparing paths).
+cpu_features capped(cpu_features f) {
+  const char* cap = std::getenv("RAYCAST_MAX_ISA");
+  if (!cap) return f;
+  const std::string c = cap;
+  if (c == "scalar") f = cpu_features{};
+  if (c == "sse2") f.avx2_fma = f.avx512 = false;
+  if (c == "avx2") f.avx512 = false;
+  return f;
+}
+
 }  // namespace
 
 const cpu_features& cpu() {
-  static const cpu_features f = detect();
+  static const cpu_features f = capped(detect());
   return f;
 }
 

@@ -10,6 +10,8 @@ struct cpu_features {
   bool avx512 = false;    // AVX-512 F + BW + VL, with the OS saving ZMM and mask state
 };
 
+// Detected once. The environment variable RAYCAST_MAX_ISA (scalar, sse2,
+// avx2) caps it, to run this machine as an older one would.
 const cpu_features& cpu();
 
 }  // namespace raycast

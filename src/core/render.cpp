@@ -43,7 +43,7 @@ std::optional<std::string> backend_unavailable(backend b) {
   const cpu_features& f = cpu();
   switch (b) {
     case backend::sse2:
-      if (!f.sse2) return std::string("this CPU has no SSE2");
+      if (!f.sse2) return std::string("this CPU cannot run SSE2");
       break;
     case backend::avx2:
       if (!f.avx2_fma) return std::string("this CPU (or OS) cannot run AVX2 + FMA");

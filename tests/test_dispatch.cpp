@@ -1,0 +1,67 @@
+// Run-time dispatch as an older CPU sees it: RAYCAST_MAX_ISA caps what raycast
+// believes this CPU has, so auto's choice and the refusal of a backend the CPU
+// lacks are tested here even on a machine with AVX-512.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "cli_runner.h"
+#include "cpu.h"
+
+namespace {
+
+using raycast_test::cli_sandbox;
+using raycast_test::run_options;
+using raycast_test::run_result;
+
+run_options capped(const std::string& isa) {
+  run_options o;
+  o.env = {"RAYCAST_MAX_ISA=" + isa};
+  return o;
+}
+
+// What auto may pick on this machine under each cap: the best available.
+std::string expected_auto(const std::string& cap) {
+  const raycast::cpu_features& f = raycast::cpu();  // this process is not capped
+  if (cap == "scalar") return "scalar";
+  if (cap == "sse2") return f.sse2 ? "sse2" : "scalar";
+  if (cap == "avx2") return f.avx2_fma ? "avx2" : f.sse2 ? "sse2" : "scalar";
+  return f.avx512 ? "avx512" : f.avx2_fma ? "avx2" : f.sse2 ? "sse2" : "scalar";
+}
+
+TEST(Dispatch, AutoPicksTheBestBackendTheCappedCpuRuns) {
+  for (const std::string cap : {"scalar", "sse2", "avx2", "avx512"}) {
+    cli_sandbox box;
+    const run_result r = box.run({"--version"}, capped(cap));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("auto backend here: " + expected_auto(cap) + ")"), std::string::npos)
+        << "cap " << cap << ": " << r.out;
+  }
+}
+
+TEST(Dispatch, ABackendTheCpuLacksIsAUsageError) {
+  for (auto [cap, backend] : {std::pair<std::string, std::string>{"avx2", "avx512"},
+                              {"sse2", "avx2"}, {"scalar", "sse2"}}) {
+    cli_sandbox box;
+    const run_result r = box.run({"--backend", backend, "-o", "x.png"}, capped(cap));
+    EXPECT_EQ(r.exit_code, 2) << cap << " " << backend << ": " << r.err;
+    EXPECT_NE(r.err.find("--backend"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("cannot run"), std::string::npos) << r.err;
+    EXPECT_TRUE(box.entries().empty());
+  }
+}
+
+// Whatever the CPU, the default (exact) output is the same bytes.
+TEST(Dispatch, EveryCapGivesTheSameImage) {
+  cli_sandbox box;
+  std::string first;
+  for (const std::string cap : {"scalar", "sse2", "avx2", "avx512"}) {
+    ASSERT_EQ(box.run({"-w", "203", "-o", cap + ".ppm"}, capped(cap)).exit_code, 0) << cap;
+    const std::string bytes = raycast_test::read_file(box.work() / (cap + ".ppm"));
+    if (first.empty()) first = bytes;
+    EXPECT_EQ(bytes, first) << "cap " << cap;
+  }
+}
+
+}  // namespace
