@@ -188,6 +188,19 @@ inline void shade_store_rgb8(const shader<Simple, Varying>& sh, vfloat uy, unsig
   }
 }
 
+// Four packs side by side: as whole cache-line writes where the instruction
+// set has them (store4), else one pack at a time.
+inline void store_four(unsigned char* dst, rgb8_pack a, rgb8_pack b, rgb8_pack c, rgb8_pack d) {
+#ifdef RAYCAST_HAS_STORE4
+  store4(dst, a, b, c, d);
+#else
+  store(dst, a);
+  store(dst + 3 * N, b);
+  store(dst + 6 * N, c);
+  store(dst + 9 * N, d);
+#endif
+}
+
 // Rows [r0, r1); with `paired`, each row r together with its mirror H-1-r.
 //
 // The lesson camera's image is symmetric bit for bit (scalar.h: su(W-1-i) =
@@ -238,8 +251,8 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
             p[b] = shade_rgb8<Fast, false>(sh, row_uy(uy[b], k));
             m[b] = shade_rgb8<Fast, true>(sh, row_uy(uy[b], k));
           }
-          store4(rows[k] + 3 * i0, p[0], p[1], p[2], p[3]);
-          store4(rows[k] + 3 * (W - i0 - 4 * N), m[3], m[2], m[1], m[0]);
+          store_four(rows[k] + 3 * i0, p[0], p[1], p[2], p[3]);
+          store_four(rows[k] + 3 * (W - i0 - 4 * N), m[3], m[2], m[1], m[0]);
         }
       }
     }

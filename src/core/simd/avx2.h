@@ -69,12 +69,6 @@ inline void store(unsigned char* dst, rgb8_pack p) {
   _mm_storeu_si128(reinterpret_cast<__m128i*>(dst), _mm256_castsi256_si128(p.v));
   _mm_storel_epi64(reinterpret_cast<__m128i*>(dst + 16), _mm256_extracti128_si256(p.v, 1));
 }
-inline void store4(unsigned char* dst, rgb8_pack a, rgb8_pack b, rgb8_pack c, rgb8_pack d) {
-  store(dst, a);
-  store(dst + 24, b);
-  store(dst + 48, c);
-  store(dst + 72, d);
-}
 
 // Writes 24 floats r0 g0 b0 r1 g1 b1 ...
 inline void store_rgbf(float* dst, vfloat r, vfloat g, vfloat b) {

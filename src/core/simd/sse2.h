@@ -92,12 +92,6 @@ inline void store(unsigned char* dst, rgb8_pack p) {
   store12(dst, p.lo);
   store12(dst + 12, p.hi);
 }
-inline void store4(unsigned char* dst, rgb8_pack a, rgb8_pack b, rgb8_pack c, rgb8_pack d) {
-  store(dst, a);
-  store(dst + 24, b);
-  store(dst + 48, c);
-  store(dst + 72, d);
-}
 
 inline void store_rgbf_half(float* dst, __m128 r, __m128 g, __m128 b) {
   const __m128 a = _mm_unpacklo_ps(r, g);                                  // r0 g0 r1 g1
