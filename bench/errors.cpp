@@ -5,7 +5,7 @@
 #include <cstring>
 #include <limits>
 
-#include "reference.h"
+#include "reference/reference.h"
 
 namespace raycast::bench {
 

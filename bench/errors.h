@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "autovec.h"
-#include "image.h"
-#include "render.h"
+#include "image/image.h"
+#include "render/render.h"
 #include "stiff_cases.h"
 
 namespace raycast::bench {

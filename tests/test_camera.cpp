@@ -7,12 +7,12 @@
 #include <string>
 #include <vector>
 
-#include "camera.h"
-#include "color.h"
-#include "float_scene.h"
-#include "reference.h"
+#include "scene/camera.h"
+#include "reference/color.h"
+#include "kernels/float_scene.h"
+#include "reference/reference.h"
 #include "render_support.h"
-#include "scalar.h"
+#include "kernels/scalar.h"
 
 namespace {
 

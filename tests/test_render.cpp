@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "reference.h"
-#include "render.h"
+#include "reference/reference.h"
+#include "render/render.h"
 #include "render_support.h"
 
 namespace raycast {

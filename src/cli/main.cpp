@@ -14,7 +14,7 @@
 #include "image_sink.h"
 #include "options.h"
 #include "output.h"
-#include "render.h"
+#include "render/render.h"
 
 namespace {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-#include "render.h"
+#include "render/render.h"
 
 namespace raycast::cli {
 

@@ -1,4 +1,4 @@
-#include "float_scene.h"
+#include "kernels/float_scene.h"
 
 #include <algorithm>
 #include <cmath>

@@ -8,7 +8,7 @@
 #pragma once
 #include <cstdint>
 
-#include "scene.h"
+#include "scene/scene.h"
 
 namespace raycast {
 

@@ -2,9 +2,9 @@
 #pragma once
 #include <cstdint>
 
-#include "float_scene.h"
-#include "image.h"
-#include "scalar.h"
+#include "kernels/float_scene.h"
+#include "image/image.h"
+#include "kernels/scalar.h"
 
 namespace raycast::kernels {
 

@@ -1,4 +1,4 @@
-#include "scalar.h"
+#include "kernels/scalar.h"
 
 #include <cfloat>
 #include <cmath>

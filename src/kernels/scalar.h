@@ -35,8 +35,8 @@
 // Every operation is a single IEEE operation; this file is compiled with
 // -ffp-contract=off, so no fused multiply-add changes a rounding.
 #pragma once
-#include "float_scene.h"
-#include "image.h"
+#include "kernels/float_scene.h"
+#include "image/image.h"
 
 namespace raycast {
 

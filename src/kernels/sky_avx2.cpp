@@ -2,4 +2,4 @@
 #include "simd/avx2.h"
 #define RAYCAST_ISA avx2
 
-#include "sky_kernel.inl"
+#include "kernels/sky_kernel.inl"

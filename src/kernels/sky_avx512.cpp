@@ -3,4 +3,4 @@
 #define RAYCAST_ISA avx512
 #define RAYCAST_HAS_MASKED_BYTE_STORE 1
 #define RAYCAST_HAS_STORE4 1
-#include "sky_kernel.inl"
+#include "kernels/sky_kernel.inl"

@@ -11,7 +11,7 @@
 // estimate refined by Newton.
 #include <cfloat>
 
-#include "kernel.h"
+#include "kernels/kernel.h"
 
 namespace raycast::kernels::RAYCAST_ISA {
 namespace {

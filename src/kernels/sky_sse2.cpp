@@ -2,4 +2,4 @@
 #include "simd/sse2.h"
 #define RAYCAST_ISA sse2
 
-#include "sky_kernel.inl"
+#include "kernels/sky_kernel.inl"

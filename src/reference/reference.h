@@ -1,7 +1,8 @@
 // The oracle: the lesson's loop in double, exactly SPEC.md. Boring on purpose.
 #pragma once
-#include "image.h"
-#include "scene.h"
+#include "image/image.h"
+#include "reference/color.h"
+#include "scene/scene.h"
 
 namespace raycast {
 

@@ -1,4 +1,4 @@
-#include "render.h"
+#include "render/render.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -6,8 +6,8 @@
 
 #include <omp.h>
 
-#include "cpu.h"
-#include "reference.h"
+#include "simd/cpu.h"
+#include "reference/reference.h"
 
 namespace raycast {
 

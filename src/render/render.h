@@ -8,11 +8,11 @@
 
 #include <memory>
 
-#include "float_scene.h"
+#include "kernels/float_scene.h"
 #include "kernels/kernel.h"
-#include "image.h"
-#include "scalar.h"
-#include "scene.h"
+#include "image/image.h"
+#include "kernels/scalar.h"
+#include "scene/scene.h"
 
 namespace raycast {
 

@@ -1,11 +1,10 @@
-#include "camera.h"
+#include "scene/camera.h"
 
 #include <cmath>
 #include <numbers>
 
 #include <glm/geometric.hpp>
 
-#include "color.h"
 
 namespace raycast {
 

@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "ray.h"
+#include "scene/ray.h"
 
 namespace raycast {
 

@@ -1,6 +1,6 @@
 // A ray P(t) = A + t*b: origin A, direction b (not necessarily unit length).
 #pragma once
-#include "vec.h"
+#include "scene/vec.h"
 
 namespace raycast {
 

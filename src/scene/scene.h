@@ -1,7 +1,7 @@
 // What one render needs: the camera and the sky it looks at.
 #pragma once
-#include "camera.h"
-#include "color.h"
+#include "scene/camera.h"
+#include "scene/sky.h"
 
 namespace raycast {
 

@@ -1,4 +1,4 @@
-#include "cpu.h"
+#include "simd/cpu.h"
 
 #include <cstdlib>
 #include <string>

@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "options.h"
-#include "render.h"
+#include "render/render.h"
 
 namespace {
 

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "reference.h"
-#include "render.h"
-#include "scalar.h"
+#include "reference/reference.h"
+#include "render/render.h"
+#include "kernels/scalar.h"
 
 namespace raycast_test {
 

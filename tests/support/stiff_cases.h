@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "camera.h"
-#include "color.h"
+#include "scene/camera.h"
+#include "scene/sky.h"
 
 namespace raycast {
 
