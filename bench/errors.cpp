@@ -34,10 +34,11 @@ std::vector<skipped_backend> skipped_backends() {
   return out;
 }
 
-painter::painter(const path& p, const scene& s, int threads, unsigned omit) : threads_(threads) {
+painter::painter(const path& p, const scene& s, int threads, unsigned shortcuts)
+    : threads_(threads) {
   if (!p.autovec) {
     render_options o{p.core, p.prec, threads};
-    o.omit = omit;
+    o.shortcuts = shortcuts;
     core_ = std::make_unique<renderer>(s, o);
     return;
   }

@@ -38,8 +38,9 @@ std::vector<skipped_backend> skipped_backends();
 // Renders a path's image (any band of rows) with a fixed thread count.
 class painter {
  public:
-  // omit: render_options::omit for the core backends (the special/ rows).
-  painter(const path& p, const scene& s, int threads, unsigned omit = ~0u);
+  // shortcuts: render_options::shortcuts for the core backends (the
+  // shortcuts/ rows).
+  painter(const path& p, const scene& s, int threads, unsigned shortcuts = shortcut::all);
   void render(const image_band& band) const;
 
  private:

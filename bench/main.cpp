@@ -82,26 +82,26 @@ void bench_render(benchmark::State& state, size_t path_index, size2 size, int th
   state.counters["lsb_mismatch"] = e.lsb_mismatch;
 }
 
-// The kernel with only some of its omissions (render_options::omit).
-struct variant {
+// The kernel allowed only some of the plan's shortcuts (render_options::shortcuts).
+struct shortcut_set {
   const char* name;
-  unsigned omit;
+  unsigned shortcuts;
 };
-const std::vector<variant>& variants() {
-  static const std::vector<variant> v = {
-      {"general", omit_nothing},
-      {"lanes", omit_lanes},
-      {"lanes+mirror", omit_lanes | omit_mirrored},
-      {"channels", omit_channels},
-      {"clamps", omit_clamps},
-      {"all", ~0u},
+const std::vector<shortcut_set>& shortcut_sets() {
+  static const std::vector<shortcut_set> v = {
+      {"none", shortcut::none},
+      {"lanes", shortcut::lanes},
+      {"lanes+mirror", shortcut::lanes | shortcut::mirror},
+      {"channels", shortcut::channels},
+      {"clamps", shortcut::clamps},
+      {"all", shortcut::all},
   };
   return v;
 }
 
-void bench_special(benchmark::State& state, size_t path_index, size2 size, unsigned omit) {
+void bench_shortcuts(benchmark::State& state, size_t path_index, size2 size, unsigned shortcuts) {
   const scene s = make_scene(sized(size.w, size.h));
-  const painter paint(paths()[path_index], s, 1, omit);
+  const painter paint(paths()[path_index], s, 1, shortcuts);
   const size_t stride = size_t(size.w) * 3;
   const image_band band{scratch(stride * size_t(size.h)), stride, pixel_format::rgb8, 0, size.h};
   for (auto _ : state) {
@@ -110,16 +110,16 @@ void bench_special(benchmark::State& state, size_t path_index, size2 size, unsig
   }
 }
 
-// special/ rows: the SIMD backends at one size with each omission alone, the
-// general path (none) first so the others can report vs_general.
-void register_special_rows(size2 sz) {
+// shortcuts/ rows: the SIMD backends at one size with each shortcut alone, the
+// general path (none) first so the others can report vs_none.
+void register_shortcuts_rows(size2 sz) {
   for (size_t p = 0; p < paths().size(); ++p) {
     const path& pa = paths()[p];
     if (pa.autovec || pa.core == backend::reference || pa.core == backend::scalar) continue;
-    for (const variant& v : variants())
+    for (const shortcut_set& v : shortcut_sets())
       benchmark::RegisterBenchmark(
-          special_row_name(pa.backend, to_string(pa.prec), sz.w, sz.h, v.name).c_str(),
-          bench_special, p, sz, v.omit)
+          shortcuts_row_name(pa.backend, to_string(pa.prec), sz.w, sz.h, v.name).c_str(),
+          bench_shortcuts, p, sz, v.shortcuts)
           ->Unit(benchmark::kMicrosecond);
   }
 }
@@ -292,7 +292,7 @@ int run(int argc, char** argv) {
   std::vector<int> threads = {1};
   if (available_cores() > 1) threads.push_back(available_cores());
   register_rows(sizes, threads);
-  register_special_rows(opt.quick ? size2{1920, 1080} : size2{3840, 2160});
+  register_shortcuts_rows(opt.quick ? size2{1920, 1080} : size2{3840, 2160});
 
   run_table table;
   run_rows(argc, argv, table);
@@ -320,8 +320,8 @@ int run(int argc, char** argv) {
     os << "Plot written to " << opt.plot << "\n";
   }
   std::vector<std::string> names;
-  for (const variant& v : variants()) names.push_back(v.name);
-  print_specialization(os, table, names);
+  for (const shortcut_set& v : shortcut_sets()) names.push_back(v.name);
+  print_shortcuts(os, table, names);
   print_stiff(os, paths(), run_stiff_cases());
   os.flush();
   return 0;

@@ -121,17 +121,18 @@ TEST_P(Equivalence, EveryWidthAndHeight) {
       const image got8 = raycast_test::render_with(r, pixel_format::rgb8);
       const image gotf = raycast_test::render_with(r, pixel_format::rgb_f32);
       if (prm.which != backend::scalar && prm.prec == precision::exact) {
-        // The general path (every lane, every channel, every clamp), and each
-        // omission alone, give the same bits as everything the scene allows.
-        for (unsigned omit : {omit_nothing, omit_lanes, omit_channels, omit_clamps,
-                              omit_lanes | omit_mirrored}) {
+        // The general path (no shortcut: every lane, every channel, every
+        // clamp), and each shortcut alone, give the same bits as every
+        // shortcut the scene allows.
+        for (unsigned shortcuts : {shortcut::none, shortcut::lanes, shortcut::channels,
+                                   shortcut::clamps, shortcut::lanes | shortcut::mirror}) {
           render_options o{prm.which, prm.prec, 1};
-          o.omit = omit;
+          o.shortcuts = shortcuts;
           const renderer g(s, o);
           ASSERT_EQ(got8.bytes, raycast_test::render_with(g, pixel_format::rgb8).bytes)
-              << "omit flags " << omit << " differ from the fully specialized path (8-bit)";
+              << "shortcuts " << shortcuts << " differ from taking them all (8-bit)";
           ASSERT_EQ(gotf.bytes, raycast_test::render_with(g, pixel_format::rgb_f32).bytes)
-              << "omit flags " << omit << " differ from the fully specialized path (float)";
+              << "shortcuts " << shortcuts << " differ from taking them all (float)";
         }
       }
       if (prm.prec == precision::exact) {

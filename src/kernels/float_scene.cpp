@@ -10,10 +10,10 @@ float_scene prepare_float_scene(const scene& s) {
   float_scene f;
   f.width = c.image_width;
   f.height = c.image_height;
-  f.wm1 = float(c.image_width - 1);
-  f.hm1 = float(c.image_height - 1);
-  f.hw = float(double(c.image_width - 1) / 2.0);
-  f.hh = float(double(c.image_height - 1) / 2.0);
+  f.last_col = float(c.image_width - 1);
+  f.last_row = float(c.image_height - 1);
+  f.mid_col = float(double(c.image_width - 1) / 2.0);
+  f.mid_row = float(double(c.image_height - 1) / 2.0);
   const vec3 centre = -c.focal_length * c.axis_w;
 
   double m = 0.0;
@@ -40,7 +40,7 @@ float_scene prepare_float_scene(const scene& s) {
     f.lo[k] = std::min(f.bottom[k], f.top[k]);
     f.hi[k] = std::max(f.bottom[k], f.top[k]);
   }
-  f.axis_aligned = f.horizontal[1] == 0 && f.horizontal[2] == 0 && f.vertical[0] == 0 &&
+  f.axis_aligned_camera = f.horizontal[1] == 0 && f.horizontal[2] == 0 && f.vertical[0] == 0 &&
                    f.vertical[2] == 0;
   return f;
 }

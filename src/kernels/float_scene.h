@@ -14,8 +14,8 @@ namespace raycast {
 
 struct float_scene {
   int64_t width = 0, height = 0;
-  float wm1 = 0, hm1 = 0;  // W - 1 and H - 1
-  float hw = 0, hh = 0;    // (W - 1) / 2 and (H - 1) / 2, exact in float
+  float last_col = 0, last_row = 0;  // W - 1 and H - 1
+  float mid_col = 0, mid_row = 0;    // (W - 1) / 2 and (H - 1) / 2, exact in float
   float centre[3] = {};      // viewport centre - origin = -focal_length * w, scaled
   float horizontal[3] = {};  // scaled
   float vertical[3] = {};    // scaled
@@ -26,8 +26,9 @@ struct float_scene {
   // 255.999 * lerp(bottom, top, (uy + 1) / 2) = uy * fast_qa + fast_qb.
   float fast_qa[3] = {}, fast_qb[3] = {};
   // horizontal = (hx, 0, 0) and vertical = (0, vy, 0): the lesson's camera, so
-  // a direction's y depends on the row only and z is constant.
-  bool axis_aligned = false;
+  // a direction's y depends on the row only and z is constant (what the
+  // `lanes` and `mirror` shortcuts use, render/plan.h).
+  bool axis_aligned_camera = false;
 };
 
 float_scene prepare_float_scene(const scene& s);

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "kernels/newton.h"
+
 #if defined(__SSE__) || defined(__x86_64__)
 #include <xmmintrin.h>
 #endif
@@ -61,11 +63,11 @@ void shade(const float_scene& f, float t, float out[3]) {
 }  // namespace
 
 float pixel_su(const float_scene& f, int64_t i) {
-  return f.width == 1 ? 0.0f : (float(i) - f.hw) / f.wm1;
+  return f.width == 1 ? 0.0f : (float(i) - f.mid_col) / f.last_col;
 }
 
 float pixel_sv(const float_scene& f, int64_t j) {
-  return f.height == 1 ? 0.0f : (float(j) - f.hh) / f.hm1;
+  return f.height == 1 ? 0.0f : (float(j) - f.mid_row) / f.last_row;
 }
 
 void scalar_pixel(const float_scene& f, precision p, int64_t i, int64_t j, float out[3]) {

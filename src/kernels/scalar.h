@@ -2,8 +2,8 @@
 // that every SIMD backend reproduces bit for bit in exact mode.
 //
 // For pixel column i, row j (j = 0 at the bottom), with the float_scene f:
-//   su = W == 1 ? 0 : (float(i) - f.hw) / f.wm1      (= u - 1/2, in [-1/2, 1/2])
-//   sv = H == 1 ? 0 : (float(j) - f.hh) / f.hm1      likewise with j, f.hh, f.hm1
+//   su = W == 1 ? 0 : (float(i) - f.mid_col) / f.last_col   (= u - 1/2, in [-1/2, 1/2])
+//   sv = H == 1 ? 0 : (float(j) - f.mid_row) / f.last_row   likewise for rows
 //   d  = (f.centre + su * f.horizontal) + sv * f.vertical    per component
 // Measuring from the viewport centre keeps the centre exact (no cancellation
 // of corner + u * horizontal when the focal length is tiny next to the
@@ -24,26 +24,24 @@
 // biased up by 2^-20 so that straight up and down land on exactly +-1):
 //   r  = rsqrt_estimate(max(n2, FLT_MIN))
 //   uy = (d.y * r) * (A - ((n2 * r) * r) * B),  A = 1.5 (1 + 2^-20), B = 0.5 (1 + 2^-20)
+//        (fast_nr_a and fast_nr_b, kernels/newton.h)
 //   uy = clamp(uy, -1, 1)
 //   8-bit: int(clamp(uy * fast_qa + fast_qb, 0, 255.999))   (one multiply-add)
 //   float: t = (uy + 1) * 0.5, then c as in exact mode
 // The estimate differs between instruction sets (12 bits on SSE and AVX2, 14
 // on AVX-512), AVX2/AVX-512 fuse the multiply-adds, and the kernels regroup
 // (the lesson camera folds d.y into A and B and adds y^2 + z^2 first), so fast
-// mode's bits differ by backend; its error bound is in README.md and tested.
+// mode's bits differ by backend; its error bound is in README.md and tested
+// (tests/support/error_bounds.h).
 //
 // Every operation is a single IEEE operation; this file is compiled with
 // -ffp-contract=off, so no fused multiply-add changes a rounding.
 #pragma once
-#include "kernels/float_scene.h"
 #include "image/image.h"
+#include "kernels/float_scene.h"
+#include "kernels/precision.h"
 
 namespace raycast {
-
-enum class precision : uint8_t {
-  exact,  // IEEE sqrt and divide
-  fast,   // reciprocal square root estimate + one Newton step
-};
 
 // su and sv above.
 float pixel_su(const float_scene& f, int64_t i);
@@ -53,18 +51,6 @@ float pixel_sv(const float_scene& f, int64_t j);
 void scalar_pixel(const float_scene& f, precision p, int64_t i, int64_t j, float out[3]);
 
 // Fills the band's rows; single-threaded.
-// Documented error bounds against the double reference, in linear colour, as a
-// multiple of S = max(1, |bottom|, |top|) over all channels (README.md,
-// "Numerics"). The lerp multiplies t's error by |top - bottom| <= 2 S; t itself
-// is within 6e-7 (exact) and 1.2e-6 (fast: the 2^-20 bias plus the estimate)
-// of the reference. 8-bit output is within 1 LSB in both modes.
-inline constexpr double exact_error_bound = 1.5e-6;
-inline constexpr double fast_error_bound = 3e-6;
-
-// Fast mode's Newton constants (see above).
-inline constexpr float fast_nr_a = 1.5f * (1.0f + 0x1p-20f);
-inline constexpr float fast_nr_b = 0.5f * (1.0f + 0x1p-20f);
-
 void render_scalar(const float_scene& f, precision p, const image_band& band);
 
 }  // namespace raycast

@@ -10,8 +10,10 @@
 // is bit-identical to render_scalar; fast mode swaps sqrt + divide for an
 // estimate refined by Newton.
 #include <cfloat>
+#include <type_traits>
 
 #include "kernels/kernel.h"
+#include "kernels/newton.h"
 
 namespace raycast::kernels::RAYCAST_ISA {
 namespace {
@@ -20,9 +22,9 @@ using namespace raycast::simd::RAYCAST_ISA;
 constexpr int N = vfloat::size;
 
 struct row_setup {
-  // Per row: v * vertical[k] (the rest of scalar.h's direction), and for the
-  // lesson camera the row's constant direction y and squares.
-  float vv[3];
+  // Per row: sv * vertical[k] (the rest of scalar.h's direction), and for the
+  // axis-aligned camera the row's constant direction y and squares.
+  float row_part[3];
   float dy, y2, z2;
   // Fast mode, lesson camera: y2 + z2 in one (fast mode need not keep exact
   // mode's order), and the Newton constants times the row's y.
@@ -39,16 +41,16 @@ struct ray_batch {
   vfloat len2;   // |d|^2 = (d.x^2 + d.y^2) + d.z^2, in scalar.h's order for exact mode
 };
 
-template <bool AxisAligned, bool Fast>
+template <bool Lanes, bool Fast>
 inline ray_batch generate(const kernel_args& a, const row_setup& rs, int64_t i0) {
-  if constexpr (AxisAligned) {
-    const vfloat x2 = vfloat::load(a.col_x2 + i0);
+  if constexpr (Lanes) {
+    const vfloat x2 = vfloat::load(a.column_x2 + i0);
     if constexpr (Fast) return {vfloat(rs.dy), x2 + vfloat(rs.yz2)};
     return {vfloat(rs.dy), (x2 + vfloat(rs.y2)) + vfloat(rs.z2)};
   } else {
-    const vfloat dx = vfloat::load(a.col[0] + i0) + vfloat(rs.vv[0]);
-    const vfloat dy = vfloat::load(a.col[1] + i0) + vfloat(rs.vv[1]);
-    const vfloat dz = vfloat::load(a.col[2] + i0) + vfloat(rs.vv[2]);
+    const vfloat dx = vfloat::load(a.column_part[0] + i0) + vfloat(rs.row_part[0]);
+    const vfloat dy = vfloat::load(a.column_part[1] + i0) + vfloat(rs.row_part[1]);
+    const vfloat dz = vfloat::load(a.column_part[2] + i0) + vfloat(rs.row_part[2]);
     return {dy, (dx * dx + dy * dy) + dz * dz};
   }
 }
@@ -61,29 +63,25 @@ inline vfloat exact_uy(const ray_batch& b) { return b.dir_y / sqrt(max(b.len2, v
 // Fast mode: y / |d| from the estimate and one (biased) Newton step, clamped
 // to [-1, 1] (scalar.h). The lesson camera's y is constant along the row, so
 // it is folded into the Newton constants.
-template <bool AxisAligned>
+template <bool Lanes>
 inline vfloat fast_uy(const row_setup& rs, const ray_batch& b) {
   const vfloat n2 = max(b.len2, vfloat(FLT_MIN));
   const vfloat r = rsqrt_est(n2);
   const vfloat e = (n2 * r) * r;
   vfloat uy;
-  if constexpr (AxisAligned) uy = r * nmadd(e, vfloat(rs.nr_b), vfloat(rs.nr_a));
+  if constexpr (Lanes) uy = r * nmadd(e, vfloat(rs.nr_b), vfloat(rs.nr_a));
   else uy = (b.dir_y * r) * nmadd(e, vfloat(fast_nr_b), vfloat(fast_nr_a));
   return clamp(uy, vfloat(-1.0f), vfloat(1.0f));
 }
 
-// What a scene lets the kernel leave out, decided once per render.
-struct variant {
-  bool axis_aligned;  // lesson camera: no x or z lanes
-  bool fast;          // rsqrt estimate + Newton instead of sqrt + divide
-  bool f32;           // linear float output instead of 8-bit
-  bool simple;        // lerp end points exact and colours in [0, 1]: no select, no clamps
-  int varying;        // bit k set: channel k varies (else it is a constant)
-};
+// Channel sets the kernel has loops for (bit k: channel k is computed per
+// pixel; otherwise shortcut `channels` writes it as a constant).
+constexpr int all_channels = 0b111;
+constexpr int red_green = 0b011;  // the lesson's sky: blue is 1 at both ends
 
 // The shading constants in registers, loaded once per call (stores to the
 // image may alias anything, so nothing is re-read from the scene per batch).
-template <bool Simple, int Varying>
+template <bool NoClamps, int Computed>
 struct shader {
   vfloat bottom[3], top[3], delta[3], lo[3], hi[3];
   vfloat constant_value[3];
@@ -106,35 +104,35 @@ struct shader {
   }
 
   // scalar.h: clamp(t == 1 ? top : bottom + t * delta, lo, hi). The lerp is
-  // monotone in t, so when its end points are exact (Simple) the select and
+  // monotone in t, so when its end points are exact (NoClamps: shortcut `clamps`) the select and
   // the clamp are no-ops and are left out; a constant channel is not computed.
   template <int K>
   vfloat channel(vfloat t) const {
-    if constexpr (!(Varying & (1 << K))) return constant_value[K];
+    if constexpr (!(Computed & (1 << K))) return constant_value[K];
     const vfloat c = bottom[K] + t * delta[K];
-    if constexpr (Simple) return c;
+    if constexpr (NoClamps) return c;
     return clamp(select(t == vfloat(1.0f), top[K], c), lo[K], hi[K]);
   }
   template <int K>
   vint byte(vfloat c) const {
-    if constexpr (!(Varying & (1 << K))) return constant_byte[K];
-    return to_int((Simple ? c : clamp(c, vfloat(0.0f), vfloat(1.0f))) * vfloat(255.999f));
+    if constexpr (!(Computed & (1 << K))) return constant_byte[K];
+    return to_int((NoClamps ? c : clamp(c, vfloat(0.0f), vfloat(1.0f))) * vfloat(255.999f));
   }
   // Fast mode, 8-bit: shading and quantization in one multiply-add on uy. With
   // colours in [0, 1] and uy in [-1, 1] the result stays inside [0, 256), so
   // the clamp is left out.
   template <int K>
   vint fast_byte(vfloat uy) const {
-    if constexpr (!(Varying & (1 << K))) return constant_byte[K];
+    if constexpr (!(Computed & (1 << K))) return constant_byte[K];
     const vfloat x = madd(uy, fast_qa[K], fast_qb[K]);
-    return to_int(Simple ? x : clamp(x, vfloat(0.0f), vfloat(255.999f)));
+    return to_int(NoClamps ? x : clamp(x, vfloat(0.0f), vfloat(255.999f)));
   }
 };
 
 // 8-bit: shades one batch of one row from its uy and interleaves it in a
 // register; Reversed puts its pixels in the opposite order (the mirrored batch).
-template <bool Fast, bool Reversed, bool Simple, int Varying>
-inline rgb8_pack shade_rgb8(const shader<Simple, Varying>& sh, vfloat uy) {
+template <bool Fast, bool Reversed, bool NoClamps, int Computed>
+inline rgb8_pack shade_rgb8(const shader<NoClamps, Computed>& sh, vfloat uy) {
   if constexpr (Fast) {
     return pack_rgb8<Reversed>(sh.template fast_byte<0>(uy), sh.template fast_byte<1>(uy),
                                sh.template fast_byte<2>(uy));
@@ -149,15 +147,15 @@ inline rgb8_pack shade_rgb8(const shader<Simple, Varying>& sh, vfloat uy) {
 // Float: shades one batch of one row and stores n pixels at column i0;
 // mirrored, with its lanes reversed so that lane L lands on column
 // i0 + N - 1 - L.
-template <bool Simple, int Varying>
-inline void shade_store_f32(const shader<Simple, Varying>& sh, vfloat uy, unsigned char* out,
+template <bool NoClamps, int Computed>
+inline void shade_store_f32(const shader<NoClamps, Computed>& sh, vfloat uy, unsigned char* out,
                             int64_t i0, int n, bool mirrored) {
   const vfloat t = (uy + vfloat(1.0f)) * vfloat(0.5f);
   vfloat c0 = sh.template channel<0>(t), c1 = sh.template channel<1>(t), c2 = sh.template channel<2>(t);
   if (mirrored) {
-    if constexpr ((Varying & 1) != 0) c0 = reverse(c0);
-    if constexpr ((Varying & 2) != 0) c1 = reverse(c1);
-    if constexpr ((Varying & 4) != 0) c2 = reverse(c2);
+    if constexpr ((Computed & 1) != 0) c0 = reverse(c0);
+    if constexpr ((Computed & 2) != 0) c1 = reverse(c1);
+    if constexpr ((Computed & 4) != 0) c2 = reverse(c2);
   }
   float* dst = reinterpret_cast<float*>(out) + 3 * i0;
   if (n == N) {
@@ -169,8 +167,8 @@ inline void shade_store_f32(const shader<Simple, Varying>& sh, vfloat uy, unsign
   }
 }
 
-template <bool Fast, bool Simple, int Varying>
-inline void shade_store_rgb8(const shader<Simple, Varying>& sh, vfloat uy, unsigned char* out,
+template <bool Fast, bool NoClamps, int Computed>
+inline void shade_store_rgb8(const shader<NoClamps, Computed>& sh, vfloat uy, unsigned char* out,
                              int64_t i0, int n, bool mirrored) {
   unsigned char* dst = out + 3 * i0;
   if (mirrored) {
@@ -211,22 +209,22 @@ inline void store_four(unsigned char* dst, rgb8_pack a, rgb8_pack b, rgb8_pack c
 // the middle of a row, less than two batches wide, is computed unmirrored.
 // 8-bit rows go four batches at a time where they can, so a backend can store
 // them as whole cache-line-sized writes (store4).
-template <bool AxisAligned, bool Fast, bool Float, bool Simple, int Varying>
+template <bool Lanes, bool Fast, bool Float, bool NoClamps, int Computed>
 void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1, bool paired) {
   const float_scene& s = *a.scene;
-  const shader<Simple, Varying> sh(a);
+  const shader<NoClamps, Computed> sh(a);
   const int64_t W = s.width;
   // Pixels at each end of a row computed once for both ends (whole batches).
-  const int64_t mirrored = AxisAligned && a.mirror ? W / (2 * N) * N : 0;
+  const int64_t mirrored = Lanes && a.mirror ? W / (2 * N) * N : 0;
   for (int64_t r = r0; r < r1; ++r) {
     const int64_t j = s.height - 1 - r;
-    const float sv = s.height == 1 ? 0.0f : (float(j) - s.hh) / s.hm1;  // scalar.h
+    const float sv = s.height == 1 ? 0.0f : (float(j) - s.mid_row) / s.last_row;  // scalar.h
     row_setup rs;
-    for (int k = 0; k < 3; ++k) rs.vv[k] = sv * s.vertical[k];
+    for (int k = 0; k < 3; ++k) rs.row_part[k] = sv * s.vertical[k];
     // Lesson camera: centre = (0, 0, -f), horizontal = (hx, 0, 0), vertical =
     // (0, vy, 0), so scalar.h's d.y = (0 + su*0) + sv*vy and d.z = (-f + su*0)
     // + sv*0: sv*vy and -f up to the sign of a zero, which no square sees.
-    rs.dy = (s.centre[1] + 0.0f) + rs.vv[1];
+    rs.dy = (s.centre[1] + 0.0f) + rs.row_part[1];
     rs.y2 = rs.dy * rs.dy;
     rs.z2 = s.centre[2] * s.centre[2];
     rs.yz2 = rs.y2 + rs.z2;
@@ -235,8 +233,8 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
     unsigned char* const rows[2] = {
         band.row(r), paired && s.height - 1 - r != r ? band.row(s.height - 1 - r) : nullptr};
     const auto uy_at = [&](int64_t i0) {
-      const ray_batch rays = generate<AxisAligned, Fast>(a, rs, i0);
-      return Fast ? fast_uy<AxisAligned>(rs, rays) : exact_uy(rays);
+      const ray_batch rays = generate<Lanes, Fast>(a, rs, i0);
+      return Fast ? fast_uy<Lanes>(rs, rays) : exact_uy(rays);
     };
     // The mirrored row's y is -y (and so its uy is -uy).
     const auto row_uy = [](vfloat uy, int k) { return k == 0 ? uy : vfloat(0.0f) - uy; };
@@ -274,34 +272,40 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
   }
 }
 
-// Picks the instantiation for a variant: each combination is its own loop, so
-// no per-batch branch asks again. Channel patterns other than "all vary" and
-// the lesson's "blue constant" run the all-vary loop, which is exact for them
-// too (a constant channel's lerp is bottom + t * 0 = bottom).
-template <bool... B>
-void dispatch(const variant& v, const kernel_args& a, const image_band& band, int64_t r0, int64_t r1,
-              bool paired) {
-  constexpr size_t n = sizeof...(B);
-  if constexpr (n == 4) {
-    if (v.varying == 0b011) render<B..., 0b011>(a, band, r0, r1, paired);
-    else render<B..., 0b111>(a, band, r0, r1, paired);
-  } else {
-    const bool flag = n == 0 ? v.axis_aligned : n == 1 ? v.fast : n == 2 ? v.f32 : v.simple;
-    if (flag) dispatch<B..., true>(v, a, band, r0, r1, paired);
-    else dispatch<B..., false>(v, a, band, r0, r1, paired);
-  }
+// Calls f with a compile-time copy of a run-time flag, so that each
+// combination of flags is its own loop and no per-batch branch asks again.
+template <class F>
+inline void with_flag(bool flag, F&& f) {
+  if (flag) f(std::true_type{});
+  else f(std::false_type{});
 }
 
 }  // namespace
 
 void render_rows(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1, bool paired) {
-  variant v{};
-  v.axis_aligned = a.axis_aligned;
-  v.fast = a.prec == precision::fast;
-  v.f32 = band.format == pixel_format::rgb_f32;
-  v.simple = a.lerp_exact && (v.f32 || a.colours_in_unit_range);
-  for (int k = 0; k < 3; ++k) v.varying |= a.constant[k] ? 0 : 1 << k;
-  dispatch<>(v, a, band, r0, r1, paired && v.axis_aligned && a.mirror);
+  const bool fast = a.prec == precision::fast;
+  const bool f32 = band.format == pixel_format::rgb_f32;
+  // Shortcut `clamps`: float output needs only the exact lerp; 8-bit output
+  // also needs colours in [0, 1].
+  const bool no_clamps = a.lerp_exact && (f32 || a.colours_in_unit_range);
+  int computed = 0;
+  for (int k = 0; k < 3; ++k) computed |= a.constant[k] ? 0 : 1 << k;
+  paired = paired && a.lanes && a.mirror;
+  // Channel sets other than "all" and the lesson's "red and green" run the
+  // all-channels loop, which is exact for them too (a constant channel's lerp
+  // is bottom + t * 0 = bottom).
+  with_flag(a.lanes, [&](auto lanes) {
+    with_flag(fast, [&](auto fast_mode) {
+      with_flag(f32, [&](auto float_out) {
+        with_flag(no_clamps, [&](auto unclamped) {
+          constexpr bool L = decltype(lanes)::value, F = decltype(fast_mode)::value,
+                         O = decltype(float_out)::value, U = decltype(unclamped)::value;
+          if (computed == red_green) render<L, F, O, U, red_green>(a, band, r0, r1, paired);
+          else render<L, F, O, U, all_channels>(a, band, r0, r1, paired);
+        });
+      });
+    });
+  });
 }
 
 }  // namespace raycast::kernels::RAYCAST_ISA

@@ -1,72 +1,13 @@
 #include "render/render.h"
 
 #include <algorithm>
-#include <cstdlib>
-#include <new>
 
 #include <omp.h>
 
-#include "simd/cpu.h"
+#include "kernels/scalar.h"
 #include "reference/reference.h"
 
 namespace raycast {
-
-std::string_view to_string(backend b) {
-  switch (b) {
-    case backend::automatic: return "auto";
-    case backend::reference: return "reference";
-    case backend::scalar: return "scalar";
-    case backend::sse2: return "sse2";
-    case backend::avx2: return "avx2";
-    case backend::avx512: return "avx512";
-  }
-  return "?";
-}
-
-std::string_view to_string(precision p) { return p == precision::exact ? "exact" : "fast"; }
-
-std::optional<backend> parse_backend(std::string_view name) {
-  if (name == to_string(backend::automatic)) return backend::automatic;
-  for (backend b : all_backends)
-    if (name == to_string(b)) return b;
-  return std::nullopt;
-}
-
-std::optional<precision> parse_precision(std::string_view name) {
-  for (precision p : {precision::exact, precision::fast})
-    if (name == to_string(p)) return p;
-  return std::nullopt;
-}
-
-std::optional<std::string> backend_unavailable(backend b) {
-#if RAYCAST_HAVE_X86_KERNELS
-  const cpu_features& f = cpu();
-  switch (b) {
-    case backend::sse2:
-      if (!f.sse2) return std::string("this CPU cannot run SSE2");
-      break;
-    case backend::avx2:
-      if (!f.avx2_fma) return std::string("this CPU (or OS) cannot run AVX2 + FMA");
-      break;
-    case backend::avx512:
-      if (!f.avx512) return std::string("this CPU (or OS) cannot run AVX-512 F+BW+VL");
-      break;
-    default: break;
-  }
-#else
-  if (b == backend::sse2 || b == backend::avx2 || b == backend::avx512)
-    return std::string(to_string(b)) + " exists only in x86-64 builds";
-#endif
-  return std::nullopt;
-}
-
-backend best_backend() {
-  for (backend b : {backend::avx512, backend::avx2, backend::sse2})
-    if (!backend_unavailable(b)) return b;
-  return backend::scalar;
-}
-
-void renderer::free_deleter::operator()(float* p) const { std::free(p); }
 
 int available_cores() { return std::max(1, omp_get_num_procs()); }
 
@@ -77,60 +18,13 @@ renderer::renderer(const scene& s, const render_options& opts)
       prec_(opts.prec),
       threads_(opts.threads > 0 ? opts.threads : available_cores()) {
   if (auto why = backend_unavailable(which_)) throw unsupported_backend(*why);
-#if RAYCAST_HAVE_X86_KERNELS
-  switch (which_) {
-    case backend::sse2: kernel_ = kernels::sse2::render_rows; break;
-    case backend::avx2: kernel_ = kernels::avx2::render_rows; break;
-    case backend::avx512: kernel_ = kernels::avx512::render_rows; break;
-    default: return;  // reference and scalar need no tables
-  }
-#else
-  return;
-#endif
-  const float_scene& f = fscene_;
-  args_.scene = &fscene_;
-  args_.prec = prec_;
-  // Per-column parts of the direction, in scalar.h's operations and order;
-  // padded with zeros to whole 16-lane batches.
-  const size_t padded = size_t(f.width + 15) / 16 * 16;
-  const auto table = [padded] {
-    float* p = static_cast<float*>(std::aligned_alloc(64, padded * sizeof(float)));
-    if (!p) throw std::bad_alloc();
-    std::fill(p, p + padded, 0.0f);
-    return aligned_floats(p);
-  };
-  args_.axis_aligned = (opts.omit & omit_lanes) && f.axis_aligned;
-  args_.mirror = args_.axis_aligned && (opts.omit & omit_mirrored);
-  for (int k = 0; k < 3; ++k) {
-    if (args_.axis_aligned && k > 0) break;  // the lesson camera reads x only
-    col_[k] = table();
-    for (int64_t i = 0; i < f.width; ++i) {
-      col_[k][size_t(i)] = f.centre[k] + pixel_su(f, i) * f.horizontal[k];
-    }
-    args_.col[k] = col_[k].get();
-  }
-  if (args_.axis_aligned) {
-    col_x2_ = table();
-    for (size_t i = 0; i < padded; ++i) col_x2_[i] = col_[0][i] * col_[0][i];
-    args_.col_x2 = col_x2_.get();
-  }
-  bool unit = true, lerp_exact = true;
-  for (int k = 0; k < 3; ++k) {
-    args_.constant[k] = (opts.omit & omit_channels) && f.bottom[k] == f.top[k];
-    args_.constant_value[k] = f.bottom[k];
-    const float c01 = f.bottom[k] > 0.0f ? (f.bottom[k] < 1.0f ? f.bottom[k] : 1.0f) : 0.0f;
-    args_.constant_byte[k] = int32_t(c01 * 255.999f);
-    unit = unit && f.lo[k] >= 0.0f && f.hi[k] <= 1.0f;
-    lerp_exact = lerp_exact && f.bottom[k] + 1.0f * f.delta[k] == f.top[k];
-  }
-  const bool clamps = opts.omit & omit_clamps;
-  args_.lerp_exact = clamps && lerp_exact;
-  args_.colours_in_unit_range = clamps && unit;
+  kernel_ = kernel_for(which_);
+  if (kernel_) plan_.emplace(fscene_, prec_, opts.shortcuts);  // reference and scalar need none
 }
 
 void renderer::render_rows(const image_band& band, int64_t r0, int64_t r1, bool paired) const {
   if (kernel_) {
-    kernel_(args_, band, r0, r1, paired);
+    kernel_(plan_->args(), band, r0, r1, paired);
     return;
   }
   image_band part = band;
@@ -147,7 +41,7 @@ void renderer::render(const image_band& band) const {
   // The lesson camera's image is symmetric top to bottom: when the band holds
   // both rows of each mirrored pair, the kernel renders them together
   // (kernels/kernel.h), and the work is split over the top rows of the pairs.
-  const bool paired = kernel_ && args_.mirror &&
+  const bool paired = kernel_ && plan_->args().mirror &&
                       band.row_begin + band.row_end == scene_.cam.image_height;
   const int64_t units = paired ? (rows + 1) / 2 : rows;
   // Bands of consecutive rows, a few per thread so uneven cores even out. A

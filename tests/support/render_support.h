@@ -11,6 +11,7 @@
 
 #include "reference/reference.h"
 #include "render/render.h"
+#include "error_bounds.h"
 #include "kernels/scalar.h"
 
 namespace raycast_test {
