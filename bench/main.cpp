@@ -247,7 +247,7 @@ std::vector<stiff_result> run_stiff_cases() {
     r.width = c.cam.image_width;
     r.height = c.cam.image_height.value_or(default_height(c.cam.image_width, c.cam.aspect_ratio));
     if (auto why = validate(c.cam))
-      r.invalid = *why;
+      r.invalid = why->message;
     else
       r.errors = measure_errors(make_scene(c.cam, c.sky), paths());
     results.push_back(std::move(r));

@@ -377,7 +377,7 @@ TEST(SizeLimits, WidthsAboveTwoToTheTwentyFourAreRefusedWithTheLimit) {
   p.image_width = max_dimension + 1;
   const auto e = validate(p);
   ASSERT_TRUE(e.has_value());
-  EXPECT_NE(e->find(std::to_string(max_dimension)), std::string::npos) << *e;
+  EXPECT_NE(e->message.find(std::to_string(max_dimension)), std::string::npos) << e->message;
 }
 
 TEST(SizeLimits, SkyColoursBeyondTheLimitAreRefused) {

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "scene/invalid.h"
 #include "scene/ray.h"
 
 namespace raycast {
@@ -68,10 +69,11 @@ struct camera {
 // wide aspects).
 int64_t default_height(int64_t width, double aspect_ratio);
 
-// Returns an error message naming the parameter when the parameters cannot
-// make a camera (non-finite or non-positive sizes, dimensions over the limit,
-// lookfrom = lookat, vup parallel to the view direction, vfov outside (0, 180)).
-std::optional<std::string> validate(const camera_params& p);
+// Why the parameters cannot make a camera (non-finite or non-positive sizes,
+// dimensions over the limit, lookfrom = lookat, vup parallel to the view
+// direction, vfov outside (0, 180)), naming the field; nullopt when they can.
+// The one place these rules live: callers do not repeat them.
+std::optional<invalid_field> validate(const camera_params& p);
 
 // Builds the camera; the parameters must pass validate().
 camera make_camera(const camera_params& p);

@@ -3,7 +3,9 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <utility>
 
+#include "scene/invalid.h"
 #include "scene/vec.h"
 
 namespace raycast {
@@ -17,11 +19,12 @@ struct sky {
 // small enough that top - bottom and every lerp stay finite in float.
 inline constexpr double max_colour = 1e30;
 
-// Returns why the sky cannot be rendered, or nullopt.
-inline std::optional<std::string> validate(const sky& s) {
-  for (const color& c : {s.bottom, s.top})
+// Why the sky cannot be rendered, naming the colour, or nullopt.
+inline std::optional<invalid_field> validate(const sky& s) {
+  for (const auto& [field, c] : {std::pair{scene_field::sky_bottom, s.bottom}, {scene_field::sky_top, s.top}})
     for (int k = 0; k < 3; ++k)
-      if (!(std::abs(c[k]) <= max_colour)) return "colour components must be finite and within +-1e30";
+      if (!(std::abs(c[k]) <= max_colour))
+        return invalid_field{field, "colour components must be finite and within +-1e30"};
   return std::nullopt;
 }
 
