@@ -45,12 +45,12 @@ template <bool Lanes, bool Fast>
 inline ray_batch generate(const kernel_args& a, const row_setup& rs, int64_t i0) {
   if constexpr (Lanes) {
     const vfloat x2 = vfloat::load(a.column_x2 + i0);
-    if constexpr (Fast) return {vfloat(rs.dy), x2 + vfloat(rs.yz2)};
-    return {vfloat(rs.dy), (x2 + vfloat(rs.y2)) + vfloat(rs.z2)};
+    if constexpr (Fast) return {rs.dy, x2 + rs.yz2};
+    return {rs.dy, (x2 + rs.y2) + rs.z2};
   } else {
-    const vfloat dx = vfloat::load(a.column_part[0] + i0) + vfloat(rs.row_part[0]);
-    const vfloat dy = vfloat::load(a.column_part[1] + i0) + vfloat(rs.row_part[1]);
-    const vfloat dz = vfloat::load(a.column_part[2] + i0) + vfloat(rs.row_part[2]);
+    const vfloat dx = vfloat::load(a.column_part[0] + i0) + rs.row_part[0];
+    const vfloat dy = vfloat::load(a.column_part[1] + i0) + rs.row_part[1];
+    const vfloat dz = vfloat::load(a.column_part[2] + i0) + rs.row_part[2];
     return {dy, (dx * dx + dy * dy) + dz * dz};
   }
 }
@@ -58,20 +58,20 @@ inline ray_batch generate(const kernel_args& a, const row_setup& rs, int64_t i0)
 // Exact mode: uy = y / |d|, |d| = sqrt(max(n2, FLT_MIN)) (scalar.h). Since
 // |y| <= sqrt(fl(y^2)) <= |d|, t = (uy + 1) * 0.5 is already in [0, 1]:
 // scalar.h's clamp of t cannot change it and is left out.
-inline vfloat exact_uy(const ray_batch& b) { return b.dir_y / sqrt(max(b.len2, vfloat(FLT_MIN))); }
+inline vfloat exact_uy(const ray_batch& b) { return b.dir_y / sqrt(max(b.len2, FLT_MIN)); }
 
 // Fast mode: y / |d| from the estimate and one (biased) Newton step, clamped
 // to [-1, 1] (scalar.h). The lesson camera's y is constant along the row, so
 // it is folded into the Newton constants.
 template <bool Lanes>
 inline vfloat fast_uy(const row_setup& rs, const ray_batch& b) {
-  const vfloat n2 = max(b.len2, vfloat(FLT_MIN));
+  const vfloat n2 = max(b.len2, FLT_MIN);
   const vfloat r = rsqrt_est(n2);
   const vfloat e = (n2 * r) * r;
   vfloat uy;
-  if constexpr (Lanes) uy = r * nmadd(e, vfloat(rs.nr_b), vfloat(rs.nr_a));
-  else uy = (b.dir_y * r) * nmadd(e, vfloat(fast_nr_b), vfloat(fast_nr_a));
-  return clamp(uy, vfloat(-1.0f), vfloat(1.0f));
+  if constexpr (Lanes) uy = r * nmadd(e, rs.nr_b, rs.nr_a);
+  else uy = (b.dir_y * r) * nmadd(e, fast_nr_b, fast_nr_a);
+  return clamp(uy, -1.0f, 1.0f);
 }
 
 // Channel sets the kernel has loops for (bit k: channel k is computed per
@@ -91,15 +91,15 @@ struct shader {
   explicit shader(const kernel_args& a) {
     const float_scene& s = *a.scene;
     for (int k = 0; k < 3; ++k) {
-      bottom[k] = vfloat(s.bottom[k]);
-      top[k] = vfloat(s.top[k]);
-      delta[k] = vfloat(s.delta[k]);
-      lo[k] = vfloat(s.lo[k]);
-      hi[k] = vfloat(s.hi[k]);
-      constant_value[k] = vfloat(a.constant_value[k]);
+      bottom[k] = s.bottom[k];
+      top[k] = s.top[k];
+      delta[k] = s.delta[k];
+      lo[k] = s.lo[k];
+      hi[k] = s.hi[k];
+      constant_value[k] = a.constant_value[k];
       constant_byte[k] = splat_int(a.constant_byte[k]);
-      fast_qa[k] = vfloat(s.fast_qa[k]);
-      fast_qb[k] = vfloat(s.fast_qb[k]);
+      fast_qa[k] = s.fast_qa[k];
+      fast_qb[k] = s.fast_qb[k];
     }
   }
 
@@ -111,12 +111,12 @@ struct shader {
     if constexpr (!(Computed & (1 << K))) return constant_value[K];
     const vfloat c = bottom[K] + t * delta[K];
     if constexpr (NoClamps) return c;
-    return clamp(select(t == vfloat(1.0f), top[K], c), lo[K], hi[K]);
+    return clamp(select(t == 1.0f, top[K], c), lo[K], hi[K]);
   }
   template <int K>
   vint byte(vfloat c) const {
     if constexpr (!(Computed & (1 << K))) return constant_byte[K];
-    return to_int((NoClamps ? c : clamp(c, vfloat(0.0f), vfloat(1.0f))) * vfloat(255.999f));
+    return to_int((NoClamps ? c : clamp(c, 0.0f, 1.0f)) * 255.999f);
   }
   // Fast mode, 8-bit: shading and quantization in one multiply-add on uy. With
   // colours in [0, 1] and uy in [-1, 1] the result stays inside [0, 256), so
@@ -125,7 +125,7 @@ struct shader {
   vint fast_byte(vfloat uy) const {
     if constexpr (!(Computed & (1 << K))) return constant_byte[K];
     const vfloat x = madd(uy, fast_qa[K], fast_qb[K]);
-    return to_int(NoClamps ? x : clamp(x, vfloat(0.0f), vfloat(255.999f)));
+    return to_int(NoClamps ? x : clamp(x, 0.0f, 255.999f));
   }
 };
 
@@ -137,7 +137,7 @@ inline rgb8_pack shade_rgb8(const shader<NoClamps, Computed>& sh, vfloat uy) {
     return pack_rgb8<Reversed>(sh.template fast_byte<0>(uy), sh.template fast_byte<1>(uy),
                                sh.template fast_byte<2>(uy));
   } else {
-    const vfloat t = (uy + vfloat(1.0f)) * vfloat(0.5f);
+    const vfloat t = (uy + 1.0f) * 0.5f;
     return pack_rgb8<Reversed>(sh.template byte<0>(sh.template channel<0>(t)),
                                sh.template byte<1>(sh.template channel<1>(t)),
                                sh.template byte<2>(sh.template channel<2>(t)));
@@ -150,7 +150,7 @@ inline rgb8_pack shade_rgb8(const shader<NoClamps, Computed>& sh, vfloat uy) {
 template <bool NoClamps, int Computed>
 inline void shade_store_f32(const shader<NoClamps, Computed>& sh, vfloat uy, unsigned char* out,
                             int64_t i0, int n, bool mirrored) {
-  const vfloat t = (uy + vfloat(1.0f)) * vfloat(0.5f);
+  const vfloat t = (uy + 1.0f) * 0.5f;
   vfloat c0 = sh.template channel<0>(t), c1 = sh.template channel<1>(t), c2 = sh.template channel<2>(t);
   if (mirrored) {
     if constexpr ((Computed & 1) != 0) c0 = reverse(c0);
@@ -236,8 +236,8 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
       const ray_batch rays = generate<Lanes, Fast>(a, rs, i0);
       return Fast ? fast_uy<Lanes>(rs, rays) : exact_uy(rays);
     };
-    // The mirrored row's y is -y (and so its uy is -uy).
-    const auto row_uy = [](vfloat uy, int k) { return k == 0 ? uy : vfloat(0.0f) - uy; };
+    // The mirrored row's y is -y (and so its uy is -uy, sign for sign).
+    const auto row_uy = [](vfloat uy, int k) { return k == 0 ? uy : -uy; };
 
     int64_t i0 = 0;
     if constexpr (!Float) {

@@ -5,6 +5,15 @@
 
 #include <cstdint>
 
+#include "simd/inline.h"
+
+// What this instruction set offers beyond the common vocabulary (README.md),
+// for the kernel to test with #ifdef (each kernel translation unit includes
+// exactly one ISA header): store4, four packs as three 64-byte writes, and
+// store_first, a row's tail as one byte-masked store.
+#define RAYCAST_HAS_STORE4 1
+#define RAYCAST_HAS_MASKED_BYTE_STORE 1
+
 namespace raycast::simd::avx512 {
 
 struct vmask {
@@ -15,37 +24,44 @@ struct vfloat {
   static constexpr int size = 16;
   __m512 v;
   vfloat() = default;
-  vfloat(__m512 x) : v(x) {}
-  explicit vfloat(float s) : v(_mm512_set1_ps(s)) {}
-  static vfloat load(const float* p) { return _mm512_loadu_ps(p); }
+  RAYCAST_INLINE vfloat(__m512 x) : v(x) {}
+  // Every lane s; implicit, as Embree's, so that kernels write (uy + 1.0f) * 0.5f.
+  RAYCAST_INLINE vfloat(float s) : v(_mm512_set1_ps(s)) {}
+  static RAYCAST_INLINE vfloat load(const float* p) { return _mm512_loadu_ps(p); }
 };
 
 struct vint {
   __m512i v;
 };
 
-inline vfloat operator+(vfloat a, vfloat b) { return _mm512_add_ps(a.v, b.v); }
-inline vfloat operator-(vfloat a, vfloat b) { return _mm512_sub_ps(a.v, b.v); }
-inline vfloat operator*(vfloat a, vfloat b) { return _mm512_mul_ps(a.v, b.v); }
-inline vfloat operator/(vfloat a, vfloat b) { return _mm512_div_ps(a.v, b.v); }
-inline vmask operator==(vfloat a, vfloat b) { return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_EQ_OQ)}; }
-inline vfloat min(vfloat a, vfloat b) { return _mm512_min_ps(a.v, b.v); }
-inline vfloat max(vfloat a, vfloat b) { return _mm512_max_ps(a.v, b.v); }
-inline vfloat clamp(vfloat x, vfloat lo, vfloat hi) { return min(max(x, lo), hi); }
-inline vfloat select(vmask m, vfloat a, vfloat b) { return _mm512_mask_blend_ps(m.m, b.v, a.v); }
-inline vfloat sqrt(vfloat a) { return _mm512_sqrt_ps(a.v); }
-inline vfloat madd(vfloat a, vfloat b, vfloat c) { return _mm512_fmadd_ps(a.v, b.v, c.v); }
-inline vfloat nmadd(vfloat a, vfloat b, vfloat c) { return _mm512_fnmadd_ps(a.v, b.v, c.v); }  // c - a b
+RAYCAST_INLINE vfloat operator+(vfloat a, vfloat b) { return _mm512_add_ps(a.v, b.v); }
+RAYCAST_INLINE vfloat operator-(vfloat a, vfloat b) { return _mm512_sub_ps(a.v, b.v); }
+RAYCAST_INLINE vfloat operator*(vfloat a, vfloat b) { return _mm512_mul_ps(a.v, b.v); }
+RAYCAST_INLINE vfloat operator/(vfloat a, vfloat b) { return _mm512_div_ps(a.v, b.v); }
+// IEEE negation (the sign bit flipped), as the scalar -x: -(+0) is -0. An
+// integer xor: the float one needs AVX-512 DQ.
+RAYCAST_INLINE vfloat operator-(vfloat a) {
+  return _mm512_castsi512_ps(_mm512_xor_si512(_mm512_castps_si512(a.v), _mm512_set1_epi32(INT32_MIN)));
+}
+RAYCAST_INLINE void store(float* p, vfloat a) { _mm512_storeu_ps(p, a.v); }
+RAYCAST_INLINE vmask operator==(vfloat a, vfloat b) { return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_EQ_OQ)}; }
+RAYCAST_INLINE vfloat min(vfloat a, vfloat b) { return _mm512_min_ps(a.v, b.v); }
+RAYCAST_INLINE vfloat max(vfloat a, vfloat b) { return _mm512_max_ps(a.v, b.v); }
+RAYCAST_INLINE vfloat clamp(vfloat x, vfloat lo, vfloat hi) { return min(max(x, lo), hi); }
+RAYCAST_INLINE vfloat select(vmask m, vfloat a, vfloat b) { return _mm512_mask_blend_ps(m.m, b.v, a.v); }
+RAYCAST_INLINE vfloat sqrt(vfloat a) { return _mm512_sqrt_ps(a.v); }
+RAYCAST_INLINE vfloat madd(vfloat a, vfloat b, vfloat c) { return _mm512_fmadd_ps(a.v, b.v, c.v); }
+RAYCAST_INLINE vfloat nmadd(vfloat a, vfloat b, vfloat c) { return _mm512_fnmadd_ps(a.v, b.v, c.v); }  // c - a b
 // 1/sqrt(x), hardware estimate: relative error below 2^-14.
-inline vfloat rsqrt_est(vfloat x) { return _mm512_rsqrt14_ps(x.v); }
-inline vint to_int(vfloat a) { return {_mm512_cvttps_epi32(a.v)}; }
+RAYCAST_INLINE vfloat rsqrt_est(vfloat x) { return _mm512_rsqrt14_ps(x.v); }
+RAYCAST_INLINE vint to_int(vfloat a) { return {_mm512_cvttps_epi32(a.v)}; }
 // Lanes in the opposite order (the mirrored pixels of a batch).
-inline __m512i reverse_index() {
+RAYCAST_INLINE __m512i reverse_index() {
   return _mm512_setr_epi32(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0);
 }
-inline vfloat reverse(vfloat a) { return _mm512_permutexvar_ps(reverse_index(), a.v); }
-inline vint reverse(vint a) { return {_mm512_permutexvar_epi32(reverse_index(), a.v)}; }
-inline vint splat_int(int32_t x) { return {_mm512_set1_epi32(x)}; }
+RAYCAST_INLINE vfloat reverse(vfloat a) { return _mm512_permutexvar_ps(reverse_index(), a.v); }
+RAYCAST_INLINE vint reverse(vint a) { return {_mm512_permutexvar_epi32(reverse_index(), a.v)}; }
+RAYCAST_INLINE vint splat_int(int32_t x) { return {_mm512_set1_epi32(x)}; }
 
 // 16 pixels of RGB8, interleaved in a register: 48 bytes in dwords 0-11.
 struct rgb8_pack {
@@ -57,7 +73,7 @@ struct rgb8_pack {
 // gathered. Reversed, the same two shuffles with other constants put the
 // pixels in the opposite order (the mirrored batch) at no extra cost.
 template <bool Reversed = false>
-inline rgb8_pack pack_rgb8(vint r, vint g, vint b) {
+RAYCAST_INLINE rgb8_pack pack_rgb8(vint r, vint g, vint b) {
   const __m512i w = _mm512_or_si512(
       r.v, _mm512_or_si512(_mm512_slli_epi32(g.v, 8), _mm512_slli_epi32(b.v, 16)));
   if constexpr (Reversed) {
@@ -74,17 +90,17 @@ inline rgb8_pack pack_rgb8(vint r, vint g, vint b) {
         _mm512_shuffle_epi8(w, pack))};
   }
 }
-inline void store(unsigned char* dst, rgb8_pack p) {
+RAYCAST_INLINE void store(unsigned char* dst, rgb8_pack p) {
   _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst), _mm512_castsi512_si256(p.v));
   _mm_storeu_si128(reinterpret_cast<__m128i*>(dst + 32), _mm512_extracti32x4_epi32(p.v, 2));
 }
 // The first n pixels only (n < 16): a byte-granular masked store, nothing past
 // 3n bytes is touched.
-inline void store_first(unsigned char* dst, rgb8_pack p, int n) {
+RAYCAST_INLINE void store_first(unsigned char* dst, rgb8_pack p, int n) {
   _mm512_mask_storeu_epi8(dst, (__mmask64{1} << (3 * n)) - 1, p.v);
 }
 // Four packs side by side (192 bytes) as three full 64-byte stores.
-inline void store4(unsigned char* dst, rgb8_pack a, rgb8_pack b, rgb8_pack c, rgb8_pack d) {
+RAYCAST_INLINE void store4(unsigned char* dst, rgb8_pack a, rgb8_pack b, rgb8_pack c, rgb8_pack d) {
   const __m512i lo = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 16, 17, 18, 19);
   const __m512i mid = _mm512_setr_epi32(4, 5, 6, 7, 8, 9, 10, 11, 16, 17, 18, 19, 20, 21, 22, 23);
   const __m512i hi = _mm512_setr_epi32(8, 9, 10, 11, 16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27);
@@ -95,7 +111,7 @@ inline void store4(unsigned char* dst, rgb8_pack a, rgb8_pack b, rgb8_pack c, rg
 
 // Writes 48 floats r0 g0 b0 r1 ...: the in-lane triple shuffles, then the
 // 128-bit lanes in pixel order.
-inline void store_rgbf(float* dst, vfloat r, vfloat g, vfloat b) {
+RAYCAST_INLINE void store_rgbf(float* dst, vfloat r, vfloat g, vfloat b) {
   const __m512 a = _mm512_unpacklo_ps(r.v, g.v);
   const __m512 c = _mm512_shuffle_ps(b.v, r.v, _MM_SHUFFLE(1, 1, 0, 0));
   const __m512 o0 = _mm512_shuffle_ps(a, c, _MM_SHUFFLE(2, 0, 1, 0));
