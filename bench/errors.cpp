@@ -65,7 +65,7 @@ void painter::render(const image_band& band) const {
 }
 
 scene make_scene(const camera_params& cam, const raycast::sky& sky) {
-  return scene{make_camera(cam), sky};
+  return scene{make_camera(cam), sky, {}};
 }
 
 namespace {

@@ -61,6 +61,9 @@ std::string_view option_for(scene_field f, std::string_view origin_option) {
     case scene_field::vfov: return "--vfov";
     case scene_field::sky_bottom: return "--sky-bottom";
     case scene_field::sky_top: return "--sky-top";
+    case scene_field::sphere_center:
+    case scene_field::sphere_radius:
+    case scene_field::sphere_color: return "--scene";
   }
   return "--help";
 }

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "reference/hittable.h"
+
 namespace raycast {
 namespace {
 
@@ -16,7 +18,12 @@ float to_float(double c) { return std::abs(c) < double(FLT_MIN) ? 0.0f : float(c
 color reference_pixel(const scene& s, int64_t i, int64_t j) {
   const camera& cam = s.cam;
   const ray r = cam.get_ray(cam.u_of(i), cam.v_of(j));
-  return ray_color(r, s.sky);
+  if (s.spheres.empty()) return ray_color(r, s.sky);
+  // The book's ch. 6 ray_color: the closest hit for t in [0, infinity).
+  hit_record rec;
+  if (!hit_world(s.spheres, r, 0.0, INFINITY, rec)) return ray_color(r, s.sky);
+  if (rec.object->shade == shading::flat) return rec.object->flat_color;
+  return 0.5 * (rec.normal + color(1.0, 1.0, 1.0));
 }
 
 void render_reference(const scene& s, const image_band& band) {

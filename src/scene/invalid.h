@@ -2,6 +2,7 @@
 // maps the field to its option, a scene file to its key, nobody searches the
 // message text.
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -22,6 +23,9 @@ enum class scene_field : uint8_t {
   vfov,
   sky_bottom,
   sky_top,
+  sphere_center,  // of spheres[invalid_field::index]
+  sphere_radius,
+  sphere_color,
 };
 
 std::string_view to_string(scene_field f);
@@ -29,6 +33,11 @@ std::string_view to_string(scene_field f);
 struct invalid_field {
   scene_field field;
   std::string message;  // a sentence naming the parameter and the rule it breaks
+  size_t index = 0;     // which sphere, for the sphere_* fields
 };
+
+// The field's path as a scene file spells it, with the sphere's index:
+// "camera.vfov", "spheres[3].radius".
+std::string path(const invalid_field& e);
 
 }  // namespace raycast

@@ -1,5 +1,8 @@
 #include "scene/scene.h"
 
+#include <cmath>
+#include <string>
+
 namespace raycast {
 
 std::string_view to_string(scene_field f) {
@@ -15,15 +18,48 @@ std::string_view to_string(scene_field f) {
     case scene_field::vfov: return "camera.vfov";
     case scene_field::sky_bottom: return "sky.bottom";
     case scene_field::sky_top: return "sky.top";
+    case scene_field::sphere_center: return "spheres[].center";
+    case scene_field::sphere_radius: return "spheres[].radius";
+    case scene_field::sphere_color: return "spheres[].color";
   }
   return "?";
 }
 
-std::optional<invalid_field> validate(const scene_params& p) {
-  if (auto e = validate(p.camera)) return e;
-  return validate(p.sky);
+std::string path(const invalid_field& e) {
+  switch (e.field) {
+    case scene_field::sphere_center:
+    case scene_field::sphere_radius:
+    case scene_field::sphere_color: {
+      const std::string_view s = to_string(e.field);  // "spheres[].name"
+      return "spheres[" + std::to_string(e.index) + "]" + std::string(s.substr(s.find(']') + 1));
+    }
+    default: return std::string(to_string(e.field));
+  }
 }
 
-scene make_scene(const scene_params& p) { return scene{make_camera(p.camera), p.sky}; }
+std::optional<invalid_field> validate(const sphere& s, size_t index) {
+  const auto bad = [index](scene_field f, std::string why) {
+    return std::optional<invalid_field>(invalid_field{f, std::move(why), index});
+  };
+  for (int k = 0; k < 3; ++k)
+    if (!std::isfinite(s.center[k])) return bad(scene_field::sphere_center, "sphere centre must be finite");
+  if (!(std::isfinite(s.radius) && s.radius > 0.0))
+    return bad(scene_field::sphere_radius, "sphere radius must be a positive finite number");
+  if (s.shade == shading::flat)
+    for (int k = 0; k < 3; ++k)
+      if (!(std::abs(s.flat_color[k]) <= max_colour))
+        return bad(scene_field::sphere_color, "colour components must be finite and within +-1e30");
+  return std::nullopt;
+}
+
+std::optional<invalid_field> validate(const scene_params& p) {
+  if (auto e = validate(p.camera)) return e;
+  if (auto e = validate(p.sky)) return e;
+  for (size_t k = 0; k < p.spheres.size(); ++k)
+    if (auto e = validate(p.spheres[k], k)) return e;
+  return std::nullopt;
+}
+
+scene make_scene(const scene_params& p) { return scene{make_camera(p.camera), p.sky, p.spheres}; }
 
 }  // namespace raycast

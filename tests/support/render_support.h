@@ -17,8 +17,9 @@
 namespace raycast_test {
 
 inline raycast::scene make_scene(const raycast::camera_params& p = {},
-                                 const raycast::sky& s = {}) {
-  return raycast::scene{raycast::make_camera(p), s};
+                                 const raycast::sky& s = {},
+                                 std::vector<raycast::sphere> spheres = {}) {
+  return raycast::scene{raycast::make_camera(p), s, std::move(spheres)};
 }
 
 // An interleaved RGB image, rows top first, rows packed (stride = 3 channels).

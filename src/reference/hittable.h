@@ -1,0 +1,65 @@
+// The book's ch. 6 hit machinery in double (hittable.h, sphere.h,
+// hittable_list.h of Ray Tracing in One Weekend v3.2.3), without the virtual
+// calls: the oracle's intersection, formula for formula.
+#pragma once
+#include <cmath>
+#include <span>
+
+#include <glm/geometric.hpp>
+
+#include "scene/ray.h"
+#include "scene/sphere.h"
+
+namespace raycast {
+
+struct hit_record {
+  point3 p{0.0};
+  vec3 normal{0.0};  // unit, facing the ray (the book's set_face_normal)
+  double t = 0;
+  bool front_face = true;
+  const sphere* object = nullptr;
+};
+
+// sphere::hit: oc = A - C, a = |b|^2, half_b = oc.b, c = |oc|^2 - r^2,
+// disc = half_b^2 - a c; the nearer root (-half_b - sqrt(disc)) / a unless it
+// lies outside [t_min, t_max] (both ends inclusive), then the farther one.
+inline bool hit_sphere(const sphere& s, const ray& r, double t_min, double t_max, hit_record& rec) {
+  const vec3 oc = r.origin() - s.center;
+  const double a = glm::dot(r.direction(), r.direction());
+  const double half_b = glm::dot(oc, r.direction());
+  const double c = glm::dot(oc, oc) - s.radius * s.radius;
+  const double discriminant = half_b * half_b - a * c;
+  if (discriminant < 0) return false;
+  const double sqrtd = std::sqrt(discriminant);
+  double root = (-half_b - sqrtd) / a;
+  if (root < t_min || t_max < root) {
+    root = (-half_b + sqrtd) / a;
+    if (root < t_min || t_max < root) return false;
+  }
+  rec.t = root;
+  rec.p = r.at(rec.t);
+  const vec3 outward_normal = (rec.p - s.center) / s.radius;
+  rec.front_face = glm::dot(r.direction(), outward_normal) < 0;
+  rec.normal = rec.front_face ? outward_normal : -outward_normal;
+  rec.object = &s;
+  return true;
+}
+
+// hittable_list::hit: every sphere in order, each tested with t_max = the
+// closest t so far, so the closest hit wins (a later sphere on a tie).
+inline bool hit_world(std::span<const sphere> world, const ray& r, double t_min, double t_max,
+                      hit_record& rec) {
+  hit_record temp;
+  bool hit_anything = false;
+  double closest_so_far = t_max;
+  for (const sphere& s : world) {
+    if (hit_sphere(s, r, t_min, closest_so_far, temp)) {
+      hit_anything = true;
+      closest_so_far = temp.t;
+      rec = temp;
+    }
+  }
+  return hit_anything;
+}
+
+}  // namespace raycast
