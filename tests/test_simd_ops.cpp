@@ -5,7 +5,9 @@
 // reason.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -72,6 +74,56 @@ TEST_P(SimdOps, SelectTakesTheFirstWhereTheMaskHolds) {
   ops->select_zero(key.data(), a.data(), -1.0f, out.data());
   for (int i = 0; i < n; ++i)
     EXPECT_EQ(out[size_t(i)], i % 3 == 0 ? 10.0f + float(i) : -1.0f) << "lane " << i;
+}
+
+// Ordered comparisons (NaN compares false), masks combined and tested, and
+// the all-false mask vmask{} (what the sphere kernel's closest hit starts from).
+TEST_P(SimdOps, ComparisonsAndMasks) {
+  const size_t N = size_t(n);
+  std::vector<float> a(N), b(N), ge(N), le(N), both(N), either(N), empty(N);
+  for (int i = 0; i < n; ++i) {
+    a[size_t(i)] = i % 4 == 3 ? NAN : float(i % 3);
+    b[size_t(i)] = 1.0f;
+  }
+  bool any_ge = false, none_ge = true;
+  ops->compare(a.data(), b.data(), ge.data(), le.data(), both.data(), either.data(), &any_ge, &none_ge,
+               empty.data());
+  for (size_t i = 0; i < N; ++i) {
+    const float x = a[i];
+    EXPECT_EQ(ge[i], x >= 1.0f ? 1.0f : 0.0f) << "lane " << i;
+    EXPECT_EQ(le[i], x <= 1.0f ? 1.0f : 0.0f) << "lane " << i;
+    EXPECT_EQ(both[i], x == 1.0f ? 1.0f : 0.0f) << "lane " << i;
+    EXPECT_EQ(either[i], std::isnan(x) ? 0.0f : 1.0f) << "lane " << i;
+    EXPECT_EQ(empty[i], 0.0f) << "lane " << i;
+  }
+  EXPECT_TRUE(any_ge);
+  EXPECT_FALSE(none_ge);
+  std::fill(a.begin(), a.end(), 0.5f);
+  a[N - 1] = 1.0f;  // only the last lane: the high half on SSE2
+  ops->compare(a.data(), b.data(), ge.data(), le.data(), both.data(), either.data(), &any_ge, &none_ge,
+               empty.data());
+  EXPECT_TRUE(any_ge);
+  a[N - 1] = NAN;
+  ops->compare(a.data(), b.data(), ge.data(), le.data(), both.data(), either.data(), &any_ge, &none_ge,
+               empty.data());
+  EXPECT_FALSE(any_ge);
+  EXPECT_TRUE(none_ge);
+}
+
+TEST_P(SimdOps, CopysignIsStdCopysign) {
+  const size_t N = size_t(n);
+  const float mags[] = {0.0f, -0.0f, 1.5f, -2.25f, INFINITY, 3e-42f};
+  const float signs[] = {1.0f, -1.0f, 0.0f, -0.0f, -INFINITY, NAN};
+  std::vector<float> m(N), s(N), out(N);
+  for (size_t i = 0; i < N; ++i) {
+    m[i] = mags[i % 6];
+    s[i] = signs[(i / 6 + i) % 6];
+  }
+  ops->copy_sign(m.data(), s.data(), out.data());
+  for (size_t i = 0; i < N; ++i) {
+    const float want = std::copysign(m[i], s[i]);
+    EXPECT_EQ(std::memcmp(&out[i], &want, sizeof want), 0) << "lane " << i << ": " << out[i] << " vs " << want;
+  }
 }
 
 // The pack truncates, interleaves r, g, b of each lane, and with Reversed puts

@@ -42,6 +42,27 @@ float_scene prepare_float_scene(const scene& s) {
   }
   f.axis_aligned_camera = f.horizontal[1] == 0 && f.horizontal[2] == 0 && f.vertical[0] == 0 &&
                    f.vertical[2] == 0;
+
+  // Per-sphere constants in double, each rounded to float once
+  // (kernels/float_spheres.h).
+  float_spheres& sp = f.spheres;
+  for (const sphere& b : s.spheres) {
+    const vec3 fo = c.origin - b.center;
+    const double cc = (fo.x * fo.x + fo.y * fo.y + fo.z * fo.z) - b.radius * b.radius;
+    sp.fx.push_back(float(fo.x));
+    sp.fy.push_back(float(fo.y));
+    sp.fz.push_back(float(fo.z));
+    sp.c.push_back(float(cc));
+    sp.r2.push_back(float(b.radius * b.radius));
+    sp.inv_r.push_back(float((cc < 0.0 ? -1.0 : 1.0) / b.radius));
+    const bool flat = b.shade == shading::flat;
+    sp.red.push_back(flat ? flush(b.flat_color.r) + 0.0f : 0.0f);
+    sp.green.push_back(flat ? flush(b.flat_color.g) + 0.0f : 0.0f);
+    sp.blue.push_back(flat ? flush(b.flat_color.b) + 0.0f : 0.0f);
+    sp.flat.push_back(flat ? 1.0f : 0.0f);
+    sp.any_flat = sp.any_flat || flat;
+    sp.any_normal = sp.any_normal || !flat;
+  }
   return f;
 }
 

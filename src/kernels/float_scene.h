@@ -4,10 +4,12 @@
 // component lies in [0.5, 1). That is exact, leaves every unit direction
 // bit-for-bit unchanged, and keeps squares of directions far from float
 // overflow and underflow for viewports and focal lengths from 1e-38 to 1e38.
-// The origin is not here: the sky depends on the direction only.
+// The origin is not here: the sky depends on the direction only; the spheres
+// carry it in their per-sphere constants (kernels/float_spheres.h).
 #pragma once
 #include <cstdint>
 
+#include "kernels/float_spheres.h"
 #include "scene/scene.h"
 
 namespace raycast {
@@ -29,6 +31,8 @@ struct float_scene {
   // a direction's y depends on the row only and z is constant (what the
   // `lanes` and `mirror` shortcuts use, render/plan.h).
   bool axis_aligned_camera = false;
+  // The scene's spheres; empty for the sky alone (today's sky paths).
+  float_spheres spheres;
 };
 
 float_scene prepare_float_scene(const scene& s);

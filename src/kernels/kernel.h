@@ -1,4 +1,4 @@
-// The interface between the renderer and the per-ISA sky kernels.
+// The interface between the renderer and the per-ISA kernels (sky and spheres).
 #pragma once
 #include <cstdint>
 
@@ -48,5 +48,12 @@ using render_rows_fn = void (*)(const kernel_args& args, const image_band& band,
 namespace sse2 { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
 namespace avx2 { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
 namespace avx512 { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
+
+// Scenes with spheres (kernels/sphere_kernel.inl), the same signature: the
+// plan takes no shortcuts for them (`paired` is ignored) and builds the three
+// per-column direction tables; both precisions give float_spheres.h's bits.
+namespace sse2 { void render_sphere_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
+namespace avx2 { void render_sphere_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
+namespace avx512 { void render_sphere_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
 
 }  // namespace raycast::kernels

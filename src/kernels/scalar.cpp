@@ -60,6 +60,44 @@ void shade(const float_scene& f, float t, float out[3]) {
     out[k] = clampf(t == 1.0f ? f.top[k] : f.bottom[k] + t * f.delta[k], f.lo[k], f.hi[k]);
 }
 
+// A pixel of a scene with spheres, in kernels/float_spheres.h's order (both
+// precisions: fast mode has no sphere path of its own yet).
+void sphere_pixel(const float_scene& f, int64_t i, int64_t j, float out[3]) {
+  const float su = pixel_su(f, i), sv = pixel_sv(f, j);
+  float d[3];
+  for (int k = 0; k < 3; ++k) d[k] = (f.centre[k] + su * f.horizontal[k]) + sv * f.vertical[k];
+  const float n2 = (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2];
+  const float len = std::sqrt(vmax(n2, FLT_MIN));
+  const float u[3] = {d[0] / len, d[1] / len, d[2] / len};
+
+  const float_spheres& sp = f.spheres;
+  float closest = FLT_MAX;
+  size_t hit = sp.size();
+  for (size_t k = 0; k < sp.size(); ++k) {
+    const float b = (sp.fx[k] * u[0] + sp.fy[k] * u[1]) + sp.fz[k] * u[2];
+    const float vx = sp.fx[k] - b * u[0], vy = sp.fy[k] - b * u[1], vz = sp.fz[k] - b * u[2];
+    const float disc = sp.r2[k] - ((vx * vx + vy * vy) + vz * vz);
+    const float sq = std::sqrt(vmax(disc, 0.0f));
+    const float q = -(b + std::copysign(sq, b));
+    const float t0 = sp.c[k] / q;
+    const float t = t0 >= 0.0f ? t0 : q;
+    if (disc >= 0.0f && t >= 0.0f && t <= closest) {
+      closest = t;
+      hit = k;
+    }
+  }
+  if (hit == sp.size()) {
+    shade(f, clampf((u[1] + 1.0f) * 0.5f, 0.0f, 1.0f), out);
+  } else if (sp.flat[hit] == 1.0f) {
+    out[0] = sp.red[hit];
+    out[1] = sp.green[hit];
+    out[2] = sp.blue[hit];
+  } else {
+    const float fo[3] = {sp.fx[hit], sp.fy[hit], sp.fz[hit]};
+    for (int k = 0; k < 3; ++k) out[k] = ((fo[k] + closest * u[k]) * sp.inv_r[hit] + 1.0f) * 0.5f;
+  }
+}
+
 }  // namespace
 
 float pixel_su(const float_scene& f, int64_t i) {
@@ -71,12 +109,31 @@ float pixel_sv(const float_scene& f, int64_t j) {
 }
 
 void scalar_pixel(const float_scene& f, precision p, int64_t i, int64_t j, float out[3]) {
+  if (!f.spheres.empty()) {
+    sphere_pixel(f, i, j, out);
+    return;
+  }
   const pixel_dir d = direction(f, i, j);
   const float t = p == precision::exact ? exact_t(d) : (fast_uy(d) + 1.0f) * 0.5f;
   shade(f, t, out);
 }
 
 void render_scalar(const float_scene& f, precision p, const image_band& band) {
+  if (!f.spheres.empty()) {
+    for (int64_t r = band.row_begin; r < band.row_end; ++r) {
+      const int64_t j = f.height - 1 - r;
+      unsigned char* row = band.row(r);
+      for (int64_t i = 0; i < f.width; ++i) {
+        float c[3];
+        sphere_pixel(f, i, j, c);
+        if (band.format == pixel_format::rgb_f32) std::memcpy(row + 12 * i, c, sizeof c);
+        else
+          for (int k = 0; k < 3; ++k)
+            row[3 * i + k] = static_cast<unsigned char>(int(clampf(c[k], 0.0f, 1.0f) * 255.999f));
+      }
+    }
+    return;
+  }
   for (int64_t r = band.row_begin; r < band.row_end; ++r) {
     const int64_t j = f.height - 1 - r;
     unsigned char* row = band.row(r);

@@ -34,6 +34,9 @@
 // mode's bits differ by backend; its error bound is in README.md and tested
 // (tests/support/error_bounds.h).
 //
+// Scenes with spheres: kernels/float_spheres.h gives their order (the
+// direction d above, normalized; the sky as in exact mode where no sphere is hit).
+//
 // Every operation is a single IEEE operation; this file is compiled with
 // -ffp-contract=off, so no fused multiply-add changes a rounding.
 #pragma once

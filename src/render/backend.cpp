@@ -74,3 +74,21 @@ kernels::render_rows_fn kernel_for(backend b) {
 }
 
 }  // namespace raycast
+
+namespace raycast {
+
+kernels::render_rows_fn sphere_kernel_for(backend b) {
+#if RAYCAST_HAVE_X86_KERNELS
+  switch (b) {
+    case backend::sse2: return kernels::sse2::render_sphere_rows;
+    case backend::avx2: return kernels::avx2::render_sphere_rows;
+    case backend::avx512: return kernels::avx512::render_sphere_rows;
+    default: break;
+  }
+#else
+  (void)b;
+#endif
+  return nullptr;
+}
+
+}  // namespace raycast

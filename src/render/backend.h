@@ -45,5 +45,7 @@ struct unsupported_backend : std::runtime_error {
 // The SIMD kernel behind a backend; null for reference and scalar, which
 // render a pixel at a time without one.
 kernels::render_rows_fn kernel_for(backend b);
+// The same for scenes with spheres (kernels/sphere_kernel.inl).
+kernels::render_rows_fn sphere_kernel_for(backend b);
 
 }  // namespace raycast

@@ -18,8 +18,12 @@ renderer::renderer(const scene& s, const render_options& opts)
       prec_(opts.prec),
       threads_(opts.threads > 0 ? opts.threads : available_cores()) {
   if (auto why = backend_unavailable(which_)) throw unsupported_backend(*why);
-  kernel_ = kernel_for(which_);
-  if (kernel_) plan_.emplace(fscene_, prec_, opts.shortcuts);  // reference and scalar need none
+  // A scene without spheres runs the sky kernel, untouched; one with spheres
+  // the sphere kernel, which takes no shortcuts (they are the sky's).
+  const bool spheres = !fscene_.spheres.empty();
+  kernel_ = spheres ? sphere_kernel_for(which_) : kernel_for(which_);
+  if (kernel_)  // reference and scalar need no plan
+    plan_.emplace(fscene_, prec_, spheres ? shortcut::none : opts.shortcuts);
 }
 
 void renderer::render_rows(const image_band& band, int64_t r0, int64_t r1, bool paired) const {

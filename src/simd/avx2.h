@@ -40,6 +40,18 @@ RAYCAST_INLINE vmask operator==(vfloat a, vfloat b) { return {_mm256_cmp_ps(a.v,
 RAYCAST_INLINE vfloat min(vfloat a, vfloat b) { return _mm256_min_ps(a.v, b.v); }
 RAYCAST_INLINE vfloat max(vfloat a, vfloat b) { return _mm256_max_ps(a.v, b.v); }
 RAYCAST_INLINE vfloat clamp(vfloat x, vfloat lo, vfloat hi) { return min(max(x, lo), hi); }
+// Ordered comparisons (false where either lane is NaN); vmask{} is all false.
+RAYCAST_INLINE vmask operator>=(vfloat a, vfloat b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_GE_OQ)}; }
+RAYCAST_INLINE vmask operator<=(vfloat a, vfloat b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_LE_OQ)}; }
+RAYCAST_INLINE vmask operator&(vmask a, vmask b) { return {_mm256_and_ps(a.m, b.m)}; }
+RAYCAST_INLINE vmask operator|(vmask a, vmask b) { return {_mm256_or_ps(a.m, b.m)}; }
+RAYCAST_INLINE bool any(vmask m) { return _mm256_movemask_ps(m.m) != 0; }
+RAYCAST_INLINE bool none(vmask m) { return !any(m); }
+// |a| with the sign of b, as std::copysign.
+RAYCAST_INLINE vfloat copysign(vfloat a, vfloat b) {
+  const __m256 sign = _mm256_set1_ps(-0.0f);
+  return _mm256_or_ps(_mm256_andnot_ps(sign, a.v), _mm256_and_ps(sign, b.v));
+}
 RAYCAST_INLINE vfloat select(vmask m, vfloat a, vfloat b) { return _mm256_blendv_ps(b.v, a.v, m.m); }
 RAYCAST_INLINE vfloat sqrt(vfloat a) { return _mm256_sqrt_ps(a.v); }
 RAYCAST_INLINE vfloat madd(vfloat a, vfloat b, vfloat c) { return _mm256_fmadd_ps(a.v, b.v, c.v); }

@@ -48,6 +48,19 @@ RAYCAST_INLINE vmask operator==(vfloat a, vfloat b) { return {_mm512_cmp_ps_mask
 RAYCAST_INLINE vfloat min(vfloat a, vfloat b) { return _mm512_min_ps(a.v, b.v); }
 RAYCAST_INLINE vfloat max(vfloat a, vfloat b) { return _mm512_max_ps(a.v, b.v); }
 RAYCAST_INLINE vfloat clamp(vfloat x, vfloat lo, vfloat hi) { return min(max(x, lo), hi); }
+// Ordered comparisons (false where either lane is NaN); vmask{} is all false.
+RAYCAST_INLINE vmask operator>=(vfloat a, vfloat b) { return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_GE_OQ)}; }
+RAYCAST_INLINE vmask operator<=(vfloat a, vfloat b) { return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_LE_OQ)}; }
+RAYCAST_INLINE vmask operator&(vmask a, vmask b) { return {__mmask16(a.m & b.m)}; }
+RAYCAST_INLINE vmask operator|(vmask a, vmask b) { return {__mmask16(a.m | b.m)}; }
+RAYCAST_INLINE bool any(vmask m) { return m.m != 0; }
+RAYCAST_INLINE bool none(vmask m) { return m.m == 0; }
+// |a| with the sign of b, as std::copysign: one ternary-logic op (bit select
+// by the sign mask: 0xCA is "A ? B : C"), integer because the float and/or need AVX-512 DQ.
+RAYCAST_INLINE vfloat copysign(vfloat a, vfloat b) {
+  return _mm512_castsi512_ps(_mm512_ternarylogic_epi32(_mm512_set1_epi32(INT32_MIN), _mm512_castps_si512(b.v),
+                                                       _mm512_castps_si512(a.v), 0xCA));
+}
 RAYCAST_INLINE vfloat select(vmask m, vfloat a, vfloat b) { return _mm512_mask_blend_ps(m.m, b.v, a.v); }
 RAYCAST_INLINE vfloat sqrt(vfloat a) { return _mm512_sqrt_ps(a.v); }
 RAYCAST_INLINE vfloat madd(vfloat a, vfloat b, vfloat c) { return _mm512_fmadd_ps(a.v, b.v, c.v); }

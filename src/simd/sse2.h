@@ -50,6 +50,19 @@ RAYCAST_INLINE void store(float* p, vfloat a) {
 }
 RAYCAST_INLINE vmask operator==(vfloat a, vfloat b) { return {_mm_cmpeq_ps(a.lo, b.lo), _mm_cmpeq_ps(a.hi, b.hi)}; }
 RAYCAST_INLINE vfloat clamp(vfloat x, vfloat lo, vfloat hi) { return min(max(x, lo), hi); }
+// Ordered comparisons (false where either lane is NaN); vmask{} is all false.
+RAYCAST_INLINE vmask operator>=(vfloat a, vfloat b) { return {_mm_cmpge_ps(a.lo, b.lo), _mm_cmpge_ps(a.hi, b.hi)}; }
+RAYCAST_INLINE vmask operator<=(vfloat a, vfloat b) { return {_mm_cmple_ps(a.lo, b.lo), _mm_cmple_ps(a.hi, b.hi)}; }
+RAYCAST_INLINE vmask operator&(vmask a, vmask b) { return {_mm_and_ps(a.lo, b.lo), _mm_and_ps(a.hi, b.hi)}; }
+RAYCAST_INLINE vmask operator|(vmask a, vmask b) { return {_mm_or_ps(a.lo, b.lo), _mm_or_ps(a.hi, b.hi)}; }
+RAYCAST_INLINE bool any(vmask m) { return _mm_movemask_ps(_mm_or_ps(m.lo, m.hi)) != 0; }
+RAYCAST_INLINE bool none(vmask m) { return !any(m); }
+// |a| with the sign of b, as std::copysign.
+RAYCAST_INLINE vfloat copysign(vfloat a, vfloat b) {
+  const __m128 sign = _mm_set1_ps(-0.0f);
+  return {_mm_or_ps(_mm_andnot_ps(sign, a.lo), _mm_and_ps(sign, b.lo)),
+          _mm_or_ps(_mm_andnot_ps(sign, a.hi), _mm_and_ps(sign, b.hi))};
+}
 RAYCAST_INLINE __m128 blend(__m128 m, __m128 a, __m128 b) {  // m ? a : b, no SSE4.1 blendv
   return _mm_or_ps(_mm_and_ps(m, a), _mm_andnot_ps(m, b));
 }

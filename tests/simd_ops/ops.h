@@ -28,6 +28,12 @@ struct simd_ops {
   // The first n pixels of a pack with store_first; null where the instruction
   // set has none (RAYCAST_HAS_MASKED_BYTE_STORE).
   void (*store_first)(const float* r, const float* g, const float* b, int n, unsigned char* out);
+  // 1 or 0 per lane for a >= b, a <= b, both (&) and either (|); any and none
+  // of a >= b; and vmask{} (all false) as 1 or 0.
+  void (*compare)(const float* a, const float* b, float* ge, float* le, float* both, float* either,
+                  bool* any_ge, bool* none_ge, float* empty);
+  // copysign(mag, sign).
+  void (*copy_sign)(const float* mag, const float* sign, float* out);
 };
 
 namespace sse2 { extern const simd_ops ops; }

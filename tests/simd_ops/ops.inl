@@ -46,6 +46,22 @@ void store_first_pixels(const float* r, const float* g, const float* b, int n, u
 }
 #endif
 
+void compare(const float* a, const float* b, float* ge, float* le, float* both, float* either,
+             bool* any_ge, bool* none_ge, float* empty) {
+  const vfloat x = vfloat::load(a), y = vfloat::load(b);
+  const vmask g = x >= y, l = x <= y;
+  store(ge, select(g, 1.0f, 0.0f));
+  store(le, select(l, 1.0f, 0.0f));
+  store(both, select(g & l, 1.0f, 0.0f));
+  store(either, select(g | l, 1.0f, 0.0f));
+  *any_ge = any(g);
+  *none_ge = none(g);
+  store(empty, select(vmask{}, 1.0f, 0.0f));
+}
+void copy_sign(const float* mag, const float* sign, float* out) {
+  store(out, copysign(vfloat::load(mag), vfloat::load(sign)));
+}
+
 }  // namespace
 
 extern const simd_ops ops = {
@@ -61,6 +77,7 @@ extern const simd_ops ops = {
 #else
     nullptr,
 #endif
+    compare, copy_sign,
 };
 
 }  // namespace raycast_test::RAYCAST_ISA
