@@ -311,6 +311,7 @@ const usage_case usage_cases[] = {
     {"backend_unknown", {"--backend", "nope", "-o", "{out}"}, "--backend"},
     {"precision_unknown", {"--precision", "nope", "-o", "{out}"}, "--precision"},
     {"unknown_option", {"--bogus", "-o", "{out}"}, "--bogus"},
+    {"scene_unknown", {"--scene", "cornell-box", "-o", "{out}"}, "red-sphere, normals, world"},
 };
 
 std::string usage_name(const ::testing::TestParamInfo<usage_case>& p) { return p.param.name; }
@@ -346,6 +347,7 @@ const valued_option valued_options[] = {
     {"--backend", "--backend", "scalar", "fastest", nullptr},
     {"--precision", "--precision", "exact", "double", nullptr},
     {"--threads", "--threads", "2", "2.0", "1025"},
+    {"--scene", "--scene", "world", "nowhere", nullptr},
 };
 
 std::vector<usage_case> every_option_cases() {

@@ -1,5 +1,7 @@
 #include "options.h"
 
+#include "scene/builtin.h"
+
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -143,13 +145,13 @@ std::optional<std::string> parse_aspect(std::string_view text, double& value) {
 
 parse_result parse_args(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
   CLI::App app{
-      "raycast: renders the sky of Ray Tracing in One Weekend's first camera, on the fastest\n"
-      "vector unit this CPU has.",
+      "raycast: renders Ray Tracing in One Weekend's sky and spheres (chapters 4-6), on the\n"
+      "fastest vector unit this CPU has.",
       "raycast"};
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::Throw);
 
   std::string output, width_s, height_s, aspect_s, vh_s, focal_s, origin_s, bottom_s, top_s, format_s;
-  std::string backend_s, precision_s, threads_s, lookfrom_s, lookat_s, vup_s, vfov_s;
+  std::string backend_s, precision_s, threads_s, lookfrom_s, lookat_s, vup_s, vfov_s, scene_s;
   bool quiet = false, version = false;
 
   app.add_option("-o,--output", output, "Output file; '-' writes binary PPM to standard output")
@@ -172,6 +174,8 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
       ->type_name("DEGREES");
   app.add_option("--sky-bottom", bottom_s, "Colour looking straight down [1,1,1]")->type_name("R,G,B");
   app.add_option("--sky-top", top_s, "Colour looking straight up [0.5,0.7,1.0]")->type_name("R,G,B");
+  app.add_option("--scene", scene_s, "Built-in scene: " + builtin_scene_list() + " [sky]")
+      ->type_name("NAME");
   app.add_option("--format", format_s, "png|ppm|jpg|tif|exr, overrides the extension")
       ->type_name("FMT");
   app.add_option("--backend", backend_s,
@@ -261,6 +265,11 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
     if (auto e = parse_triple(bottom_s, sp.sky.bottom)) return usage("--sky-bottom", *e);
   if (given("--sky-top"))
     if (auto e = parse_triple(top_s, sp.sky.top)) return usage("--sky-top", *e);
+  if (given("--scene")) {
+    auto spheres = builtin_spheres(scene_s);
+    if (!spheres) return usage("--scene", in_quotes(scene_s) + " is not one of " + builtin_scene_list());
+    sp.spheres = std::move(*spheres);
+  }
 
   // The ranges are the scene's to check (scene/scene.h), once; here only the
   // field it blames becomes the option that set it.
