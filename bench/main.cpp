@@ -34,13 +34,6 @@ const std::vector<path>& paths() {
   return all;
 }
 
-camera_params sized(int64_t w, int64_t h) {
-  camera_params p;
-  p.image_width = w;
-  p.image_height = h;
-  return p;
-}
-
 // One buffer for every row, grown when a row needs more and touched once, so
 // that no timed iteration pays for page faults.
 unsigned char* scratch(size_t bytes) {
@@ -77,9 +70,9 @@ void bench_render(benchmark::State& state, size_t path_index, size2 size, int th
     benchmark::ClobberMemory();
   }
   state.counters["max_abs_err"] = e.max_abs_err;
-  state.counters["rms_err"] = e.rms_err;
+  state.counters["rms_err"] = e.rms_err();
   state.counters["max_lsb"] = e.max_lsb;
-  state.counters["lsb_mismatch"] = e.lsb_mismatch;
+  state.counters["lsb_mismatch"] = e.lsb_mismatch();
 }
 
 // The kernel allowed only some of the plan's shortcuts (render_options::shortcuts).
