@@ -10,6 +10,7 @@
 #include "autovec.h"
 #include "image/image.h"
 #include "render/render.h"
+#include "reference_errors.h"
 #include "stiff_cases.h"
 
 namespace raycast::bench {
@@ -49,18 +50,16 @@ class painter {
   int threads_ = 1;
 };
 
-scene make_scene(const camera_params& cam, const raycast::sky& sky = {});
+// The scenes, cases and error measurement the tests use too (tests/support).
+using raycast_test::error_stats;
+using raycast_test::make_scene;
+using raycast_test::sized;
+using raycast_test::stiff_case;
+using raycast_test::stiff_cases;
 
-struct error_stats {
-  double max_abs_err = 0;   // linear colour, float output (NaN counts as infinite)
-  double rms_err = 0;       // linear colour, over every channel
-  int max_lsb = 0;          // 8-bit output, largest |byte - reference byte|
-  double lsb_mismatch = 0;  // fraction of 8-bit channels that differ
-  int64_t nan_count = 0;    // NaN channels in the float output
-};
-
-// Each path's error against reference_pixel over the whole image of s; the
-// reference path reports zeros. Bands of rows are spread over all cores.
+// Each path's error against reference_pixel over the whole image of s
+// (tests/support/reference_errors.h); the reference path reports zeros.
+// Bands of rows are spread over all cores.
 std::vector<error_stats> measure_errors(const scene& s, const std::vector<path>& paths);
 
 }  // namespace raycast::bench

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "errors.h"
+#include "gbench_flags.h"
 #include "report.h"
 
 namespace raycast::bench {
@@ -32,13 +33,6 @@ struct size2 {
 const std::vector<path>& paths() {
   static const std::vector<path> all = available_paths();
   return all;
-}
-
-camera_params sized(int64_t w, int64_t h) {
-  camera_params p;
-  p.image_width = w;
-  p.image_height = h;
-  return p;
 }
 
 // One buffer for every row, grown when a row needs more and touched once, so
@@ -77,9 +71,9 @@ void bench_render(benchmark::State& state, size_t path_index, size2 size, int th
     benchmark::ClobberMemory();
   }
   state.counters["max_abs_err"] = e.max_abs_err;
-  state.counters["rms_err"] = e.rms_err;
+  state.counters["rms_err"] = e.rms_err();
   state.counters["max_lsb"] = e.max_lsb;
-  state.counters["lsb_mismatch"] = e.lsb_mismatch;
+  state.counters["lsb_mismatch"] = e.lsb_mismatch();
 }
 
 // The kernel allowed only some of the plan's shortcuts (render_options::shortcuts).
@@ -207,28 +201,6 @@ options parse_own_flags(int& argc, char** argv) {
   return o;
 }
 
-// The value of a Google Benchmark flag given as --name=value, if present.
-std::optional<std::string> flag_value(int argc, char** argv, const std::string& name) {
-  std::optional<std::string> v;
-  for (int i = 1; i < argc; ++i)
-    if (std::string(argv[i]).rfind(name + "=", 0) == 0) v = std::string(argv[i] + name.size() + 1);
-  return v;
-}
-
-// --benchmark_list_tests, alone or with a true value: names only, no tables.
-bool listing_only(int argc, char** argv) {
-  bool list = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--benchmark_list_tests") list = true;
-    if (a.rfind("--benchmark_list_tests=", 0) == 0) {
-      const std::string v = a.substr(a.find('=') + 1);
-      list = !(v == "false" || v == "0" || v == "no" || v == "off" || v == "f" || v == "n");
-    }
-  }
-  return list;
-}
-
 std::unique_ptr<benchmark::BenchmarkReporter> make_file_reporter(const std::string& format) {
   if (format == "console")
     return std::make_unique<benchmark::ConsoleReporter>(benchmark::ConsoleReporter::OO_None);
@@ -259,25 +231,21 @@ std::vector<stiff_result> run_stiff_cases() {
 // run within two minutes, and a row whose single iteration takes longer (the
 // reference and scalar rows at 15360x8640) runs exactly once, by the
 // library's own rule, so row names stay free of /iterations: suffixes.
-void init_benchmark(int argc, char** argv, bool quick) {
-  std::vector<char*> args(argv, argv + argc);
-  static std::string min_time = quick ? "--benchmark_min_time=0.02" : "--benchmark_min_time=0.1";
-  if (!flag_value(argc, argv, "--benchmark_min_time"))
-    args.insert(args.begin() + 1, min_time.data());
-  int n = int(args.size());
-  args.push_back(nullptr);
-  benchmark::Initialize(&n, args.data(), print_help);
-  if (benchmark::ReportUnrecognizedArguments(n, args.data())) std::exit(2);
+// (Our default is set before Initialize, which replaces it only when the
+// command line gives --benchmark_min_time.)
+void init_benchmark(int& argc, char** argv, bool quick) {
+  benchmark::FLAGS_benchmark_min_time = quick ? 0.02 : 0.1;
+  benchmark::Initialize(&argc, argv, print_help);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) std::exit(2);
 }
 
 // Runs the registered rows through reporters that fill the cross-row counters.
-void run_rows(int argc, char** argv, run_table& table) {
+void run_rows(run_table& table) {
   counter_filler display(benchmark::CreateDefaultDisplayReporter(), table);
   std::unique_ptr<benchmark::BenchmarkReporter> file_inner;
   std::unique_ptr<counter_filler> file;
-  if (flag_value(argc, argv, "--benchmark_out")) {
-    file_inner =
-        make_file_reporter(flag_value(argc, argv, "--benchmark_out_format").value_or("json"));
+  if (!benchmark::FLAGS_benchmark_out.empty()) {
+    file_inner = make_file_reporter(benchmark::FLAGS_benchmark_out_format);
     file = std::make_unique<counter_filler>(file_inner.get(), table);
   }
   benchmark::RunSpecifiedBenchmarks(&display, file.get());
@@ -295,11 +263,11 @@ int run(int argc, char** argv) {
   register_shortcuts_rows(opt.quick ? size2{1920, 1080} : size2{3840, 2160});
 
   run_table table;
-  run_rows(argc, argv, table);
-  if (listing_only(argc, argv)) return 0;
+  run_rows(table);
+  if (benchmark::FLAGS_benchmark_list_tests) return 0;
 
   // Machine-readable stdout stays machine-readable: the tables go to stderr.
-  const std::string format = flag_value(argc, argv, "--benchmark_format").value_or("console");
+  const std::string format = benchmark::FLAGS_benchmark_format;
   std::ostream& os = format == "console" ? std::cout : std::cerr;
   summary_options so;
   const std::pair<int64_t, int64_t> size =

@@ -116,18 +116,22 @@ std::optional<double> run_table::seconds(const std::string& name) const {
 void run_table::fill(std::vector<Run>& runs) {
   if (runs.empty()) return;
   const std::string fn = runs.front().run_name.function_name;
-  double sum = 0;
-  int n = 0;
+  // A row's time is the median of its repetitions: on a machine shared with
+  // other work, a repetition that lost the CPU for a while moves the mean but
+  // not the median.
+  std::vector<double> times;
   for (const Run& r : runs) {
     if (!has_time(r)) continue;
-    if (r.run_type == Run::RT_Aggregate) {
-      seconds_[fn + "|" + r.aggregate_name] = run_seconds(r);
-    } else {
-      sum += run_seconds(r);
-      ++n;
-    }
+    if (r.run_type == Run::RT_Aggregate) seconds_[fn + "|" + r.aggregate_name] = run_seconds(r);
+    else times.push_back(run_seconds(r));
   }
-  if (n > 0) seconds_[fn + "|"] = sum / n;
+  const size_t n = times.size();
+  double median = 0;
+  if (n > 0) {
+    std::sort(times.begin(), times.end());
+    median = n % 2 ? times[n / 2] : 0.5 * (times[n / 2 - 1] + times[n / 2]);
+    seconds_[fn + "|"] = median;
+  }
 
   const std::optional<row_name> name = parse_row_name(fn);
   if (!name) return;
@@ -160,9 +164,10 @@ void run_table::fill(std::vector<Run>& runs) {
   row.name = *name;
   for (const Run& r : runs) {
     const bool iteration = r.run_type == Run::RT_Iteration && !r.error_occurred;
-    const bool mean = r.run_type == Run::RT_Aggregate && r.aggregate_name == "mean";
-    if (!iteration && !(mean && n == 0)) continue;
-    row.seconds = iteration ? sum / n : run_seconds(r);
+    // Only aggregates reported (--benchmark_report_aggregates_only): theirs.
+    const bool median_aggregate = r.run_type == Run::RT_Aggregate && r.aggregate_name == "median";
+    if (!iteration && !(median_aggregate && n == 0)) continue;
+    row.seconds = iteration ? median : run_seconds(r);
     row.from_iterations = iteration;
     for (const auto& [k, c] : r.counters) row.counters[k] = c.value;
   }
@@ -238,6 +243,7 @@ void print_summary(std::ostream& os, const std::vector<summary_row>& rows,
      << size_text(opt.width, opt.height) << ", " << opt.threads << " thread"
      << (opt.threads == 1 ? "" : "s") << " (of " << available_cores() << " cores), " << opt.out
      << " output\n"
+     << "  ns/px: the median of a row's repetitions (--benchmark_repetitions=N; one by default)\n"
      << "  errors vs the double reference over the whole image: max_abs_err in linear colour\n"
      << "  (from the f32 rendering), max_lsb and lsb_mismatch from the 8-bit bytes;\n"
      << "  * = Pareto-optimal: no other row is both faster and at most as wrong (max_abs_err)\n";

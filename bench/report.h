@@ -31,8 +31,9 @@ std::string memset_row_name(int64_t w, int64_t h);
 std::string shortcuts_row_name(const std::string& backend, std::string_view precision, int64_t w,
                                int64_t h, std::string_view set);
 
-// One measured render row, for the summary: the mean time per iteration over
-// its repetitions and the counters its benchmark set.
+// One measured render row, for the summary: the median time per iteration
+// over its repetitions (--benchmark_repetitions) and the counters its
+// benchmark set.
 struct measured_row {
   row_name name;
   double seconds = 0;

@@ -148,15 +148,15 @@ TEST(BookChapters, NamedPixels) {
 // Built-in scenes, and a few that exercise what they do not: flat and normal
 // shading mixed, overlapping spheres (closest hit), a sphere behind the
 // camera, the camera inside a sphere (inward normals), a tilted camera.
-struct scene_case {
+struct sphere_case {
   std::string name;
   std::vector<sphere> spheres;
   camera_params cam;
 };
 
-const std::vector<scene_case>& scene_cases() {
-  static const std::vector<scene_case> all = [] {
-  std::vector<scene_case> v;
+const std::vector<sphere_case>& sphere_cases() {
+  static const std::vector<sphere_case> all = [] {
+  std::vector<sphere_case> v;
   for (std::string_view n : builtin_scene_names())
     if (n != "sky") v.push_back({std::string(n), *builtin_spheres(n), {}});
   std::vector<sphere> mixed = *builtin_spheres("world");
@@ -182,12 +182,12 @@ struct param {
 };
 
 void PrintTo(const param& p, std::ostream* os) {
-  *os << to_string(p.which) << "/" << to_string(p.prec) << "/" << scene_cases()[p.scene].name;
+  *os << to_string(p.which) << "/" << to_string(p.prec) << "/" << sphere_cases()[p.scene].name;
 }
 
 std::string param_name(const ::testing::TestParamInfo<param>& info) {
   std::string n = std::string(to_string(info.param.which)) + "_" +
-                  std::string(to_string(info.param.prec)) + "_" + scene_cases()[info.param.scene].name;
+                  std::string(to_string(info.param.prec)) + "_" + sphere_cases()[info.param.scene].name;
   for (char& c : n)
     if (c == '-') c = '_';
   return n;
@@ -197,7 +197,7 @@ std::vector<param> all_params() {
   std::vector<param> v;
   for (backend b : {backend::sse2, backend::avx2, backend::avx512})
     for (precision p : {precision::exact, precision::fast})
-      for (size_t c = 0; c < scene_cases().size(); ++c) v.push_back({b, p, c});
+      for (size_t c = 0; c < sphere_cases().size(); ++c) v.push_back({b, p, c});
   return v;
 }
 
@@ -213,7 +213,7 @@ class SphereEquivalence : public ::testing::TestWithParam<param> {
 // the scalar renderer's, at every size.
 TEST_P(SphereEquivalence, BitIdenticalToScalar) {
   const param& prm = GetParam();
-  const scene_case& sc = scene_cases()[prm.scene];
+  const sphere_case& sc = sphere_cases()[prm.scene];
   const std::pair<int64_t, int64_t> sizes[] = {{1, 1}, {2, 1}, {1, 3}, {7, 3}, {15, 4}, {16, 5}, {17, 9},
                                                {31, 2}, {33, 19}, {64, 36}, {255, 7}, {400, 225}, {401, 225}};
   for (const auto& [w, h] : sizes) {
@@ -235,7 +235,7 @@ TEST_P(SphereEquivalence, BitIdenticalToScalar) {
 // pixels) on 1 and 2 threads, and for a band in the middle of the image.
 TEST_P(SphereEquivalence, ThreadsAndBandsGiveTheSameBytes) {
   const param& prm = GetParam();
-  const scene_case& sc = scene_cases()[prm.scene];
+  const sphere_case& sc = sphere_cases()[prm.scene];
   camera_params cp = sc.cam;
   cp.image_width = 640;
   cp.image_height = 480;
@@ -258,7 +258,7 @@ TEST_P(SphereEquivalence, ThreadsAndBandsGiveTheSameBytes) {
 INSTANTIATE_TEST_SUITE_P(Spheres, SphereEquivalence, ::testing::ValuesIn(all_params()), param_name);
 
 TEST(SphereScalar, FastIsExactForSpheres) {
-  for (const scene_case& sc : scene_cases()) {
+  for (const sphere_case& sc : sphere_cases()) {
     const scene s = raycast_test::make_scene({}, {}, sc.spheres);
     for (pixel_format f : {pixel_format::rgb8, pixel_format::rgb_f32})
       EXPECT_EQ(raycast_test::render_with_scalar(s, precision::fast, f).bytes,
@@ -331,7 +331,7 @@ silhouette_stats against_reference(const scene& s) {
 // from silhouettes (and within 2e-5 in linear colour); at silhouettes a pixel
 // may see the other object, and those are few.
 TEST(SphereNumerics, WithinOneLsbOfTheReferenceAwayFromSilhouettes) {
-  for (const scene_case& sc : scene_cases()) {
+  for (const sphere_case& sc : sphere_cases()) {
     for (int64_t w : {400, 1280}) {
       camera_params cp = sc.cam;
       cp.image_width = w;

@@ -298,10 +298,10 @@ void render_rows(const kernel_args& a, const image_band& band, int64_t r0, int64
     with_flag(fast, [&](auto fast_mode) {
       with_flag(f32, [&](auto float_out) {
         with_flag(no_clamps, [&](auto unclamped) {
-          constexpr bool L = decltype(lanes)::value, F = decltype(fast_mode)::value,
-                         O = decltype(float_out)::value, U = decltype(unclamped)::value;
-          if (computed == red_green) render<L, F, O, U, red_green>(a, band, r0, r1, paired);
-          else render<L, F, O, U, all_channels>(a, band, r0, r1, paired);
+          constexpr bool Lanes = decltype(lanes)::value, Fast = decltype(fast_mode)::value,
+                         Float = decltype(float_out)::value, NoClamps = decltype(unclamped)::value;
+          if (computed == red_green) render<Lanes, Fast, Float, NoClamps, red_green>(a, band, r0, r1, paired);
+          else render<Lanes, Fast, Float, NoClamps, all_channels>(a, band, r0, r1, paired);
         });
       });
     });

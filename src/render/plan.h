@@ -8,7 +8,6 @@
 #pragma once
 #include <cstdlib>
 #include <memory>
-#include <string_view>
 
 #include "kernels/float_scene.h"
 #include "kernels/kernel.h"

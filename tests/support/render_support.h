@@ -1,7 +1,10 @@
 // Helpers shared by the tests: whole images in memory, rendered by the
 // renderer or straight through one backend, and comparisons that say where
-// two images differ.
+// two images differ. (Scenes and modes: cases.h; error against the
+// reference: reference_errors.h, which the bench uses too.)
 #pragma once
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -10,17 +13,19 @@
 #include <vector>
 
 #include "reference/reference.h"
+#include "reference_errors.h"
 #include "render/render.h"
+#include "cases.h"
 #include "error_bounds.h"
 #include "kernels/scalar.h"
 
 namespace raycast_test {
 
-inline raycast::scene make_scene(const raycast::camera_params& p = {},
-                                 const raycast::sky& s = {},
-                                 std::vector<raycast::sphere> spheres = {}) {
-  return raycast::scene{raycast::make_camera(p), s, std::move(spheres)};
+// Test-name suffixes for tests over backends and modes.
+inline std::string backend_name(const ::testing::TestParamInfo<raycast::backend>& i) {
+  return std::string(to_string(i.param));
 }
+inline std::string mode_name(const ::testing::TestParamInfo<mode>& i) { return name_of(i.param); }
 
 // An interleaved RGB image, rows top first, rows packed (stride = 3 channels).
 struct image {
@@ -112,25 +117,18 @@ inline difference compare(const image& a, const image& b) {
   return d;
 }
 
-// Largest |float output - reference_pixel| over the image (an rgb_f32 image).
+// Largest |float output - reference_pixel| over the image (an rgb_f32 image),
+// measured as the bench measures it (reference_errors.h).
 inline difference compare_to_reference_pixels(const image& a, const raycast::scene& s) {
+  std::vector<float> values(a.bytes.size() / sizeof(float));
+  std::memcpy(values.data(), a.bytes.data(), values.size() * sizeof(float));
+  error_stats e;
+  reference_band(s, 0, a.height).compare(values.data(), nullptr, e);
   difference d;
-  for (int64_t r = 0; r < a.height; ++r) {
-    const int64_t j = a.height - 1 - r;
-    for (int64_t c = 0; c < a.width; ++c) {
-      const raycast::color want = raycast::reference_pixel(s, c, j);
-      for (int k = 0; k < 3; ++k) {
-        const float got = a.value(r, c, k);
-        const double x = std::isfinite(got) ? std::abs(double(got) - want[k]) : INFINITY;
-        if (x > d.max) {
-          d.max = x;
-          d.row = r;
-          d.col = c;
-          d.channel = k;
-        }
-      }
-    }
-  }
+  d.max = e.max_abs_err;
+  d.row = e.max_abs_err > 0 ? e.worst_row : -1;
+  d.col = e.max_abs_err > 0 ? e.worst_col : -1;
+  d.channel = e.max_abs_err > 0 ? e.worst_channel : -1;
   return d;
 }
 

@@ -1,14 +1,9 @@
 #include "stiff_cases.h"
 
-namespace raycast {
+namespace raycast_test {
 namespace {
 
-camera_params sized(int64_t w, int64_t h) {
-  camera_params p;
-  p.image_width = w;
-  p.image_height = h;
-  return p;
-}
+using namespace raycast;
 
 camera_params scaled(double viewport_height, double focal_length) {
   camera_params p;
@@ -56,4 +51,4 @@ std::vector<stiff_case> stiff_cases() {
   };
 }
 
-}  // namespace raycast
+}  // namespace raycast_test

@@ -1,23 +1,17 @@
 // The numerics issue's stiff and extreme inputs as a reusable list: each a
 // camera and a sky the renderers must handle like the double reference does.
-// Used by the benchmark's stiff section (and available to tests).
+// Test data: tests/test_numerics.cpp and raycast-bench's stiff section.
 #pragma once
-#include <string>
 #include <vector>
 
-#include "scene/camera.h"
-#include "scene/sky.h"
+#include "cases.h"
 
-namespace raycast {
+namespace raycast_test {
 
-struct stiff_case {
-  std::string name;
-  camera_params cam;
-  raycast::sky sky;
-};
+using stiff_case = scene_case;
 
 // Degenerate sizes, extreme scales, far origins and an HDR sky; every image
 // has at most 400 x 225 pixels (aspect 1:100000 is 3 x 300).
 std::vector<stiff_case> stiff_cases();
 
-}  // namespace raycast
+}  // namespace raycast_test
