@@ -390,6 +390,40 @@ std::vector<usage_case> every_option_cases() {
 INSTANTIATE_TEST_SUITE_P(EveryOption, CliUsageError, ::testing::ValuesIn(every_option_cases()),
                          usage_name);
 
+// Scene files: the file's settings, overridden by the options; errors name the
+// file and the JSON path; a file that cannot be read is a usage error too.
+TEST_F(Cli, SceneFileAndOptionsThatOverrideIt) {
+  raycast_test::write_file(box.work() / "scene.json",
+                           R"({"camera": {"width": 64, "vfov": 200},
+                               "spheres": [{"center": [0, 0, -1], "radius": 0.5}]})");
+  run_result r = box.run({"--scene", "scene.json", "-o", "a.ppm"});
+  EXPECT_EQ(r.exit_code, 2);
+  expect_one_error_line(r, "--scene: scene.json: camera.vfov: ");
+  r = box.run({"--scene", "scene.json", "--vfov", "90", "-w", "32", "-o", "a.ppm"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const raycast_test::ppm p = raycast_test::parse_ppm(raycast_test::read_file(box.work() / "a.ppm"));
+  ASSERT_TRUE(p.error.empty()) << p.error;
+  EXPECT_EQ(p.width, 32);
+  EXPECT_EQ(p.height, 18);
+  r = box.run({"--scene", "scene.json", "--viewport-height", "2", "-o", "b.ppm"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;  // --viewport-height replaces the file's vfov
+}
+
+TEST_F(Cli, SceneFileErrorsNameTheJsonPath) {
+  raycast_test::write_file(box.work() / "bad.json",
+                           R"({"spheres": [{"center": [0, 0, -1], "radius": 1},
+                                           {"center": [0, 0, -1], "radius": 1},
+                                           {"center": [0, 0, -1], "radius": 1},
+                                           {"center": [0, 0, -1], "radius": -1}]})");
+  run_result r = box.run({"--scene", "bad.json", "-w", "16", "-o", "a.ppm"});
+  EXPECT_EQ(r.exit_code, 2);
+  expect_one_error_line(r, "--scene: bad.json: spheres[3].radius: ");
+  r = box.run({"--scene", "missing.json", "-o", "a.ppm"});
+  EXPECT_EQ(r.exit_code, 2);
+  expect_one_error_line(r, "--scene: missing.json: No such file or directory");
+  EXPECT_EQ(box.entries(), std::vector<std::string>{"bad.json"});
+}
+
 // Flags take no value: given twice they mean the same as once.
 TEST_F(Cli, FlagsMayBeRepeated) {
   const run_result r = box.run({"-q", "--quiet", "-o", "sky.ppm"});

@@ -203,7 +203,10 @@ TEST(Golden, GalleryCommandsRenderTheirPictures) {
     const std::string file = line.substr(0, colon);
     std::vector<std::string> args;
     std::istringstream words(line.substr(colon + 1));
-    for (std::string w; words >> w;) args.push_back(w);
+    for (std::string w; words >> w;) {
+      if (w.rfind("{gallery}", 0) == 0) w = RAYCAST_GOLDEN_DIR "/gallery" + w.substr(9);
+      args.push_back(w);
+    }
     args.insert(args.end(), {"-o", "picture.ppm"});
     cli_sandbox box;
     const run_result r = box.run(args);

@@ -1,12 +1,17 @@
 #include "options.h"
 
 #include "scene/builtin.h"
+#include "scene/scene_file.h"
 
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <charconv>
+#include <cstring>
+#include <fstream>
+#include <sstream>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -174,8 +179,10 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
       ->type_name("DEGREES");
   app.add_option("--sky-bottom", bottom_s, "Colour looking straight down [1,1,1]")->type_name("R,G,B");
   app.add_option("--sky-top", top_s, "Colour looking straight up [0.5,0.7,1.0]")->type_name("R,G,B");
-  app.add_option("--scene", scene_s, "Built-in scene: " + builtin_scene_list() + " [sky]")
-      ->type_name("NAME");
+  app.add_option("--scene", scene_s,
+                 "Built-in scene (" + builtin_scene_list() + ") or a .json scene file, whose "
+                 "settings the other options override [sky]")
+      ->type_name("NAME|FILE");
   app.add_option("--format", format_s, "png|ppm|jpg|tif|exr, overrides the extension")
       ->type_name("FMT");
   app.add_option("--backend", backend_s,
@@ -226,6 +233,26 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
   job j;
   scene_params sp;
   camera_params& cp = sp.camera;
+  // A built-in scene, or a scene file whose settings the options below override.
+  std::string scene_file;
+  if (given("--scene")) {
+    if (auto spheres = builtin_spheres(scene_s)) {
+      sp.spheres = std::move(*spheres);
+    } else if (scene_s.size() > 5 && lower(scene_s.substr(scene_s.size() - 5)) == ".json") {
+      std::ifstream in(scene_s, std::ios::binary);
+      std::ostringstream text;
+      if (in) text << in.rdbuf();
+      if (!in || in.bad()) return usage("--scene", scene_s + ": " + std::strerror(errno));
+      auto parsed = parse_scene_file(text.str());
+      if (auto* e = std::get_if<scene_file_error>(&parsed))
+        return usage("--scene", scene_s + ": " + (e->path.empty() ? "" : e->path + ": ") + e->message);
+      sp = std::move(std::get<scene_params>(parsed));
+      scene_file = scene_s;
+    } else {
+      return usage("--scene", in_quotes(scene_s) + " is not one of " + builtin_scene_list() +
+                                  ", or a .json scene file");
+    }
+  }
   if (given("--width"))
     if (auto e = parse_int(width_s, cp.image_width)) return usage("--width", *e);
   if (given("--aspect"))
@@ -235,8 +262,10 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
     if (auto e = parse_int(height_s, h)) return usage("--height", *e);
     cp.image_height = h;
   }
-  if (given("--viewport-height"))
+  if (given("--viewport-height")) {
     if (auto e = parse_real(vh_s, cp.viewport_height)) return usage("--viewport-height", *e);
+    cp.vfov_degrees.reset();  // overrides a scene file's vfov
+  }
   if (given("--focal-length"))
     if (auto e = parse_real(focal_s, cp.focal_length)) return usage("--focal-length", *e);
   if (given("--origin") && given("--lookfrom"))
@@ -254,7 +283,7 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
   }
   if (given("--vup")) {
     if (auto e = parse_triple(vup_s, cp.vup)) return usage("--vup", *e);
-    if (!given("--lookat")) cp.lookat = cp.origin + vec3(0.0, 0.0, -1.0);  // the lesson's view
+    if (!given("--lookat") && !cp.lookat) cp.lookat = cp.origin + vec3(0.0, 0.0, -1.0);  // the lesson's view
   }
   if (given("--vfov")) {
     double f = 0;
@@ -265,17 +294,16 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
     if (auto e = parse_triple(bottom_s, sp.sky.bottom)) return usage("--sky-bottom", *e);
   if (given("--sky-top"))
     if (auto e = parse_triple(top_s, sp.sky.top)) return usage("--sky-top", *e);
-  if (given("--scene")) {
-    auto spheres = builtin_spheres(scene_s);
-    if (!spheres) return usage("--scene", in_quotes(scene_s) + " is not one of " + builtin_scene_list());
-    sp.spheres = std::move(*spheres);
-  }
 
   // The ranges are the scene's to check (scene/scene.h), once; here only the
   // field it blames becomes the option that set it.
   if (auto e = validate(sp)) {
     const std::string_view origin_option = given("--lookfrom") ? "--lookfrom" : "--origin";
-    return usage(option_for(e->field, origin_option), e->message);
+    const std::string_view option = option_for(e->field, origin_option);
+    // A setting the command line did not give came from the scene file.
+    if (!scene_file.empty() && (option == "--scene" || !given(option)))
+      return usage("--scene", scene_file + ": " + path(*e) + ": " + e->message);
+    return usage(option, e->message);
   }
 
   if (!given("--output")) return usage("--output", "is required (a file name, or - for standard output)");
