@@ -15,6 +15,7 @@
 #include "errors.h"
 #include "gbench_flags.h"
 #include "report.h"
+#include "spheres.h"
 
 namespace raycast::bench {
 namespace {
@@ -261,6 +262,10 @@ int run(int argc, char** argv) {
   if (available_cores() > 1) threads.push_back(available_cores());
   register_rows(sizes, threads);
   register_shortcuts_rows(opt.quick ? size2{1920, 1080} : size2{3840, 2160});
+  std::vector<std::pair<int64_t, int64_t>> scene_sizes;
+  for (const size2& sz : sizes)
+    if (sz.w <= 3840) scene_sizes.emplace_back(sz.w, sz.h);  // the reference at 15360x8640 takes minutes
+  register_sphere_rows(scene_sizes, threads);
 
   run_table table;
   run_rows(table);

@@ -70,6 +70,16 @@ std::optional<row_name> parse_row_name(const std::string& name) {
     if (!parse_size(p[3], n.width, n.height) || n.threads < 1) return std::nullopt;
     return n;
   }
+  if (p.size() == 7 && p[0] == "render" && p[5].size() > 1 && p[5][0] == 't') {
+    n.kind = "scene";
+    n.backend = p[1];
+    n.precision = p[2];
+    n.scene = p[3];
+    n.threads = std::atoi(p[5].c_str() + 1);
+    n.out = p[6];
+    if (!parse_size(p[4], n.width, n.height) || n.threads < 1) return std::nullopt;
+    return n;
+  }
   if (p.size() == 7 && p[0] == "shortcuts" && p[4] == "t1") {
     n.kind = p[0];
     n.backend = p[1];
@@ -101,6 +111,14 @@ std::string shortcuts_row_name(const std::string& backend, std::string_view prec
   return strf("shortcuts/%s/%.*s/%lldx%lld/t1/rgb8/%.*s", backend.c_str(), int(precision.size()),
               precision.data(), static_cast<long long>(w), static_cast<long long>(h),
               int(set.size()), set.data());
+}
+
+std::string scene_row_name(const std::string& backend, std::string_view precision,
+                           const std::string& scene, int64_t w, int64_t h, int threads,
+                           std::string_view out) {
+  return strf("render/%s/%.*s/%s/%lldx%lld/t%d/%.*s", backend.c_str(), int(precision.size()),
+              precision.data(), scene.c_str(), static_cast<long long>(w), static_cast<long long>(h),
+              threads, int(out.size()), out.data());
 }
 
 std::string memset_row_name(int64_t w, int64_t h) {
@@ -137,7 +155,10 @@ void run_table::fill(std::vector<Run>& runs) {
   if (!name) return;
   const double px = double(name->width) * double(name->height);
   const std::string ref =
-      render_row_name("reference", "exact", name->width, name->height, name->threads, name->out);
+      name->kind == "scene"
+          ? scene_row_name("reference", "exact", name->scene, name->width, name->height, name->threads,
+                           name->out)
+          : render_row_name("reference", "exact", name->width, name->height, name->threads, name->out);
   const std::string bound = memset_row_name(name->width, name->height);
   for (Run& r : runs) {
     const double sec = run_seconds(r);
@@ -151,7 +172,7 @@ void run_table::fill(std::vector<Run>& runs) {
       if (auto t = seconds(none + key)) r.counters["vs_none"] = *t / sec;
       continue;
     }
-    if (name->kind != "render") continue;
+    if (name->kind != "render" && name->kind != "scene") continue;
     if (name->backend == "reference")
       r.counters["speedup"] = 1.0;
     else if (auto t = seconds(ref + key))

@@ -15,9 +15,11 @@
 namespace raycast::bench {
 
 // A row name split into its parts: render/BACKEND/PRECISION/WxH/tTHREADS/OUT
-// or bound/memset/WxH/rgb8.
+// (the sky), render/BACKEND/PRECISION/SCENE/WxH/tTHREADS/OUT (a scene with
+// spheres; kind "scene") or bound/memset/WxH/rgb8.
 struct row_name {
   std::string kind, backend, precision, out;
+  std::string scene;  // scene rows only
   int64_t width = 0, height = 0;
   int threads = 1;
   std::string shortcuts;  // shortcuts/ rows: which shortcuts the plan may take
@@ -26,6 +28,9 @@ std::optional<row_name> parse_row_name(const std::string& name);
 std::string render_row_name(const std::string& backend, std::string_view precision, int64_t w,
                             int64_t h, int threads, std::string_view out);
 std::string memset_row_name(int64_t w, int64_t h);
+std::string scene_row_name(const std::string& backend, std::string_view precision,
+                           const std::string& scene, int64_t w, int64_t h, int threads,
+                           std::string_view out);
 // shortcuts/BACKEND/PRECISION/WxH/t1/rgb8/SET: the kernel allowed only some of
 // the plan's shortcuts (render_options::shortcuts; none, one, or all).
 std::string shortcuts_row_name(const std::string& backend, std::string_view precision, int64_t w,
