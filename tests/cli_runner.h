@@ -23,6 +23,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -121,7 +122,17 @@ class cli_sandbox {
 
   pid_t start(const std::vector<std::string>& args, const run_options& opts = {}) const {
     const std::string exe = RAYCAST_EXE;
-    std::vector<std::string> argv_s{exe};
+    std::vector<std::string> argv_s;
+#ifdef RAYCAST_EXE_LAUNCHER
+    // A cross build runs raycast through its emulator (qemu-aarch64 -L ...):
+    // RAYCAST_EXE_LAUNCHER is that command line, '|'-separated (tests/CMakeLists.txt).
+    const std::string_view launcher = RAYCAST_EXE_LAUNCHER;
+    for (size_t b = 0, e; b <= launcher.size(); b = e + 1) {
+      e = std::min(launcher.find('|', b), launcher.size());
+      argv_s.emplace_back(launcher.substr(b, e - b));
+    }
+#endif
+    argv_s.push_back(exe);
     argv_s.insert(argv_s.end(), args.begin(), args.end());
     std::vector<char*> argv;
     for (std::string& a : argv_s) argv.push_back(a.data());
