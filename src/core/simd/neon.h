@@ -63,11 +63,12 @@ inline vfloat madd(vfloat a, vfloat b, vfloat c) {  // a b + c
 inline vfloat nmadd(vfloat a, vfloat b, vfloat c) {  // c - a b
   return {vfmsq_f32(c.lo, a.lo, b.lo), vfmsq_f32(c.hi, a.hi, b.hi)};
 }
-// 1/sqrt(x). FRSQRTE alone gives only about 8 bits (relative error up to about
-// 2^-8), too coarse for the kernel's single Newton step to reach fast mode's
-// bound (it would leave ~1.5 * 2^-16). One FRSQRTS step here, r (3 - x r r) / 2,
-// brings it to about 2^-15, better than x86's rsqrtps (1.5 * 2^-12); the
-// kernel's biased Newton step then does the rest, as on x86.
+// 1/sqrt(x). FRSQRTE alone gives about 8 bits (relative error up to 3.3e-3,
+// 2^-8.25, measured over [1, 4) under qemu), too coarse for the kernel's single
+// Newton step: it would leave ~1.5 e^2 = 1.6e-5, beyond fast mode's 3e-6 bound.
+// One FRSQRTS step here, r (3 - x r r) / 2, brings it to 1.6e-5 (2^-15.9),
+// finer than x86's rsqrtps (1.5 * 2^-12); the kernel's biased Newton step then
+// does the rest, as on x86.
 inline float32x4_t rsqrt_est_half(float32x4_t x) {
   const float32x4_t r = vrsqrteq_f32(x);
   return vmulq_f32(r, vrsqrtsq_f32(vmulq_f32(x, r), r));
