@@ -64,6 +64,21 @@ TEST(Dispatch, ABackendTheCpuLacksIsAUsageError) {
   }
 }
 
+// The other architecture's backends are known names, refused with the reason.
+TEST(Dispatch, AnotherArchitecturesBackendIsAUsageError) {
+#if defined(__aarch64__)
+  const std::string other = "avx2", why = "exists only in x86-64 builds";
+#else
+  const std::string other = "neon", why = "exists only in AArch64 builds";
+#endif
+  cli_sandbox box;
+  const run_result r = box.run({"--backend", other, "-o", "x.ppm"});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--backend"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(why), std::string::npos) << r.err;
+  EXPECT_TRUE(box.entries().empty());
+}
+
 // Whatever the CPU, the default (exact) output is the same bytes.
 TEST(Dispatch, EveryCapGivesTheSameImage) {
   cli_sandbox box;
