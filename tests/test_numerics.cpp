@@ -348,7 +348,7 @@ TEST_P(DegenerateSizes, EveryBackendGivesTheScalarRenderersBits) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(SimdBackends, DegenerateSizes, ::testing::ValuesIn(raycast_test::simd_backends),
+INSTANTIATE_TEST_SUITE_P(SimdBackends, DegenerateSizes, ::testing::ValuesIn(simd_backends),
                          raycast_test::backend_name);
 
 TEST(SizeLimits, WidthsAboveTwoToTheTwentyFourAreRefusedWithTheLimit) {

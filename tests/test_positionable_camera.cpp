@@ -133,7 +133,7 @@ TEST_P(TiltedCamera, ExactModeIsBitIdenticalToTheScalarRenderer) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(SimdBackends, TiltedCamera, ::testing::ValuesIn(raycast_test::simd_backends),
+INSTANTIATE_TEST_SUITE_P(SimdBackends, TiltedCamera, ::testing::ValuesIn(simd_backends),
                          raycast_test::backend_name);
 
 TEST(PositionableCamera, WithoutItsOptionsTheCameraIsTheLessons) {
@@ -158,7 +158,8 @@ TEST(PositionableCamera, FarLookfromIsTheSameImageAsNearOrigin) {
   camera_params near = to_params(cameras()[5].cam, 64, 36), far = near;
   near.origin = point3(0, 0, 0);
   near.lookat = point3(0, 1, -1);
-  for (backend b : {backend::scalar, backend::sse2, backend::avx2, backend::avx512}) {
+  for (backend b : {backend::scalar, backend::sse2, backend::avx2, backend::avx512,
+                    backend::neon}) {
     if (backend_unavailable(b)) continue;
     EXPECT_EQ(raycast_test::render_with(renderer(raycast_test::make_scene(near), {b}), pixel_format::rgb_f32).bytes,
               raycast_test::render_with(renderer(raycast_test::make_scene(far), {b}), pixel_format::rgb_f32).bytes)

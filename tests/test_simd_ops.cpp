@@ -194,10 +194,18 @@ std::string isa_name(const ::testing::TestParamInfo<isa>& p) {
   return std::string(to_string(p.param.which));
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryIsa, SimdOps,
-                         ::testing::Values(isa{backend::sse2, &raycast_test::sse2::ops},
-                                           isa{backend::avx2, &raycast_test::avx2::ops},
-                                           isa{backend::avx512, &raycast_test::avx512::ops}),
-                         isa_name);
+// The instruction sets this build compiles for (src/simd/CMakeLists.txt).
+const isa compiled_isas[] = {
+#if RAYCAST_HAVE_X86_KERNELS
+    {backend::sse2, &raycast_test::sse2::ops},
+    {backend::avx2, &raycast_test::avx2::ops},
+    {backend::avx512, &raycast_test::avx512::ops},
+#endif
+#if RAYCAST_HAVE_NEON_KERNELS
+    {backend::neon, &raycast_test::neon::ops},
+#endif
+};
+
+INSTANTIATE_TEST_SUITE_P(EveryIsa, SimdOps, ::testing::ValuesIn(compiled_isas), isa_name);
 
 }  // namespace

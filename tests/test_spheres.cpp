@@ -215,7 +215,7 @@ std::string param_name(const ::testing::TestParamInfo<param>& info) {
 
 std::vector<param> all_params() {
   std::vector<param> v;
-  for (backend b : {backend::sse2, backend::avx2, backend::avx512})
+  for (backend b : {backend::sse2, backend::avx2, backend::avx512, backend::neon})
     for (precision p : {precision::exact, precision::fast})
       for (size_t c = 0; c < sphere_cases().size(); ++c) v.push_back({b, p, c});
   return v;
@@ -426,7 +426,7 @@ TEST(SphereStiffCases, WithinOneLsbAwayFromSilhouettes) {
 
 // And every SIMD backend renders them exactly as the scalar renderer.
 TEST(SphereStiffCases, SimdBitIdenticalToScalar) {
-  for (backend b : {backend::sse2, backend::avx2, backend::avx512}) {
+  for (backend b : {backend::sse2, backend::avx2, backend::avx512, backend::neon}) {
     if (backend_unavailable(b)) continue;
     for (const stiff_sphere_case& c : stiff_sphere_cases()) {
       const scene s = raycast_test::make_scene(c.cam, {}, c.spheres);

@@ -50,6 +50,7 @@ using render_rows_fn = void (*)(const kernel_args& args, const image_band& band,
 namespace sse2 { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
 namespace avx2 { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
 namespace avx512 { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
+namespace neon { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
 
 // Scenes with spheres (kernels/sphere_kernel.inl), the same signature: the
 // plan takes no shortcuts for them (`paired` is ignored) and builds the three
@@ -57,5 +58,6 @@ namespace avx512 { void render_rows(const kernel_args&, const image_band&, int64
 namespace sse2 { void render_sphere_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
 namespace avx2 { void render_sphere_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
 namespace avx512 { void render_sphere_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
+namespace neon { void render_sphere_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
 
 }  // namespace raycast::kernels

@@ -12,6 +12,7 @@ std::string_view to_string(backend b) {
     case backend::sse2: return "sse2";
     case backend::avx2: return "avx2";
     case backend::avx512: return "avx512";
+    case backend::neon: return "neon";
   }
   return "?";
 }
@@ -32,8 +33,8 @@ std::optional<precision> parse_precision(std::string_view name) {
 }
 
 std::optional<std::string> backend_unavailable(backend b) {
-#if RAYCAST_HAVE_X86_KERNELS
   const cpu_features& f = cpu();
+#if RAYCAST_HAVE_X86_KERNELS
   switch (b) {
     case backend::sse2:
       if (!f.sse2) return std::string("this CPU cannot run SSE2");
@@ -50,45 +51,47 @@ std::optional<std::string> backend_unavailable(backend b) {
   if (b == backend::sse2 || b == backend::avx2 || b == backend::avx512)
     return std::string(to_string(b)) + " exists only in x86-64 builds";
 #endif
+#if RAYCAST_HAVE_NEON_KERNELS
+  if (b == backend::neon && !f.neon) return std::string("this CPU cannot run NEON");
+#else
+  if (b == backend::neon) return std::string("neon exists only in AArch64 builds");
+#endif
+  (void)f;
   return std::nullopt;
 }
 
 backend best_backend() {
-  for (backend b : {backend::avx512, backend::avx2, backend::sse2})
+  for (backend b : {backend::avx512, backend::avx2, backend::sse2, backend::neon})
     if (!backend_unavailable(b)) return b;
   return backend::scalar;
 }
 
 kernels::render_rows_fn kernel_for(backend b) {
-#if RAYCAST_HAVE_X86_KERNELS
   switch (b) {
+#if RAYCAST_HAVE_X86_KERNELS
     case backend::sse2: return kernels::sse2::render_rows;
     case backend::avx2: return kernels::avx2::render_rows;
     case backend::avx512: return kernels::avx512::render_rows;
-    default: break;
-  }
-#else
-  (void)b;
 #endif
-  return nullptr;
+#if RAYCAST_HAVE_NEON_KERNELS
+    case backend::neon: return kernels::neon::render_rows;
+#endif
+    default: return nullptr;
+  }
 }
 
-}  // namespace raycast
-
-namespace raycast {
-
 kernels::render_rows_fn sphere_kernel_for(backend b) {
-#if RAYCAST_HAVE_X86_KERNELS
   switch (b) {
+#if RAYCAST_HAVE_X86_KERNELS
     case backend::sse2: return kernels::sse2::render_sphere_rows;
     case backend::avx2: return kernels::avx2::render_sphere_rows;
     case backend::avx512: return kernels::avx512::render_sphere_rows;
-    default: break;
-  }
-#else
-  (void)b;
 #endif
-  return nullptr;
+#if RAYCAST_HAVE_NEON_KERNELS
+    case backend::neon: return kernels::neon::render_sphere_rows;
+#endif
+    default: return nullptr;
+  }
 }
 
 }  // namespace raycast

@@ -39,5 +39,6 @@ struct simd_ops {
 namespace sse2 { extern const simd_ops ops; }
 namespace avx2 { extern const simd_ops ops; }
 namespace avx512 { extern const simd_ops ops; }
+namespace neon { extern const simd_ops ops; }
 
 }  // namespace raycast_test

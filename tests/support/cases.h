@@ -29,11 +29,6 @@ inline raycast::scene make_scene(const raycast::camera_params& p = {}, const ray
 // (error_bounds.h).
 double colour_scale(const raycast::sky& s);
 
-// The SIMD backends, for tests of the kernels alone; a test over them skips
-// with the reason where this CPU cannot run one (GTEST_SKIP, never a NOTE).
-inline constexpr raycast::backend simd_backends[] = {raycast::backend::sse2, raycast::backend::avx2,
-                                                     raycast::backend::avx512};
-
 // A backend at a precision; the reference has only exact.
 struct mode {
   raycast::backend which;
