@@ -12,19 +12,6 @@
 
 namespace raycast::cli {
 
-std::string_view to_string(file_format f) {
-  switch (f) {
-    case file_format::png: return "png";
-    case file_format::ppm: return "ppm";
-    case file_format::jpg: return "jpg";
-    case file_format::tif: return "tif";
-    case file_format::exr: return "exr";
-  }
-  return "?";
-}
-
-bool is_float_format(file_format f) { return f == file_format::exr; }
-
 namespace {
 
 constexpr std::string_view supported_extensions = ".png, .ppm, .pnm, .jpg, .jpeg, .tif, .tiff, .exr";

@@ -1,53 +1,22 @@
-#include "output.h"
+#include "atomic_file.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <atomic>
 #include <cstdlib>
 #include <cerrno>
-#include <csignal>
 #include <cstring>
 #include <vector>
 
-namespace raycast::cli {
+#include "signals.h"
+
+namespace raycast::io {
 namespace {
-
-// The temporary file a signal must remove; one render writes one file.
-char g_pending[4096];
-std::atomic<bool> g_has_pending{false};
-
-extern "C" void on_fatal_signal(int sig) {
-  if (g_has_pending.load()) unlink(g_pending);
-  std::signal(sig, SIG_DFL);
-  raise(sig);
-}
 
 std::string errno_text(int e) { return std::strerror(e); }
 
 }  // namespace
-
-void install_signal_handlers() {
-  struct sigaction sa {};
-  sa.sa_handler = on_fatal_signal;
-  sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
-  sigaction(SIGHUP, &sa, nullptr);
-  std::signal(SIGPIPE, SIG_IGN);
-}
-
-void reserve_standard_streams() noexcept {
-  for (int fd = 0; fd <= 2; ++fd) {
-    if (fcntl(fd, F_GETFD) != -1 || errno != EBADF) continue;
-    const int null_fd = open("/dev/null", O_RDONLY);  // the lowest free number: fd
-    if (null_fd >= 0 && null_fd != fd) {
-      dup2(null_fd, fd);
-      close(null_fd);
-    }
-  }
-}
 
 void write_all(int fd, const void* data, size_t n, const std::string& name) {
   const char* p = static_cast<const char*>(data);
@@ -88,22 +57,19 @@ atomic_file::atomic_file(const std::string& dest) : dest_(dest) {
   const std::string pattern = dir + "." + base + ".XXXXXX";
   std::vector<char> tmpl(pattern.begin(), pattern.end());
   tmpl.push_back('\0');
-  if (tmpl.size() > sizeof g_pending) throw io_error(dest + ": path too long");
-  // Block the handler while the name is registered, so it never sees half of it.
-  sigset_t block, old;
-  sigemptyset(&block);
-  sigaddset(&block, SIGINT);
-  sigaddset(&block, SIGTERM);
-  sigaddset(&block, SIGHUP);
-  sigprocmask(SIG_BLOCK, &block, &old);
-  fd_ = mkstemp(tmpl.data());
-  const int e = errno;
-  if (fd_ >= 0) {
-    temp_ = tmpl.data();
-    std::memcpy(g_pending, tmpl.data(), tmpl.size());
-    g_has_pending.store(true);
+  if (tmpl.size() > pending_path_capacity) throw io_error(dest + ": path too long");
+  // Signals blocked until the name is registered: a signal between mkstemp and
+  // the registration would leave the file behind.
+  int e = 0;
+  {
+    const fatal_signals_blocked blocked;
+    fd_ = mkstemp(tmpl.data());
+    e = errno;
+    if (fd_ >= 0) {
+      temp_ = tmpl.data();
+      register_pending_temporary(tmpl.data());
+    }
   }
-  sigprocmask(SIG_SETMASK, &old, nullptr);
   if (fd_ < 0) throw io_error(dest + ": " + errno_text(e));
   // mkstemp makes 0600. Replacing a file keeps its permissions; a new file gets
   // what the umask allows, as with open().
@@ -127,7 +93,7 @@ void atomic_file::discard() noexcept {
     // Unlink first, then forget: a signal in between unlinks a name that is
     // already gone (harmless); the other order could leave the file behind.
     unlink(temp_.c_str());
-    g_has_pending.store(false);
+    forget_pending_temporary();
     temp_.clear();
   }
 }
@@ -142,8 +108,8 @@ void atomic_file::commit() {
     discard();
     throw io_error(dest_ + ": " + errno_text(e));
   }
-  g_has_pending.store(false);
+  forget_pending_temporary();
   temp_.clear();
 }
 
-}  // namespace raycast::cli
+}  // namespace raycast::io
