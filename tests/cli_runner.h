@@ -119,6 +119,28 @@ class cli_sandbox {
     return dot;
   }
 
+  // The size of the file a running raycast is writing under work(): an
+  // unnamed O_TMPFILE file, seen through /proc/<pid>/fd, or a named temporary
+  // where the file system has no O_TMPFILE. nullopt until there is one.
+  std::optional<uintmax_t> output_in_progress(pid_t pid) const {
+    std::error_code ec;
+    const fs::path fds = fs::path("/proc") / std::to_string(pid) / "fd";
+    for (auto it = fs::directory_iterator(fds, ec); !ec && it != fs::directory_iterator(); it.increment(ec)) {
+      const fs::path target = fs::read_symlink(it->path(), ec);
+      if (ec) {
+        ec.clear();
+        continue;
+      }
+      if (target.parent_path() != work_ && target.string().rfind(work_.string() + "/", 0) != 0) continue;
+      struct stat st {};
+      if (stat(it->path().c_str(), &st) == 0 && S_ISREG(st.st_mode)) return uintmax_t(st.st_size);
+    }
+    const auto dot = leftovers();
+    if (dot.empty()) return std::nullopt;
+    const uintmax_t n = fs::file_size(work_ / dot.front(), ec);
+    return ec ? std::optional<uintmax_t>() : n;
+  }
+
   pid_t start(const std::vector<std::string>& args, const run_options& opts = {}) const {
     const std::string exe = RAYCAST_EXE;
     std::vector<std::string> argv_s{exe};

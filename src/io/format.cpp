@@ -19,4 +19,17 @@ pixel_format pixel_format_for(file_format f) {
   return is_float_format(f) ? pixel_format::rgb_f32 : pixel_format::rgb8;
 }
 
+std::string_view display_name(file_format f) {
+  switch (f) {
+    case file_format::png: return "PNG";
+    case file_format::ppm: return "PPM";
+    case file_format::jpg: return "JPEG";
+    case file_format::tif: return "TIFF";
+    case file_format::exr: return "EXR";
+  }
+  return "?";
+}
+
+bool needs_seekable_file(file_format f) { return f == file_format::tif || f == file_format::exr; }
+
 }  // namespace raycast::io

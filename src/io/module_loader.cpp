@@ -7,6 +7,7 @@
 #include <string>
 
 #include "io_error.h"
+#include "signals.h"
 
 namespace raycast::io {
 namespace {
@@ -25,25 +26,33 @@ const raycast_image_module* load_image_module(const std::string& for_file) {
   static const raycast_image_module* cached = nullptr;
   if (cached) return cached;
   const std::string dir = executable_dir();
-  std::string tried, last_error;
+  // The error to report: that of the first candidate that is there (a
+  // library that cannot be mapped under an address-space limit, say), or
+  // else that of the first candidate ("cannot open shared object file").
+  std::string first_error, first_present_error;
+  const std::string what = for_file + ": cannot load the image module";
   for (const std::string& candidate :
        {dir + "/raycast_oiio.so", dir + "/" RAYCAST_MODULE_RELDIR "/raycast_oiio.so"}) {
-    void* h = dlopen(candidate.c_str(), RTLD_LAZY | RTLD_LOCAL);
-    if (!h) {
-      const char* e = dlerror();
-      last_error = e ? e : candidate;
-      continue;
+    std::string error;
+    {
+      // dlopen runs the static constructors of OpenImageIO's libraries, which
+      // abort or crash when memory or threads run short: one line, exit 1.
+      const crash_means_failure crash(what);
+      if (void* h = dlopen(candidate.c_str(), RTLD_LAZY | RTLD_LOCAL)) {
+        using get_fn = const raycast_image_module* (*)();
+        auto get = reinterpret_cast<get_fn>(dlsym(h, "raycast_image_module_get"));
+        const raycast_image_module* m = get ? get() : nullptr;
+        if (m && m->abi_version == RAYCAST_IMAGE_MODULE_ABI) return cached = m;
+        error = candidate + ": not a raycast image module of this version";
+      } else {
+        const char* e = dlerror();
+        error = e ? e : candidate;
+      }
     }
-    using get_fn = const raycast_image_module* (*)();
-    auto get = reinterpret_cast<get_fn>(dlsym(h, "raycast_image_module_get"));
-    const raycast_image_module* m = get ? get() : nullptr;
-    if (!m || m->abi_version != RAYCAST_IMAGE_MODULE_ABI) {
-      last_error = candidate + ": not a raycast image module of this version";
-      continue;
-    }
-    return cached = m;
+    if (first_error.empty()) first_error = error;
+    if (first_present_error.empty() && access(candidate.c_str(), F_OK) == 0) first_present_error = error;
   }
-  throw io_error(for_file + ": cannot load the image module (" + last_error + ")");
+  throw io_error(what + " (" + (first_present_error.empty() ? first_error : first_present_error) + ")");
 }
 
 }  // namespace raycast::io

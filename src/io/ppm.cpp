@@ -3,13 +3,16 @@
 namespace raycast::io {
 namespace {
 
+std::string ppm_header(int64_t width, int64_t height) {
+  return "P6\n" + std::to_string(width) + " " + std::to_string(height) + "\n255\n";
+}
+
 class ppm_sink final : public image_sink {
  public:
   ppm_sink(int fd, std::string name, int64_t width, int64_t height,
            std::unique_ptr<atomic_file> file)
       : file_(std::move(file)), fd_(fd), name_(std::move(name)), width_(width) {
-    const std::string header =
-        "P6\n" + std::to_string(width) + " " + std::to_string(height) + "\n255\n";
+    const std::string header = ppm_header(width, height);
     write_all(fd_, header.data(), header.size(), name_);
   }
   void write_rows(int64_t y0, int64_t y1, const unsigned char* data, size_t stride) override {
@@ -32,6 +35,10 @@ class ppm_sink final : public image_sink {
 };
 
 }  // namespace
+
+uint64_t ppm_file_size(int64_t width, int64_t height) {
+  return ppm_header(width, height).size() + uint64_t(width) * uint64_t(height) * 3;
+}
 
 std::unique_ptr<image_sink> make_ppm_sink(int fd, std::string name, int64_t width, int64_t height,
                                           std::unique_ptr<atomic_file> file) {

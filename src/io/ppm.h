@@ -8,6 +8,9 @@
 
 namespace raycast::io {
 
+// Header and pixels, in bytes.
+uint64_t ppm_file_size(int64_t width, int64_t height);
+
 // Writes to fd, reporting errors under `name`; commits `file` (when given) at
 // the end. The header is written at once.
 std::unique_ptr<image_sink> make_ppm_sink(int fd, std::string name, int64_t width, int64_t height,
