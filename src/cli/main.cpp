@@ -11,10 +11,12 @@
 #include <string>
 #include <string_view>
 
+#include "cpu.h"
 #include "image_sink.h"
 #include "options.h"
 #include "render.h"
 #include "signals.h"
+#include "timestamp.h"
 
 namespace {
 
@@ -103,6 +105,16 @@ int main(int argc, char** argv) {
   if (!parsed.run) {
     if (parsed.exit_code == 0 && !standard_output_flushed()) return 1;
     return parsed.exit_code;
+  }
+  // The environment is part of the command: a malformed value is refused
+  // like a malformed option, before anything is touched.
+  if (auto why = max_isa_error()) {
+    print_error("RAYCAST_MAX_ISA: " + *why);
+    return 2;
+  }
+  if (auto why = io::source_date_epoch().error) {
+    print_error("SOURCE_DATE_EPOCH: " + *why);
+    return 2;
   }
   try {
     return run(*parsed.run);

@@ -295,6 +295,14 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
   }
   j.quiet = quiet;
   j.sc.cam = make_camera(cp);
+  if (const int64_t side = io::max_side(j.format); side > 0) {
+    const std::string limit = std::string(io::display_name(j.format)) + " supports at most " +
+                              std::to_string(side) + " pixels per side, got ";
+    if (j.sc.cam.image_width > side) return usage("--width", limit + std::to_string(j.sc.cam.image_width));
+    if (j.sc.cam.image_height > side)
+      return usage(cp.image_height ? "--height" : "--aspect",
+                   limit + (cp.image_height ? "" : "a height of ") + std::to_string(j.sc.cam.image_height));
+  }
   return {std::move(j), 0};
 }
 

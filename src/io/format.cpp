@@ -30,6 +30,14 @@ std::string_view display_name(file_format f) {
   return "?";
 }
 
+int64_t max_side(file_format f) {
+  switch (f) {
+    case file_format::jpg: return 65500;
+    case file_format::png: return 1000000;
+    default: return 0;
+  }
+}
+
 bool needs_seekable_file(file_format f) { return f == file_format::tif || f == file_format::exr; }
 
 }  // namespace raycast::io

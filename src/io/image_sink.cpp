@@ -10,6 +10,7 @@
 #include "module_loader.h"
 #include "ppm.h"
 #include "signals.h"
+#include "timestamp.h"
 
 namespace raycast::io {
 namespace {
@@ -21,21 +22,37 @@ class module_sink final : public image_sink {
               std::unique_ptr<atomic_file> file)
       : file_(std::move(file)), module_(module) {
     char err[512] = "";
-    writer_ = module_->open(file_->fd(), std::string(to_string(format)).c_str(), width, height,
-                            is_float_format(format) ? 1 : 0, err, sizeof err);
+    const source_date date = source_date_epoch();
+    {
+      const library_output_silenced quiet;
+      writer_ = module_->open(file_->fd(), std::string(to_string(format)).c_str(), width, height,
+                              is_float_format(format) ? 1 : 0, date.seconds.value_or(-1), err,
+                              sizeof err);
+    }
     if (!writer_) throw io_error(file_->dest() + ": " + err);
   }
   ~module_sink() override {
-    if (writer_) module_->abandon(writer_);  // finish() was not reached: a failure
+    if (writer_) {  // finish() was not reached: a failure
+      const library_output_silenced quiet;
+      module_->abandon(writer_);
+    }
   }
   void write_rows(int64_t y0, int64_t y1, const unsigned char* data, size_t stride) override {
     char err[512] = "";
-    if (module_->write_rows(writer_, y0, y1, data, stride, err, sizeof err) != 0)
-      throw io_error(file_->dest() + ": " + err);
+    int rc = 0;
+    {
+      const library_output_silenced quiet;
+      rc = module_->write_rows(writer_, y0, y1, data, stride, err, sizeof err);
+    }
+    if (rc != 0) throw io_error(file_->dest() + ": " + err);
   }
   void finish() override {
     char err[512] = "";
-    const int rc = module_->close(writer_, err, sizeof err);
+    int rc = 0;
+    {
+      const library_output_silenced quiet;
+      rc = module_->close(writer_, err, sizeof err);
+    }
     writer_ = nullptr;
     if (rc != 0) throw io_error(file_->dest() + ": " + err);
     file_->commit();

@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -193,7 +194,7 @@ void abandon_writer(raycast_image_writer* w) {
 }
 
 raycast_image_writer* open_writer(int fd, const char* format, int64_t width, int64_t height,
-                                  int is_float, char* err, size_t errlen) {
+                                  int is_float, int64_t timestamp, char* err, size_t errlen) {
   const char* name = oiio_format_name(format ? format : "");
   if (!name) {
     set_err(err, errlen, std::string("unsupported format ") + (format ? format : "(null)"));
@@ -213,6 +214,18 @@ raycast_image_writer* open_writer(int fd, const char* format, int64_t width, int
   // We carry no EXIF data, and OpenImageIO 2.4's TIFF writer fails to write
   // its (empty) EXIF directory through an I/O proxy.
   spec.attribute("tiff:write_exif", 0);
+  // Classic TIFF's offsets are 32-bit: past 4 GiB (with room for the
+  // directories), BigTIFF.
+  if (uint64_t(width) * uint64_t(height) * 3 * w->type.size() > (uint64_t{15} << 28))
+    spec.attribute("tiff:bigtiff", 1);
+  if (timestamp >= 0) {
+    // What OpenImageIO would otherwise fill in with the current time.
+    const time_t t = time_t(timestamp);
+    struct tm tm {};
+    char date[32];
+    if (gmtime_r(&t, &tm) && std::strftime(date, sizeof date, "%Y:%m:%d %H:%M:%S", &tm) > 0)
+      spec.attribute("DateTime", date);
+  }
   if (!w->out->set_ioproxy(w->proxy.get())) {
     set_err(err, errlen, std::string(name) + " writer cannot write through an I/O proxy");
     return nullptr;

@@ -29,6 +29,10 @@ constexpr int crashes[] = {SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGABRT, SIGSYS, SIG
 
 struct sigaction g_previous[NSIG];
 
+// Where reports go: standard error, or its saved copy while the libraries'
+// output is silenced.
+std::atomic<int> g_report_fd{STDERR_FILENO};
+
 void remove_pending() noexcept {
   if (g_has_pending.load()) unlink(g_pending);
 }
@@ -36,7 +40,7 @@ void remove_pending() noexcept {
 void write_stderr(const char* s) noexcept {
   size_t n = std::strlen(s);
   while (n > 0) {
-    const ssize_t w = write(STDERR_FILENO, s, n);
+    const ssize_t w = write(g_report_fd.load(), s, n);
     if (w < 0 && errno == EINTR) continue;
     if (w <= 0) return;
     s += w;
@@ -207,5 +211,25 @@ crash_means_failure::crash_means_failure(const std::string& what) noexcept {
 }
 
 crash_means_failure::~crash_means_failure() { g_crash_armed.store(false); }
+
+library_output_silenced::library_output_silenced() noexcept {
+  std::fflush(stderr);
+  saved_ = fcntl(STDERR_FILENO, F_DUPFD_CLOEXEC, 3);
+  const int null_fd = open("/dev/null", O_WRONLY | O_CLOEXEC);
+  if (saved_ >= 0 && null_fd >= 0) {
+    g_report_fd.store(saved_);
+    dup2(null_fd, STDERR_FILENO);
+  }
+  if (null_fd >= 0) close(null_fd);
+}
+
+library_output_silenced::~library_output_silenced() {
+  std::fflush(stderr);
+  if (saved_ >= 0) {
+    dup2(saved_, STDERR_FILENO);
+    g_report_fd.store(STDERR_FILENO);
+    close(saved_);
+  }
+}
 
 }  // namespace raycast::io

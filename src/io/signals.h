@@ -64,4 +64,20 @@ class crash_means_failure {
   crash_means_failure& operator=(const crash_means_failure&) = delete;
 };
 
+// While alive, standard error is /dev/null: around every call into the image
+// module, whose libraries print lines of their own ("libpng error: ...",
+// libtiff warnings). A failure comes back as an error string, which raycast
+// reports once. The crash and terminate reports above still reach the real
+// standard error.
+class library_output_silenced {
+ public:
+  library_output_silenced() noexcept;
+  ~library_output_silenced();
+  library_output_silenced(const library_output_silenced&) = delete;
+  library_output_silenced& operator=(const library_output_silenced&) = delete;
+
+ private:
+  int saved_ = -1;
+};
+
 }  // namespace raycast::io
