@@ -111,7 +111,7 @@ extern "C" void on_crash(int sig, siginfo_t* info, void*) {
 
 void on_terminate() {
   remove_pending();
-  const char* cause = "uncaught exception";
+  const char* cause = "std::terminate called";
   if (std::exception_ptr e = std::current_exception()) {
     try {
       std::rethrow_exception(e);
