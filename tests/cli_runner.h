@@ -97,10 +97,22 @@ class cli_sandbox {
   cli_sandbox(const cli_sandbox&) = delete;
   cli_sandbox& operator=(const cli_sandbox&) = delete;
 
-  // Lets other users reach work() (for run_options::run_as).
-  void open_to_others() const {
-    fs::permissions(root_, fs::perms::all & ~fs::perms::others_write & ~fs::perms::group_write);
-    fs::permissions(work_, fs::perms::all & ~fs::perms::others_write & ~fs::perms::group_write);
+  // Lets other users reach work() and run raycast (for run_options::run_as).
+  // The build tree may sit where they cannot go (a clone under a 0700 /root,
+  // as on a fresh machine), so they run a copy of the executable and of the
+  // image module it loads from beside itself.
+  void open_to_others() {
+    const fs::perms open = fs::perms::all & ~fs::perms::others_write & ~fs::perms::group_write;
+    fs::permissions(root_, open);
+    fs::permissions(work_, open);
+    const fs::path exe = RAYCAST_EXE, bin = root_ / "bin";
+    fs::create_directory(bin);
+    fs::permissions(bin, open);
+    for (const fs::path& name : {exe.filename(), fs::path("raycast_oiio.so")}) {
+      fs::copy_file(exe.parent_path() / name, bin / name, fs::copy_options::overwrite_existing);
+      fs::permissions(bin / name, open);
+    }
+    shared_exe_ = (bin / exe.filename()).string();
   }
 
   // The directory the CLI runs in and writes to; empty at the start.
@@ -149,7 +161,7 @@ class cli_sandbox {
   }
 
   pid_t start(const std::vector<std::string>& args, const run_options& opts = {}) const {
-    const std::string exe = RAYCAST_EXE;
+    const std::string exe = opts.run_as && !shared_exe_.empty() ? shared_exe_ : RAYCAST_EXE;
     std::vector<std::string> argv_s{exe};
     argv_s.insert(argv_s.end(), args.begin(), args.end());
     std::vector<char*> argv;
@@ -229,6 +241,7 @@ class cli_sandbox {
   std::string err_path() const { return (root_ / "stderr").string(); }
 
   fs::path root_, work_;
+  std::string shared_exe_;  // set by open_to_others()
 };
 
 // A binary PPM (P6) parsed strictly: magic, width, height, maxval, one
