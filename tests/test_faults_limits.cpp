@@ -86,7 +86,7 @@ bool sanitized() {
 }
 
 // Root, and a `nobody` that can reach the sandbox; otherwise the reason.
-std::string cannot_run_as_nobody(const cli_sandbox& box) {
+std::string cannot_run_as_nobody(cli_sandbox& box) {
   if (geteuid() != 0) return "needs root to run a child as nobody; this is uid " + std::to_string(geteuid());
   box.open_to_others();
   return "";
