@@ -15,6 +15,11 @@
 namespace raycast::io {
 namespace {
 
+// As gzip: binary data on a terminal is noise for the person and can set its
+// modes; the progress line would be mixed into it.
+constexpr const char* terminal_refusal =
+    "is a terminal; not writing binary image data to it (redirect it to a file or a pipe)";
+
 // PNG, JPEG, TIFF, EXR: encoded by the image module into the atomic file.
 class module_sink final : public image_sink {
  public:
@@ -68,11 +73,7 @@ class module_sink final : public image_sink {
 
 std::unique_ptr<image_sink> open_stdout_sink(int64_t width, int64_t height) {
   set_failure_subject("standard output");
-  // As gzip: binary data on a terminal is noise for the person and can set
-  // its modes; the progress line would be mixed into it.
-  if (isatty(STDOUT_FILENO))
-    throw io_error("standard output: is a terminal; not writing binary image data to it "
-                   "(redirect it to a file or a pipe)");
+  if (isatty(STDOUT_FILENO)) throw io_error(std::string("standard output: ") + terminal_refusal);
   return make_ppm_sink(STDOUT_FILENO, "standard output", width, height, nullptr);
 }
 
@@ -96,6 +97,7 @@ std::unique_ptr<image_sink> open_file_sink(const std::string& path, file_format 
   std::optional<uint64_t> known_size;
   if (format == file_format::ppm) known_size = ppm_file_size(width, height);
   auto file = std::make_unique<atomic_file>(path, known_size);
+  if (file->in_place() && isatty(file->fd())) throw io_error(path + ": " + terminal_refusal);
   if (file->in_place() && needs_seekable_file(format) && lseek(file->fd(), 0, SEEK_CUR) < 0)
     throw io_error(seek_error);
   if (format == file_format::ppm) {

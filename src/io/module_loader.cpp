@@ -3,8 +3,16 @@
 #include <dlfcn.h>
 #include <unistd.h>
 
+#include <pthread.h>
+
+#include <chrono>
 #include <climits>
+#include <condition_variable>
+#include <csignal>
+#include <mutex>
 #include <string>
+#include <system_error>
+#include <thread>
 
 #include "io_error.h"
 #include "signals.h"
@@ -19,6 +27,51 @@ std::string executable_dir() {
   std::string path(buf, size_t(n));
   return path.substr(0, path.find_last_of('/'));
 }
+
+// While the image module loads: a thread that keeps the process killable and
+// bounds the wait. Under an address-space limit, log4cplus (pulled in by
+// OpenImageIO's DICOM support) fails to start the third thread of its pool in
+// a static constructor and deadlocks destroying the pool, in threads that
+// block every signal: SIGINT and SIGTERM would have no thread to go to. This
+// one takes them (the handler then ends the process as usual), and reports
+// the load as failed if it has not finished in load_timeout.
+class load_watchdog {
+ public:
+  static constexpr auto load_timeout = std::chrono::seconds(30);
+
+  load_watchdog() {
+    try {
+      thread_ = std::thread([this] {
+        sigset_t all;
+        sigfillset(&all);
+        pthread_sigmask(SIG_UNBLOCK, &all, nullptr);
+        std::unique_lock<std::mutex> lock(m_);
+        if (!done_cv_.wait_for(lock, load_timeout, [this] { return done_; }))
+          crash_means_failure::fail("its libraries did not finish starting in 30 s");
+      });
+    } catch (const std::system_error&) {
+      // No thread to spare: load without a watchdog. (The libraries that
+      // start threads then fail to, which crash_means_failure reports.)
+    }
+  }
+  ~load_watchdog() {
+    if (!thread_.joinable()) return;
+    {
+      const std::lock_guard<std::mutex> lock(m_);
+      done_ = true;
+    }
+    done_cv_.notify_one();
+    thread_.join();
+  }
+  load_watchdog(const load_watchdog&) = delete;
+  load_watchdog& operator=(const load_watchdog&) = delete;
+
+ private:
+  std::mutex m_;
+  std::condition_variable done_cv_;
+  bool done_ = false;
+  std::thread thread_;
+};
 
 }  // namespace
 
@@ -38,6 +91,7 @@ const raycast_image_module* load_image_module(const std::string& for_file) {
       // dlopen runs the static constructors of OpenImageIO's libraries, which
       // abort or crash when memory or threads run short: one line, exit 1.
       const crash_means_failure crash(what);
+      const load_watchdog watchdog;
       if (void* h = dlopen(candidate.c_str(), RTLD_LAZY | RTLD_LOCAL)) {
         using get_fn = const raycast_image_module* (*)();
         auto get = reinterpret_cast<get_fn>(dlsym(h, "raycast_image_module_get"));

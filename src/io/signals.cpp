@@ -212,6 +212,11 @@ crash_means_failure::crash_means_failure(const std::string& what) noexcept {
 
 crash_means_failure::~crash_means_failure() { g_crash_armed.store(false); }
 
+void crash_means_failure::fail(const char* cause) noexcept {
+  remove_pending();
+  report_crash(cause);
+}
+
 library_output_silenced::library_output_silenced() noexcept {
   std::fflush(stderr);
   saved_ = fcntl(STDERR_FILENO, F_DUPFD_CLOEXEC, 3);

@@ -62,6 +62,9 @@ class crash_means_failure {
   ~crash_means_failure();
   crash_means_failure(const crash_means_failure&) = delete;
   crash_means_failure& operator=(const crash_means_failure&) = delete;
+
+  // Reports the failure now, with `cause`, and exits 1 (from any thread).
+  [[noreturn]] static void fail(const char* cause) noexcept;
 };
 
 // While alive, standard error is /dev/null: around every call into the image
