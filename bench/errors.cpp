@@ -23,7 +23,7 @@ std::vector<path> available_paths() {
   add_core(backend::reference);
   add_core(backend::scalar);
   paths.push_back({"autovec", backend::reference, precision::exact, true});
-  for (backend b : {backend::sse2, backend::avx2, backend::avx512}) add_core(b);
+  for (backend b : simd_backends) add_core(b);
   return paths;
 }
 

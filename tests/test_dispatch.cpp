@@ -21,17 +21,25 @@ run_options capped(const std::string& isa) {
   return o;
 }
 
+// The caps this architecture knows, lowest first.
+#if defined(__aarch64__)
+const std::vector<std::string> caps = {"scalar", "neon"};
+#else
+const std::vector<std::string> caps = {"scalar", "sse2", "avx2", "avx512"};
+#endif
+
 // What auto may pick on this machine under each cap: the best available.
 std::string expected_auto(const std::string& cap) {
   const raycast::cpu_features& f = raycast::cpu();  // this process is not capped
   if (cap == "scalar") return "scalar";
+  if (f.neon) return "neon";  // AArch64: any cap above scalar leaves NEON
   if (cap == "sse2") return f.sse2 ? "sse2" : "scalar";
   if (cap == "avx2") return f.avx2_fma ? "avx2" : f.sse2 ? "sse2" : "scalar";
   return f.avx512 ? "avx512" : f.avx2_fma ? "avx2" : f.sse2 ? "sse2" : "scalar";
 }
 
 TEST(Dispatch, AutoPicksTheBestBackendTheCappedCpuRuns) {
-  for (const std::string cap : {"scalar", "sse2", "avx2", "avx512"}) {
+  for (const std::string& cap : caps) {
     cli_sandbox box;
     const run_result r = box.run({"--version"}, capped(cap));
     ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -41,8 +49,12 @@ TEST(Dispatch, AutoPicksTheBestBackendTheCappedCpuRuns) {
 }
 
 TEST(Dispatch, ABackendTheCpuLacksIsAUsageError) {
+#if defined(__aarch64__)
+  for (auto [cap, backend] : {std::pair<std::string, std::string>{"scalar", "neon"}}) {
+#else
   for (auto [cap, backend] : {std::pair<std::string, std::string>{"avx2", "avx512"},
                               {"sse2", "avx2"}, {"scalar", "sse2"}}) {
+#endif
     cli_sandbox box;
     const run_result r = box.run({"--backend", backend, "-o", "x.png"}, capped(cap));
     EXPECT_EQ(r.exit_code, 2) << cap << " " << backend << ": " << r.err;
@@ -52,11 +64,26 @@ TEST(Dispatch, ABackendTheCpuLacksIsAUsageError) {
   }
 }
 
+// The other architecture's backends are known names, refused with the reason.
+TEST(Dispatch, AnotherArchitecturesBackendIsAUsageError) {
+#if defined(__aarch64__)
+  const std::string other = "avx2", why = "exists only in x86-64 builds";
+#else
+  const std::string other = "neon", why = "exists only in AArch64 builds";
+#endif
+  cli_sandbox box;
+  const run_result r = box.run({"--backend", other, "-o", "x.ppm"});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--backend"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(why), std::string::npos) << r.err;
+  EXPECT_TRUE(box.entries().empty());
+}
+
 // Whatever the CPU, the default (exact) output is the same bytes.
 TEST(Dispatch, EveryCapGivesTheSameImage) {
   cli_sandbox box;
   std::string first;
-  for (const std::string cap : {"scalar", "sse2", "avx2", "avx512"}) {
+  for (const std::string& cap : caps) {
     ASSERT_EQ(box.run({"-w", "203", "-o", cap + ".ppm"}, capped(cap)).exit_code, 0) << cap;
     const std::string bytes = raycast_test::read_file(box.work() / (cap + ".ppm"));
     if (first.empty()) first = bytes;

@@ -91,7 +91,8 @@ std::string param_name(const ::testing::TestParamInfo<param>& info) {
 
 std::vector<param> all_params() {
   std::vector<param> v;
-  for (backend b : {backend::scalar, backend::sse2, backend::avx2, backend::avx512})
+  for (backend b : {backend::scalar, backend::sse2, backend::avx2, backend::avx512,
+                    backend::neon})
     for (precision p : {precision::exact, precision::fast})
       for (size_t c = 0; c < cameras().size(); ++c) v.push_back({b, p, c});
   return v;
@@ -175,7 +176,7 @@ TEST_P(ThreadEquivalence, AnyThreadCountGivesTheSameBytes) {
 
 INSTANTIATE_TEST_SUITE_P(AllBackends, ThreadEquivalence,
                          ::testing::Values(backend::scalar, backend::sse2, backend::avx2,
-                                           backend::avx512),
+                                           backend::avx512, backend::neon),
                          [](const ::testing::TestParamInfo<backend>& i) {
                            return std::string(to_string(i.param));
                          });
@@ -208,7 +209,7 @@ TEST_P(Tails, NoByteOutsideTheRowIsWritten) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllBackends, Tails,
-                         ::testing::Values(backend::sse2, backend::avx2, backend::avx512),
+                         ::testing::ValuesIn(simd_backends),
                          [](const ::testing::TestParamInfo<backend>& i) {
                            return std::string(to_string(i.param));
                          });

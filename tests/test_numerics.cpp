@@ -351,7 +351,7 @@ INSTANTIATE_TEST_SUITE_P(AllBackends, Numerics, ::testing::ValuesIn(all_modes())
 // All backends agree with each other on the degenerate sizes too: in exact
 // mode, the same bits as the scalar float renderer.
 TEST(DegenerateSizes, EveryBackendGivesTheScalarRenderersBits) {
-  for (backend b : {backend::sse2, backend::avx2, backend::avx512}) {
+  for (backend b : simd_backends) {
     if (auto why = backend_unavailable(b)) {
       std::cout << "[ NOTE ] " << to_string(b) << " not checked: " << *why << "\n";
       continue;

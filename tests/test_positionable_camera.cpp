@@ -119,7 +119,8 @@ TEST_P(PositionableCamera, MatchesTheBooksCameraComputedIndependently) {
 
 std::vector<mode> all_modes() {
   std::vector<mode> v{{backend::reference, precision::exact}};
-  for (backend b : {backend::scalar, backend::sse2, backend::avx2, backend::avx512})
+  for (backend b : {backend::scalar, backend::sse2, backend::avx2, backend::avx512,
+                    backend::neon})
     for (precision p : {precision::exact, precision::fast}) v.push_back({b, p});
   return v;
 }
@@ -133,7 +134,7 @@ INSTANTIATE_TEST_SUITE_P(AllBackends, PositionableCamera, ::testing::ValuesIn(al
 // In exact mode a tilted camera runs the general kernel path on every SIMD
 // backend and still gives the scalar float renderer's bits.
 TEST(PositionableCamera, ExactModeIsBitIdenticalToTheScalarRenderer) {
-  for (backend b : {backend::sse2, backend::avx2, backend::avx512}) {
+  for (backend b : simd_backends) {
     if (auto why = backend_unavailable(b)) {
       std::cout << "[ NOTE ] " << to_string(b) << " not checked: " << *why << "\n";
       continue;
@@ -170,7 +171,8 @@ TEST(PositionableCamera, FarLookfromIsTheSameImageAsNearOrigin) {
   camera_params near = to_params(cameras()[5].cam, 64, 36), far = near;
   near.origin = point3(0, 0, 0);
   near.lookat = point3(0, 1, -1);
-  for (backend b : {backend::scalar, backend::sse2, backend::avx2, backend::avx512}) {
+  for (backend b : {backend::scalar, backend::sse2, backend::avx2, backend::avx512,
+                    backend::neon}) {
     if (backend_unavailable(b)) continue;
     EXPECT_EQ(raycast_test::render_with(renderer(raycast_test::make_scene(near), {b}), pixel_format::rgb_f32).bytes,
               raycast_test::render_with(renderer(raycast_test::make_scene(far), {b}), pixel_format::rgb_f32).bytes)

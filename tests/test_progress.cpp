@@ -16,13 +16,15 @@ namespace {
 // Runs raycast with all three standard streams on a new pseudo-terminal and
 // returns what it wrote there, and its exit code.
 std::pair<std::string, int> run_on_pty(std::vector<std::string> args) {
+  std::vector<std::string> cmd = raycast_test::command_for(RAYCAST_EXE);
+  cmd.insert(cmd.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& a : cmd) argv.push_back(a.data());
+  argv.push_back(nullptr);
   int master = -1;
   const pid_t pid = forkpty(&master, nullptr, nullptr, nullptr);
   if (pid == 0) {
-    std::vector<char*> argv{const_cast<char*>(RAYCAST_EXE)};
-    for (std::string& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    execv(RAYCAST_EXE, argv.data());
+    execv(argv[0], argv.data());
     _exit(127);
   }
   std::string out;

@@ -141,7 +141,7 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
   app.add_option("--format", format_s, "png|ppm|jpg|tif|exr, overrides the extension")
       ->type_name("FMT");
   app.add_option("--backend", backend_s,
-                 "auto|reference|scalar|sse2|avx2|avx512 [auto: the best this CPU runs]")
+                 "auto|reference|scalar|sse2|avx2|avx512|neon [auto: the best this CPU runs]")
       ->type_name("NAME");
   app.add_option("--precision", precision_s,
                  std::string("exact|fast [") + std::string(to_string(default_precision)) + "]")
@@ -278,7 +278,7 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
 
   if (given("--backend")) {
     auto b = parse_backend(backend_s);
-    if (!b) return usage("--backend", in_quotes(backend_s) + " is not one of auto, reference, scalar, sse2, avx2, avx512");
+    if (!b) return usage("--backend", in_quotes(backend_s) + " is not one of auto, reference, scalar, sse2, avx2, avx512, neon");
     if (auto why = backend_unavailable(*b)) return usage("--backend", *why);
     j.render.which = *b;
   }

@@ -6,6 +6,9 @@
 #if defined(__x86_64__) || defined(__i386__)
 #include <cpuid.h>
 #include <cstdint>
+#elif defined(__aarch64__)
+#include <asm/hwcap.h>
+#include <sys/auxv.h>
 #endif
 
 namespace raycast {
@@ -35,11 +38,19 @@ cpu_features detect() {
   f.avx512 = f.avx2_fma && os_zmm && avx512f && avx512bw && avx512vl;
   return f;
 }
+#elif defined(__aarch64__)
+// Advanced SIMD is part of every AArch64 CPU the Linux kernel runs on; ask the
+// kernel's HWCAP anyway, so this stays the only place that decides.
+cpu_features detect() {
+  cpu_features f;
+  f.neon = (getauxval(AT_HWCAP) & HWCAP_ASIMD) != 0;
+  return f;
+}
 #else
 cpu_features detect() { return {}; }
 #endif
 
-// RAYCAST_MAX_ISA=sse2|avx2|avx512|scalar caps what this process believes the
+// RAYCAST_MAX_ISA=sse2|avx2|avx512|neon|scalar caps what this process believes the
 // CPU has, so the dispatch and the refusal of unsupported backends can be
 // exercised as on an older CPU (tests, and users comparing paths).
 cpu_features capped(cpu_features f) {
@@ -58,8 +69,8 @@ std::optional<std::string> max_isa_error() {
   const char* cap = std::getenv("RAYCAST_MAX_ISA");
   if (!cap || !*cap) return std::nullopt;
   const std::string c = cap;
-  if (c == "scalar" || c == "sse2" || c == "avx2" || c == "avx512") return std::nullopt;
-  return "'" + c + "' is not one of scalar, sse2, avx2, avx512";
+  if (c == "scalar" || c == "sse2" || c == "avx2" || c == "avx512" || c == "neon") return std::nullopt;
+  return "'" + c + "' is not one of scalar, sse2, avx2, avx512, neon";
 }
 
 const cpu_features& cpu() {

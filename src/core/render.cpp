@@ -24,6 +24,7 @@ std::string_view to_string(backend b) {
     case backend::sse2: return "sse2";
     case backend::avx2: return "avx2";
     case backend::avx512: return "avx512";
+    case backend::neon: return "neon";
   }
   return "?";
 }
@@ -44,8 +45,8 @@ std::optional<precision> parse_precision(std::string_view name) {
 }
 
 std::optional<std::string> backend_unavailable(backend b) {
-#if RAYCAST_HAVE_X86_KERNELS
   const cpu_features& f = cpu();
+#if RAYCAST_HAVE_X86_KERNELS
   switch (b) {
     case backend::sse2:
       if (!f.sse2) return std::string("this CPU cannot run SSE2");
@@ -62,11 +63,17 @@ std::optional<std::string> backend_unavailable(backend b) {
   if (b == backend::sse2 || b == backend::avx2 || b == backend::avx512)
     return std::string(to_string(b)) + " exists only in x86-64 builds";
 #endif
+#if RAYCAST_HAVE_NEON_KERNELS
+  if (b == backend::neon && !f.neon) return std::string("this CPU cannot run NEON");
+#else
+  if (b == backend::neon) return std::string("neon exists only in AArch64 builds");
+#endif
+  (void)f;
   return std::nullopt;
 }
 
 backend best_backend() {
-  for (backend b : {backend::avx512, backend::avx2, backend::sse2})
+  for (backend b : {backend::avx512, backend::avx2, backend::sse2, backend::neon})
     if (!backend_unavailable(b)) return b;
   return backend::scalar;
 }
@@ -152,16 +159,17 @@ renderer::renderer(const scene& s, const render_options& opts)
       prec_(opts.prec),
       threads_(opts.threads > 0 ? opts.threads : available_cores()) {
   if (auto why = backend_unavailable(which_)) throw unsupported_backend(*why);
-#if RAYCAST_HAVE_X86_KERNELS
   switch (which_) {
+#if RAYCAST_HAVE_X86_KERNELS
     case backend::sse2: kernel_ = kernels::sse2::render_rows; break;
     case backend::avx2: kernel_ = kernels::avx2::render_rows; break;
     case backend::avx512: kernel_ = kernels::avx512::render_rows; break;
+#endif
+#if RAYCAST_HAVE_NEON_KERNELS
+    case backend::neon: kernel_ = kernels::neon::render_rows; break;
+#endif
     default: return;  // reference and scalar need no tables
   }
-#else
-  return;
-#endif
   const float_scene& f = fscene_;
   args_.scene = &fscene_;
   args_.prec = prec_;

@@ -23,11 +23,17 @@ enum class backend : uint8_t {
   sse2,       // 8 pixels a batch as two 4-lane halves; any x86-64
   avx2,       // 8 pixels a batch; AVX2 + FMA
   avx512,     // 16 pixels a batch; AVX-512 F + BW + VL
+  neon,       // 8 pixels a batch as two 4-lane halves; any AArch64
 };
 
-// Every backend, best last.
+// Every backend, x86's best last, then AArch64's. A build has the SIMD
+// backends of its own architecture only; backend_unavailable says why not.
 inline constexpr backend all_backends[] = {backend::reference, backend::scalar, backend::sse2,
-                                           backend::avx2, backend::avx512};
+                                           backend::avx2, backend::avx512, backend::neon};
+// The vector backends, each tested against the scalar renderer (or skipped
+// with the reason where this machine cannot run it).
+inline constexpr backend simd_backends[] = {backend::sse2, backend::avx2, backend::avx512,
+                                            backend::neon};
 
 std::string_view to_string(backend b);
 std::string_view to_string(precision p);

@@ -42,5 +42,6 @@ using render_rows_fn = void (*)(const kernel_args& args, const image_band& band,
 namespace sse2 { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
 namespace avx2 { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
 namespace avx512 { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
+namespace neon { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
 
 }  // namespace raycast::kernels

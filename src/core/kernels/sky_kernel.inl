@@ -1,6 +1,7 @@
 // The sky kernel, written once against the width-generic vector layer and
-// compiled per instruction set (sky_sse2.cpp, sky_avx2.cpp, sky_avx512.cpp each
-// define RAYCAST_ISA and include their simd/ header first).
+// compiled per instruction set (sky_sse2.cpp, sky_avx2.cpp, sky_avx512.cpp and,
+// on AArch64, sky_neon.cpp each define RAYCAST_ISA and include their simd/
+// header first).
 //
 // One batch is vfloat::size pixels of a row (8, or 16 with AVX-512), a
 // structure of arrays in registers: the rays (ray_batch), then t, then the
