@@ -352,13 +352,13 @@ TEST(ReadOnlyDestination, RefusedForItsOwner) {
     fs::permissions(box.work(), fs::perms::all);  // nobody may create files here
     opts.run_as = std::pair<uid_t, gid_t>{nobody, nogroup};
   }
-  write_file(box.work() / "sky.png", precious);
-  ASSERT_EQ(chown((box.work() / "sky.png").c_str(), geteuid() == 0 ? nobody : geteuid(), getegid()), 0);
-  ASSERT_EQ(chmod((box.work() / "sky.png").c_str(), 0444), 0);
-  const run_result r = box.run({"-o", "sky.png"}, opts);
-  expect_runtime_error(r, "sky.png", "Permission denied");
-  EXPECT_EQ(read_file(box.work() / "sky.png"), precious);
-  EXPECT_EQ(box.entries(), std::vector<std::string>{"sky.png"});
+  write_file(box.work() / "sky.ppm", precious);
+  ASSERT_EQ(chown((box.work() / "sky.ppm").c_str(), geteuid() == 0 ? nobody : geteuid(), getegid()), 0);
+  ASSERT_EQ(chmod((box.work() / "sky.ppm").c_str(), 0444), 0);
+  const run_result r = box.run({"-o", "sky.ppm"}, opts);
+  expect_runtime_error(r, "sky.ppm", "Permission denied");
+  EXPECT_EQ(read_file(box.work() / "sky.ppm"), precious);
+  EXPECT_EQ(box.entries(), std::vector<std::string>{"sky.ppm"});
 }
 
 // root replacing another user's file keeps its owner, group and mode, as
