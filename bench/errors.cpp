@@ -5,7 +5,6 @@
 #include <cstring>
 #include <limits>
 
-#include "reference.h"
 
 namespace raycast::bench {
 
@@ -34,10 +33,11 @@ std::vector<skipped_backend> skipped_backends() {
   return out;
 }
 
-painter::painter(const path& p, const scene& s, int threads, unsigned omit) : threads_(threads) {
+painter::painter(const path& p, const scene& s, int threads, unsigned shortcuts)
+    : threads_(threads) {
   if (!p.autovec) {
     render_options o{p.core, p.prec, threads};
-    o.omit = omit;
+    o.shortcuts = shortcuts;
     core_ = std::make_unique<renderer>(s, o);
     return;
   }
@@ -63,73 +63,22 @@ void painter::render(const image_band& band) const {
                       band.row_begin, band.row_end, threads_);
 }
 
-scene make_scene(const camera_params& cam, const raycast::sky& sky) {
-  return scene{make_camera(cam), sky};
-}
-
 namespace {
 
-// Per-path sums over some bands; merged at the end.
-struct partial {
-  double max_abs = 0, sum_sq = 0;
-  int max_lsb = 0;
-  int64_t mismatches = 0, nans = 0;
-
-  void merge(const partial& o) {
-    max_abs = std::max(max_abs, o.max_abs);
-    sum_sq += o.sum_sq;
-    max_lsb = std::max(max_lsb, o.max_lsb);
-    mismatches += o.mismatches;
-    nans += o.nans;
-  }
-};
-
 constexpr int64_t band_rows = 16;
-
-// One thread's band images: the reference in double and bytes, a path's output.
-struct band_images {
-  std::vector<double> ref;
-  std::vector<unsigned char> ref8, out8;
-  std::vector<float> outf;
-  explicit band_images(size_t n) : ref(n), ref8(n), out8(n), outf(n) {}
-};
 
 // Compares rows [r0, r1) of every path with the reference, adding to acc.
 void compare_band(const scene& s, const std::vector<path>& paths,
                   const std::vector<std::unique_ptr<painter>>& painters, int64_t r0, int64_t r1,
-                  band_images& img, std::vector<partial>& acc) {
-  const int64_t W = s.cam.image_width, H = s.cam.image_height;
-  const size_t n = size_t(W * (r1 - r0) * 3);
-  double* ref = img.ref.data();
-  unsigned char* ref8 = img.ref8.data();
-  unsigned char* out8 = img.out8.data();
-  float* outf = img.outf.data();
-  for (int64_t r = r0; r < r1; ++r)
-    for (int64_t i = 0; i < W; ++i) {
-      const color c = reference_pixel(s, i, H - 1 - r);
-      const size_t at = size_t(((r - r0) * W + i) * 3);
-      for (int k = 0; k < 3; ++k) {
-        ref[at + size_t(k)] = c[k];
-        ref8[at + size_t(k)] = to_byte(c[k]);
-      }
-    }
+                  std::vector<float>& outf, std::vector<unsigned char>& out8,
+                  std::vector<error_stats>& acc) {
+  const int64_t W = s.cam.image_width;
+  const raycast_test::reference_band ref(s, r0, r1);
   for (size_t p = 0; p < paths.size(); ++p) {
     if (!paths[p].autovec && paths[p].core == backend::reference) continue;  // the oracle
-    painters[p]->render(image_band{outf, size_t(W) * 12, pixel_format::rgb_f32, r0, r1});
-    painters[p]->render(image_band{out8, size_t(W) * 3, pixel_format::rgb8, r0, r1});
-    partial& a = acc[p];
-    for (size_t k = 0; k < n; ++k) {
-      double e = std::abs(double(outf[k]) - ref[k]);
-      if (std::isnan(outf[k])) {
-        e = std::numeric_limits<double>::infinity();
-        ++a.nans;
-      }
-      a.max_abs = std::max(a.max_abs, e);
-      a.sum_sq += e * e;
-      const int lsb = std::abs(int(out8[k]) - int(ref8[k]));
-      a.max_lsb = std::max(a.max_lsb, lsb);
-      a.mismatches += lsb != 0;
-    }
+    painters[p]->render(image_band{outf.data(), size_t(W) * 12, pixel_format::rgb_f32, r0, r1});
+    painters[p]->render(image_band{out8.data(), size_t(W) * 3, pixel_format::rgb8, r0, r1});
+    ref.compare(outf.data(), out8.data(), acc[p]);
   }
 }
 
@@ -140,25 +89,21 @@ std::vector<error_stats> measure_errors(const scene& s, const std::vector<path>&
   for (const path& p : paths) painters.push_back(std::make_unique<painter>(p, s, 1));
   const int64_t H = s.cam.image_height;
   const int64_t bands = (H + band_rows - 1) / band_rows;
-  std::vector<partial> total(paths.size());
+  std::vector<error_stats> total(paths.size());
 #pragma omp parallel num_threads(available_cores())
   {
-    std::vector<partial> mine(paths.size());
-    band_images img(size_t(s.cam.image_width * std::min(H, band_rows) * 3));
+    std::vector<error_stats> mine(paths.size());
+    const size_t n = size_t(s.cam.image_width * std::min(H, band_rows) * 3);
+    std::vector<float> outf(n);
+    std::vector<unsigned char> out8(n);
 #pragma omp for schedule(dynamic, 1)
     for (int64_t b = 0; b < bands; ++b)
-      compare_band(s, paths, painters, b * band_rows, std::min(H, (b + 1) * band_rows), img, mine);
+      compare_band(s, paths, painters, b * band_rows, std::min(H, (b + 1) * band_rows), outf, out8,
+                   mine);
 #pragma omp critical
     for (size_t p = 0; p < paths.size(); ++p) total[p].merge(mine[p]);
   }
-  const double channels = double(s.cam.image_width) * double(H) * 3.0;
-  std::vector<error_stats> out(paths.size());
-  for (size_t p = 0; p < paths.size(); ++p) {
-    const partial& t = total[p];
-    out[p] = {t.max_abs, std::sqrt(t.sum_sq / channels), t.max_lsb, double(t.mismatches) / channels,
-              t.nans};
-  }
-  return out;
+  return total;
 }
 
 }  // namespace raycast::bench

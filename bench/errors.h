@@ -8,8 +8,9 @@
 #include <vector>
 
 #include "autovec.h"
-#include "image.h"
-#include "render.h"
+#include "image/image.h"
+#include "render/render.h"
+#include "reference_errors.h"
 #include "stiff_cases.h"
 
 namespace raycast::bench {
@@ -38,8 +39,9 @@ std::vector<skipped_backend> skipped_backends();
 // Renders a path's image (any band of rows) with a fixed thread count.
 class painter {
  public:
-  // omit: render_options::omit for the core backends (the special/ rows).
-  painter(const path& p, const scene& s, int threads, unsigned omit = ~0u);
+  // shortcuts: render_options::shortcuts for the core backends (the
+  // shortcuts/ rows).
+  painter(const path& p, const scene& s, int threads, unsigned shortcuts = shortcut::all);
   void render(const image_band& band) const;
 
  private:
@@ -48,18 +50,16 @@ class painter {
   int threads_ = 1;
 };
 
-scene make_scene(const camera_params& cam, const raycast::sky& sky = {});
+// The scenes, cases and error measurement the tests use too (tests/support).
+using raycast_test::error_stats;
+using raycast_test::make_scene;
+using raycast_test::sized;
+using raycast_test::stiff_case;
+using raycast_test::stiff_cases;
 
-struct error_stats {
-  double max_abs_err = 0;   // linear colour, float output (NaN counts as infinite)
-  double rms_err = 0;       // linear colour, over every channel
-  int max_lsb = 0;          // 8-bit output, largest |byte - reference byte|
-  double lsb_mismatch = 0;  // fraction of 8-bit channels that differ
-  int64_t nan_count = 0;    // NaN channels in the float output
-};
-
-// Each path's error against reference_pixel over the whole image of s; the
-// reference path reports zeros. Bands of rows are spread over all cores.
+// Each path's error against reference_pixel over the whole image of s
+// (tests/support/reference_errors.h); the reference path reports zeros.
+// Bands of rows are spread over all cores.
 std::vector<error_stats> measure_errors(const scene& s, const std::vector<path>& paths);
 
 }  // namespace raycast::bench

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "errors.h"
+#include "gbench_flags.h"
 #include "report.h"
 
 namespace raycast::bench {
@@ -32,13 +33,6 @@ struct size2 {
 const std::vector<path>& paths() {
   static const std::vector<path> all = available_paths();
   return all;
-}
-
-camera_params sized(int64_t w, int64_t h) {
-  camera_params p;
-  p.image_width = w;
-  p.image_height = h;
-  return p;
 }
 
 // One buffer for every row, grown when a row needs more and touched once, so
@@ -77,31 +71,31 @@ void bench_render(benchmark::State& state, size_t path_index, size2 size, int th
     benchmark::ClobberMemory();
   }
   state.counters["max_abs_err"] = e.max_abs_err;
-  state.counters["rms_err"] = e.rms_err;
+  state.counters["rms_err"] = e.rms_err();
   state.counters["max_lsb"] = e.max_lsb;
-  state.counters["lsb_mismatch"] = e.lsb_mismatch;
+  state.counters["lsb_mismatch"] = e.lsb_mismatch();
 }
 
-// The kernel with only some of its omissions (render_options::omit).
-struct variant {
+// The kernel allowed only some of the plan's shortcuts (render_options::shortcuts).
+struct shortcut_set {
   const char* name;
-  unsigned omit;
+  unsigned shortcuts;
 };
-const std::vector<variant>& variants() {
-  static const std::vector<variant> v = {
-      {"general", omit_nothing},
-      {"lanes", omit_lanes},
-      {"lanes+mirror", omit_lanes | omit_mirrored},
-      {"channels", omit_channels},
-      {"clamps", omit_clamps},
-      {"all", ~0u},
+const std::vector<shortcut_set>& shortcut_sets() {
+  static const std::vector<shortcut_set> v = {
+      {"none", shortcut::none},
+      {"lanes", shortcut::lanes},
+      {"lanes+mirror", shortcut::lanes | shortcut::mirror},
+      {"channels", shortcut::channels},
+      {"clamps", shortcut::clamps},
+      {"all", shortcut::all},
   };
   return v;
 }
 
-void bench_special(benchmark::State& state, size_t path_index, size2 size, unsigned omit) {
+void bench_shortcuts(benchmark::State& state, size_t path_index, size2 size, unsigned shortcuts) {
   const scene s = make_scene(sized(size.w, size.h));
-  const painter paint(paths()[path_index], s, 1, omit);
+  const painter paint(paths()[path_index], s, 1, shortcuts);
   const size_t stride = size_t(size.w) * 3;
   const image_band band{scratch(stride * size_t(size.h)), stride, pixel_format::rgb8, 0, size.h};
   for (auto _ : state) {
@@ -110,16 +104,16 @@ void bench_special(benchmark::State& state, size_t path_index, size2 size, unsig
   }
 }
 
-// special/ rows: the SIMD backends at one size with each omission alone, the
-// general path (none) first so the others can report vs_general.
-void register_special_rows(size2 sz) {
+// shortcuts/ rows: the SIMD backends at one size with each shortcut alone, the
+// general path (none) first so the others can report vs_none.
+void register_shortcuts_rows(size2 sz) {
   for (size_t p = 0; p < paths().size(); ++p) {
     const path& pa = paths()[p];
     if (pa.autovec || pa.core == backend::reference || pa.core == backend::scalar) continue;
-    for (const variant& v : variants())
+    for (const shortcut_set& v : shortcut_sets())
       benchmark::RegisterBenchmark(
-          special_row_name(pa.backend, to_string(pa.prec), sz.w, sz.h, v.name).c_str(),
-          bench_special, p, sz, v.omit)
+          shortcuts_row_name(pa.backend, to_string(pa.prec), sz.w, sz.h, v.name).c_str(),
+          bench_shortcuts, p, sz, v.shortcuts)
           ->Unit(benchmark::kMicrosecond);
   }
 }
@@ -207,28 +201,6 @@ options parse_own_flags(int& argc, char** argv) {
   return o;
 }
 
-// The value of a Google Benchmark flag given as --name=value, if present.
-std::optional<std::string> flag_value(int argc, char** argv, const std::string& name) {
-  std::optional<std::string> v;
-  for (int i = 1; i < argc; ++i)
-    if (std::string(argv[i]).rfind(name + "=", 0) == 0) v = std::string(argv[i] + name.size() + 1);
-  return v;
-}
-
-// --benchmark_list_tests, alone or with a true value: names only, no tables.
-bool listing_only(int argc, char** argv) {
-  bool list = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--benchmark_list_tests") list = true;
-    if (a.rfind("--benchmark_list_tests=", 0) == 0) {
-      const std::string v = a.substr(a.find('=') + 1);
-      list = !(v == "false" || v == "0" || v == "no" || v == "off" || v == "f" || v == "n");
-    }
-  }
-  return list;
-}
-
 std::unique_ptr<benchmark::BenchmarkReporter> make_file_reporter(const std::string& format) {
   if (format == "console")
     return std::make_unique<benchmark::ConsoleReporter>(benchmark::ConsoleReporter::OO_None);
@@ -247,7 +219,7 @@ std::vector<stiff_result> run_stiff_cases() {
     r.width = c.cam.image_width;
     r.height = c.cam.image_height.value_or(default_height(c.cam.image_width, c.cam.aspect_ratio));
     if (auto why = validate(c.cam))
-      r.invalid = *why;
+      r.invalid = why->message;
     else
       r.errors = measure_errors(make_scene(c.cam, c.sky), paths());
     results.push_back(std::move(r));
@@ -259,25 +231,21 @@ std::vector<stiff_result> run_stiff_cases() {
 // run within two minutes, and a row whose single iteration takes longer (the
 // reference and scalar rows at 15360x8640) runs exactly once, by the
 // library's own rule, so row names stay free of /iterations: suffixes.
-void init_benchmark(int argc, char** argv, bool quick) {
-  std::vector<char*> args(argv, argv + argc);
-  static std::string min_time = quick ? "--benchmark_min_time=0.02" : "--benchmark_min_time=0.1";
-  if (!flag_value(argc, argv, "--benchmark_min_time"))
-    args.insert(args.begin() + 1, min_time.data());
-  int n = int(args.size());
-  args.push_back(nullptr);
-  benchmark::Initialize(&n, args.data(), print_help);
-  if (benchmark::ReportUnrecognizedArguments(n, args.data())) std::exit(2);
+// (Our default is set before Initialize, which replaces it only when the
+// command line gives --benchmark_min_time.)
+void init_benchmark(int& argc, char** argv, bool quick) {
+  benchmark::FLAGS_benchmark_min_time = quick ? 0.02 : 0.1;
+  benchmark::Initialize(&argc, argv, print_help);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) std::exit(2);
 }
 
 // Runs the registered rows through reporters that fill the cross-row counters.
-void run_rows(int argc, char** argv, run_table& table) {
+void run_rows(run_table& table) {
   counter_filler display(benchmark::CreateDefaultDisplayReporter(), table);
   std::unique_ptr<benchmark::BenchmarkReporter> file_inner;
   std::unique_ptr<counter_filler> file;
-  if (flag_value(argc, argv, "--benchmark_out")) {
-    file_inner =
-        make_file_reporter(flag_value(argc, argv, "--benchmark_out_format").value_or("json"));
+  if (!benchmark::FLAGS_benchmark_out.empty()) {
+    file_inner = make_file_reporter(benchmark::FLAGS_benchmark_out_format);
     file = std::make_unique<counter_filler>(file_inner.get(), table);
   }
   benchmark::RunSpecifiedBenchmarks(&display, file.get());
@@ -292,14 +260,14 @@ int run(int argc, char** argv) {
   std::vector<int> threads = {1};
   if (available_cores() > 1) threads.push_back(available_cores());
   register_rows(sizes, threads);
-  register_special_rows(opt.quick ? size2{1920, 1080} : size2{3840, 2160});
+  register_shortcuts_rows(opt.quick ? size2{1920, 1080} : size2{3840, 2160});
 
   run_table table;
-  run_rows(argc, argv, table);
-  if (listing_only(argc, argv)) return 0;
+  run_rows(table);
+  if (benchmark::FLAGS_benchmark_list_tests) return 0;
 
   // Machine-readable stdout stays machine-readable: the tables go to stderr.
-  const std::string format = flag_value(argc, argv, "--benchmark_format").value_or("console");
+  const std::string format = benchmark::FLAGS_benchmark_format;
   std::ostream& os = format == "console" ? std::cout : std::cerr;
   summary_options so;
   const std::pair<int64_t, int64_t> size =
@@ -320,8 +288,8 @@ int run(int argc, char** argv) {
     os << "Plot written to " << opt.plot << "\n";
   }
   std::vector<std::string> names;
-  for (const variant& v : variants()) names.push_back(v.name);
-  print_specialization(os, table, names);
+  for (const shortcut_set& v : shortcut_sets()) names.push_back(v.name);
+  print_shortcuts(os, table, names);
   print_stiff(os, paths(), run_stiff_cases());
   os.flush();
   return 0;

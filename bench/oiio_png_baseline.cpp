@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "render.h"
+#include "render/render.h"
 
 int main(int argc, char** argv) {
   const char* path = argc > 1 ? argv[1] : "baseline.png";

@@ -70,12 +70,12 @@ std::optional<row_name> parse_row_name(const std::string& name) {
     if (!parse_size(p[3], n.width, n.height) || n.threads < 1) return std::nullopt;
     return n;
   }
-  if (p.size() == 7 && p[0] == "special" && p[4] == "t1") {
+  if (p.size() == 7 && p[0] == "shortcuts" && p[4] == "t1") {
     n.kind = p[0];
     n.backend = p[1];
     n.precision = p[2];
     n.out = p[5];
-    n.variant = p[6];
+    n.shortcuts = p[6];
     if (!parse_size(p[3], n.width, n.height)) return std::nullopt;
     return n;
   }
@@ -96,11 +96,11 @@ std::string render_row_name(const std::string& backend, std::string_view precisi
               int(out.size()), out.data());
 }
 
-std::string special_row_name(const std::string& backend, std::string_view precision, int64_t w,
-                             int64_t h, std::string_view variant) {
-  return strf("special/%s/%.*s/%lldx%lld/t1/rgb8/%.*s", backend.c_str(), int(precision.size()),
+std::string shortcuts_row_name(const std::string& backend, std::string_view precision, int64_t w,
+                               int64_t h, std::string_view set) {
+  return strf("shortcuts/%s/%.*s/%lldx%lld/t1/rgb8/%.*s", backend.c_str(), int(precision.size()),
               precision.data(), static_cast<long long>(w), static_cast<long long>(h),
-              int(variant.size()), variant.data());
+              int(set.size()), set.data());
 }
 
 std::string memset_row_name(int64_t w, int64_t h) {
@@ -116,18 +116,22 @@ std::optional<double> run_table::seconds(const std::string& name) const {
 void run_table::fill(std::vector<Run>& runs) {
   if (runs.empty()) return;
   const std::string fn = runs.front().run_name.function_name;
-  double sum = 0;
-  int n = 0;
+  // A row's time is the median of its repetitions: on a machine shared with
+  // other work, a repetition that lost the CPU for a while moves the mean but
+  // not the median.
+  std::vector<double> times;
   for (const Run& r : runs) {
     if (!has_time(r)) continue;
-    if (r.run_type == Run::RT_Aggregate) {
-      seconds_[fn + "|" + r.aggregate_name] = run_seconds(r);
-    } else {
-      sum += run_seconds(r);
-      ++n;
-    }
+    if (r.run_type == Run::RT_Aggregate) seconds_[fn + "|" + r.aggregate_name] = run_seconds(r);
+    else times.push_back(run_seconds(r));
   }
-  if (n > 0) seconds_[fn + "|"] = sum / n;
+  const size_t n = times.size();
+  double median = 0;
+  if (n > 0) {
+    std::sort(times.begin(), times.end());
+    median = n % 2 ? times[n / 2] : 0.5 * (times[n / 2 - 1] + times[n / 2]);
+    seconds_[fn + "|"] = median;
+  }
 
   const std::optional<row_name> name = parse_row_name(fn);
   if (!name) return;
@@ -141,10 +145,10 @@ void run_table::fill(std::vector<Run>& runs) {
     const std::string key = std::string(1, '|').append(aggregate_key(r));
     r.counters["ns_per_px"] = sec * 1e9 / px;
     r.counters["Mpix_per_s"] = px / sec * 1e-6;
-    if (name->kind == "special") {
-      const std::string general =
-          special_row_name(name->backend, name->precision, name->width, name->height, "general");
-      if (auto t = seconds(general + key)) r.counters["vs_general"] = *t / sec;
+    if (name->kind == "shortcuts") {
+      const std::string none =
+          shortcuts_row_name(name->backend, name->precision, name->width, name->height, "none");
+      if (auto t = seconds(none + key)) r.counters["vs_none"] = *t / sec;
       continue;
     }
     if (name->kind != "render") continue;
@@ -160,9 +164,10 @@ void run_table::fill(std::vector<Run>& runs) {
   row.name = *name;
   for (const Run& r : runs) {
     const bool iteration = r.run_type == Run::RT_Iteration && !r.error_occurred;
-    const bool mean = r.run_type == Run::RT_Aggregate && r.aggregate_name == "mean";
-    if (!iteration && !(mean && n == 0)) continue;
-    row.seconds = iteration ? sum / n : run_seconds(r);
+    // Only aggregates reported (--benchmark_report_aggregates_only): theirs.
+    const bool median_aggregate = r.run_type == Run::RT_Aggregate && r.aggregate_name == "median";
+    if (!iteration && !(median_aggregate && n == 0)) continue;
+    row.seconds = iteration ? median : run_seconds(r);
     row.from_iterations = iteration;
     for (const auto& [k, c] : r.counters) row.counters[k] = c.value;
   }
@@ -238,6 +243,7 @@ void print_summary(std::ostream& os, const std::vector<summary_row>& rows,
      << size_text(opt.width, opt.height) << ", " << opt.threads << " thread"
      << (opt.threads == 1 ? "" : "s") << " (of " << available_cores() << " cores), " << opt.out
      << " output\n"
+     << "  ns/px: the median of a row's repetitions (--benchmark_repetitions=N; one by default)\n"
      << "  errors vs the double reference over the whole image: max_abs_err in linear colour\n"
      << "  (from the f32 rendering), max_lsb and lsb_mismatch from the 8-bit bytes;\n"
      << "  * = Pareto-optimal: no other row is both faster and at most as wrong (max_abs_err)\n";
@@ -452,28 +458,27 @@ std::string today() {
 
 namespace raycast::bench {
 
-void print_specialization(std::ostream& os, const run_table& table,
-                          const std::vector<std::string>& variants) {
+void print_shortcuts(std::ostream& os, const run_table& table, const std::vector<std::string>& sets) {
   std::map<std::pair<std::string, std::string>, std::map<std::string, double>> grid;
   int64_t w = 0, h = 0;
   for (const auto& [key, sec] : table.all_seconds()) {
     const std::string fn = key.substr(0, key.find('|'));
     if (key.back() != '|') continue;  // plain runs only, not aggregates
     const std::optional<row_name> n = parse_row_name(fn);
-    if (!n || n->kind != "special") continue;
+    if (!n || n->kind != "shortcuts") continue;
     w = n->width;
     h = n->height;
-    grid[{n->backend, n->precision}][n->variant] = sec * 1e9 / (double(w) * double(h));
+    grid[{n->backend, n->precision}][n->shortcuts] = sec * 1e9 / (double(w) * double(h));
   }
   if (grid.empty()) return;
-  os << "\nWhat each omission saves (special/ rows): ns/px at " << w << "x" << h
-     << ", 1 thread, rgb8; general = no omission, all = every one (the default)\n";
+  os << "\nWhat each shortcut saves (shortcuts/ rows): ns/px at " << w << "x" << h
+     << ", 1 thread, rgb8; none = the general path, all = every shortcut (the default)\n";
   os << strf("  %-18s", "backend/precision");
-  for (const std::string& v : variants) os << strf("%14s", v.c_str());
+  for (const std::string& v : sets) os << strf("%14s", v.c_str());
   os << "\n";
   for (const auto& [bp, cells] : grid) {
     os << strf("  %-18s", (bp.first + "/" + bp.second).c_str());
-    for (const std::string& v : variants) {
+    for (const std::string& v : sets) {
       const auto it = cells.find(v);
       os << (it == cells.end() ? strf("%14s", "-") : strf("%14.3f", it->second));
     }

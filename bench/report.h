@@ -20,19 +20,20 @@ struct row_name {
   std::string kind, backend, precision, out;
   int64_t width = 0, height = 0;
   int threads = 1;
-  std::string variant;  // special/ rows: which omissions the kernel may make
+  std::string shortcuts;  // shortcuts/ rows: which shortcuts the plan may take
 };
 std::optional<row_name> parse_row_name(const std::string& name);
 std::string render_row_name(const std::string& backend, std::string_view precision, int64_t w,
                             int64_t h, int threads, std::string_view out);
 std::string memset_row_name(int64_t w, int64_t h);
-// special/BACKEND/PRECISION/WxH/t1/rgb8/VARIANT: the kernel with only some of
-// the omissions of render_options::omit (general = none, all = every one).
-std::string special_row_name(const std::string& backend, std::string_view precision, int64_t w,
-                             int64_t h, std::string_view variant);
+// shortcuts/BACKEND/PRECISION/WxH/t1/rgb8/SET: the kernel allowed only some of
+// the plan's shortcuts (render_options::shortcuts; none, one, or all).
+std::string shortcuts_row_name(const std::string& backend, std::string_view precision, int64_t w,
+                               int64_t h, std::string_view set);
 
-// One measured render row, for the summary: the mean time per iteration over
-// its repetitions and the counters its benchmark set.
+// One measured render row, for the summary: the median time per iteration
+// over its repetitions (--benchmark_repetitions) and the counters its
+// benchmark set.
 struct measured_row {
   row_name name;
   double seconds = 0;
@@ -101,9 +102,8 @@ struct stiff_result {
   std::string invalid;              // validate()'s message when the camera is refused
   std::vector<error_stats> errors;  // per path
 };
-// What each omission saves: ns/px of the special/ rows, general first.
-void print_specialization(std::ostream& os, const run_table& table,
-                          const std::vector<std::string>& variants);
+// What each shortcut saves: ns/px of the shortcuts/ rows, none first.
+void print_shortcuts(std::ostream& os, const run_table& table, const std::vector<std::string>& sets);
 
 void print_stiff(std::ostream& os, const std::vector<path>& paths,
                  const std::vector<stiff_result>& results);

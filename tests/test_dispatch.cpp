@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "cli_runner.h"
-#include "cpu.h"
+#include "simd/cpu.h"
 
 namespace {
 

@@ -20,15 +20,12 @@ namespace {
 using namespace raycast;
 using raycast_test::image;
 
-struct camera_case {
-  std::string name;
-  camera_params cam;
-  raycast::sky sky;
-};
+using raycast_test::colour_scale;
+using raycast_test::scene_case;
 
-const std::vector<camera_case>& cameras() {
-  static const std::vector<camera_case> all = [] {
-  std::vector<camera_case> v;
+const std::vector<scene_case>& cameras() {
+  static const std::vector<scene_case> all = [] {
+  std::vector<scene_case> v;
   v.push_back({"lesson", {}, {}});
   camera_params p;
   p.viewport_height = 0.37;
@@ -68,12 +65,6 @@ const std::vector<int64_t>& widths() {
 }
 const std::vector<int64_t> heights = {1, 2, 3, 225};
 
-double colour_scale(const raycast::sky& s) {
-  double m = 1.0;
-  for (int k = 0; k < 3; ++k) m = std::max({m, std::abs(s.bottom[k]), std::abs(s.top[k])});
-  return m;
-}
-
 struct param {
   backend which;
   precision prec;
@@ -108,9 +99,9 @@ class Equivalence : public ::testing::TestWithParam<param> {
 
 TEST_P(Equivalence, EveryWidthAndHeight) {
   const param& prm = GetParam();
-  const camera_case& cc = cameras()[prm.camera];
+  const scene_case& cc = cameras()[prm.camera];
   const double bound =
-      (prm.prec == precision::exact ? exact_error_bound : fast_error_bound) * colour_scale(cc.sky);
+      error_bound(prm.prec) * colour_scale(cc.sky);
   for (int64_t h : heights) {
     for (int64_t w : widths()) {
       SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h));
@@ -122,17 +113,18 @@ TEST_P(Equivalence, EveryWidthAndHeight) {
       const image got8 = raycast_test::render_with(r, pixel_format::rgb8);
       const image gotf = raycast_test::render_with(r, pixel_format::rgb_f32);
       if (prm.which != backend::scalar && prm.prec == precision::exact) {
-        // The general path (every lane, every channel, every clamp), and each
-        // omission alone, give the same bits as everything the scene allows.
-        for (unsigned omit : {omit_nothing, omit_lanes, omit_channels, omit_clamps,
-                              omit_lanes | omit_mirrored}) {
+        // The general path (no shortcut: every lane, every channel, every
+        // clamp), and each shortcut alone, give the same bits as every
+        // shortcut the scene allows.
+        for (unsigned shortcuts : {shortcut::none, shortcut::lanes, shortcut::channels,
+                                   shortcut::clamps, shortcut::lanes | shortcut::mirror}) {
           render_options o{prm.which, prm.prec, 1};
-          o.omit = omit;
+          o.shortcuts = shortcuts;
           const renderer g(s, o);
           ASSERT_EQ(got8.bytes, raycast_test::render_with(g, pixel_format::rgb8).bytes)
-              << "omit flags " << omit << " differ from the fully specialized path (8-bit)";
+              << "shortcuts " << shortcuts << " differ from taking them all (8-bit)";
           ASSERT_EQ(gotf.bytes, raycast_test::render_with(g, pixel_format::rgb_f32).bytes)
-              << "omit flags " << omit << " differ from the fully specialized path (float)";
+              << "shortcuts " << shortcuts << " differ from taking them all (float)";
         }
       }
       if (prm.prec == precision::exact) {
@@ -154,21 +146,23 @@ TEST_P(Equivalence, EveryWidthAndHeight) {
 
 INSTANTIATE_TEST_SUITE_P(AllBackends, Equivalence, ::testing::ValuesIn(all_params()), param_name);
 
-// Threads split the image into bands of rows; the bytes must not depend on how.
+// Threads split the image into bands of rows; the bytes must not depend on
+// how. The one test of thread invariance: large enough that every thread
+// gets rows (a job under 2^17 pixels per thread stays on one), and, with
+// images of fewer rows than threads, small enough that some get none.
 class ThreadEquivalence : public ::testing::TestWithParam<backend> {};
 
 TEST_P(ThreadEquivalence, AnyThreadCountGivesTheSameBytes) {
   if (auto why = backend_unavailable(GetParam())) GTEST_SKIP() << *why;
-  camera_params cp;
-  cp.image_width = 1031;  // large enough that every thread gets rows (2^17 px each)
-  cp.image_height = 1000;
-  const scene s = raycast_test::make_scene(cp);
-  for (precision p : {precision::exact, precision::fast}) {
-    for (pixel_format f : {pixel_format::rgb8, pixel_format::rgb_f32}) {
-      const image one = raycast_test::render_with(renderer(s, {GetParam(), p, 1}), f);
-      for (int t : {2, 3, 7}) {
-        const image many = raycast_test::render_with(renderer(s, {GetParam(), p, t}), f);
-        ASSERT_EQ(one.bytes, many.bytes) << t << " threads, " << to_string(p);
+  for (const auto& [w, h] : {std::pair<int64_t, int64_t>{1031, 1000}, {65536, 5}, {3, 2}}) {
+    const scene s = raycast_test::make_scene(raycast_test::sized(w, h));
+    for (precision p : {precision::exact, precision::fast}) {
+      for (pixel_format f : {pixel_format::rgb8, pixel_format::rgb_f32}) {
+        const image one = raycast_test::render_with(renderer(s, {GetParam(), p, 1}), f);
+        for (int t : {2, 3, 7}) {
+          const image many = raycast_test::render_with(renderer(s, {GetParam(), p, t}), f);
+          ASSERT_EQ(one.bytes, many.bytes) << w << "x" << h << ", " << t << " threads, " << to_string(p);
+        }
       }
     }
   }

@@ -11,12 +11,12 @@
 #include <string>
 #include <string_view>
 
-#include "cpu.h"
-#include "image_sink.h"
+#include "io/image_sink.h"
+#include "io/signals.h"
+#include "io/timestamp.h"
 #include "options.h"
-#include "render.h"
-#include "signals.h"
-#include "timestamp.h"
+#include "render/render.h"
+#include "simd/cpu.h"
 
 namespace {
 

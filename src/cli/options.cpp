@@ -34,6 +34,24 @@ std::optional<file_format> format_from_name(std::string_view name) {
 
 std::string in_quotes(std::string_view s) { return "'" + std::string(s) + "'"; }
 
+// The option that sets a scene field (the camera position has two spellings).
+std::string_view option_for(scene_field f, std::string_view origin_option) {
+  switch (f) {
+    case scene_field::width: return "--width";
+    case scene_field::height: return "--height";
+    case scene_field::aspect: return "--aspect";
+    case scene_field::viewport_height: return "--viewport-height";
+    case scene_field::focal_length: return "--focal-length";
+    case scene_field::origin: return origin_option;
+    case scene_field::lookat: return "--lookat";
+    case scene_field::vup: return "--vup";
+    case scene_field::vfov: return "--vfov";
+    case scene_field::sky_bottom: return "--sky-bottom";
+    case scene_field::sky_top: return "--sky-top";
+  }
+  return "--help";
+}
+
 
 }  // namespace
 
@@ -186,7 +204,8 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
   auto given = [&](std::string_view name) { return app.count(std::string(name)) > 0; };
 
   job j;
-  camera_params cp;
+  scene_params sp;
+  camera_params& cp = sp.camera;
   if (given("--width"))
     if (auto e = parse_int(width_s, cp.image_width)) return usage("--width", *e);
   if (given("--aspect"))
@@ -220,36 +239,18 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
   if (given("--vfov")) {
     double f = 0;
     if (auto e = parse_real(vfov_s, f)) return usage("--vfov", *e);
-    if (!(f > 0.0 && f < 180.0)) return usage("--vfov", "must be between 0 and 180 degrees (exclusive), got " + vfov_s);
     cp.vfov_degrees = f;
   }
   if (given("--sky-bottom"))
-    if (auto e = parse_triple(bottom_s, j.sc.sky.bottom)) return usage("--sky-bottom", *e);
+    if (auto e = parse_triple(bottom_s, sp.sky.bottom)) return usage("--sky-bottom", *e);
   if (given("--sky-top"))
-    if (auto e = parse_triple(top_s, j.sc.sky.top)) return usage("--sky-top", *e);
-  for (const auto& [name, c] : {std::pair{"--sky-bottom", j.sc.sky.bottom}, {"--sky-top", j.sc.sky.top}})
-    if (auto e = validate(raycast::sky{c, c})) return usage(name, *e);
+    if (auto e = parse_triple(top_s, sp.sky.top)) return usage("--sky-top", *e);
 
-  // Range checks, each naming its option.
-  const auto max_dim = std::to_string(max_dimension);
-  if (cp.image_width < 1 || cp.image_width > max_dimension)
-    return usage("--width", "must be between 1 and " + max_dim + ", got " + width_s);
-  if (cp.image_height && (*cp.image_height < 1 || *cp.image_height > max_dimension))
-    return usage("--height", "must be between 1 and " + max_dim + ", got " + height_s);
-  if (!cp.image_height && default_height(cp.image_width, cp.aspect_ratio) > max_dimension)
-    return usage("--aspect", "width / aspect gives a height over " + max_dim);
-  if (!(cp.viewport_height > 0)) return usage("--viewport-height", "must be positive, got " + vh_s);
-  if (!(cp.focal_length > 0)) return usage("--focal-length", "must be positive, got " + focal_s);
-  if (auto e = validate(cp)) {
-    // Name the option the problem comes from.
-    const std::string& why = *e;
-    const char* option = why.find("lookfrom and lookat") != std::string::npos ? "--lookat"
-                         : why.find("vup") != std::string::npos          ? "--vup"
-                         : why.find("field of view") != std::string::npos ? "--vfov"
-                         : why.find("lookat") != std::string::npos       ? "--lookat"
-                         : why.find("origin") != std::string::npos       ? "--origin"
-                                                                          : "camera";
-    return usage(option, why);
+  // The ranges are the scene's to check (scene/scene.h), once; here only the
+  // field it blames becomes the option that set it.
+  if (auto e = validate(sp)) {
+    const std::string_view origin_option = given("--lookfrom") ? "--lookfrom" : "--origin";
+    return usage(option_for(e->field, origin_option), e->message);
   }
 
   if (!given("--output")) return usage("--output", "is required (a file name, or - for standard output)");
@@ -294,7 +295,7 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
     j.render.threads = int(t);
   }
   j.quiet = quiet;
-  j.sc.cam = make_camera(cp);
+  j.sc = make_scene(sp);
   if (const int64_t side = io::max_side(j.format); side > 0) {
     const std::string limit = std::string(io::display_name(j.format)) + " supports at most " +
                               std::to_string(side) + " pixels per side, got ";

@@ -6,8 +6,8 @@
 #include <string>
 #include <string_view>
 
-#include "format.h"
-#include "render.h"
+#include "io/format.h"
+#include "render/render.h"
 
 namespace raycast::cli {
 

@@ -1,4 +1,4 @@
-#include "atomic_file.h"
+#include "io/atomic_file.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -12,7 +12,7 @@
 #include <cstring>
 #include <vector>
 
-#include "signals.h"
+#include "io/signals.h"
 
 namespace raycast::io {
 namespace {

@@ -18,7 +18,7 @@
 #include <optional>
 #include <string>
 
-#include "io_error.h"
+#include "io/io_error.h"
 
 namespace raycast::io {
 

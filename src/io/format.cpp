@@ -1,4 +1,4 @@
-#include "format.h"
+#include "io/format.h"
 
 namespace raycast::io {
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <string_view>
 
-#include "image.h"
+#include "image/image.h"
 
 namespace raycast::io {
 

@@ -1,4 +1,4 @@
-#include "image_sink.h"
+#include "io/image_sink.h"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -6,11 +6,11 @@
 #include <optional>
 #include <string>
 
-#include "atomic_file.h"
-#include "module_loader.h"
-#include "ppm.h"
-#include "signals.h"
-#include "timestamp.h"
+#include "io/atomic_file.h"
+#include "io/module_loader.h"
+#include "io/ppm.h"
+#include "io/signals.h"
+#include "io/timestamp.h"
 
 namespace raycast::io {
 namespace {

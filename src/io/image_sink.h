@@ -8,8 +8,8 @@
 #include <memory>
 #include <string>
 
-#include "format.h"
-#include "io_error.h"
+#include "io/format.h"
+#include "io/io_error.h"
 
 namespace raycast::io {
 

@@ -1,4 +1,4 @@
-#include "module_loader.h"
+#include "io/module_loader.h"
 
 #include <dlfcn.h>
 #include <unistd.h>
@@ -14,8 +14,8 @@
 #include <system_error>
 #include <thread>
 
-#include "io_error.h"
-#include "signals.h"
+#include "io/io_error.h"
+#include "io/signals.h"
 
 namespace raycast::io {
 namespace {

@@ -3,7 +3,7 @@
 #pragma once
 #include <string>
 
-#include "image_module.h"
+#include "io/image_module.h"
 
 namespace raycast::io {
 

@@ -1,4 +1,4 @@
-#include "ppm.h"
+#include "io/ppm.h"
 
 namespace raycast::io {
 namespace {

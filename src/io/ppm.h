@@ -3,8 +3,8 @@
 #include <memory>
 #include <string>
 
-#include "atomic_file.h"
-#include "image_sink.h"
+#include "io/atomic_file.h"
+#include "io/image_sink.h"
 
 namespace raycast::io {
 

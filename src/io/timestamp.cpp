@@ -1,4 +1,4 @@
-#include "timestamp.h"
+#include "io/timestamp.h"
 
 #include <charconv>
 #include <cstdlib>

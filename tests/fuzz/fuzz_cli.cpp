@@ -5,7 +5,7 @@
 // and sky are rendered small (width at most 64; at most 8 rows from each end
 // of a taller image, in the image's own row coordinates) on every backend this
 // CPU runs, in both precisions, with all, none and some of the kernels'
-// omissions (render_options::omit), to 32-bit float and to 8 bits, and checked:
+// shortcuts (render_options::shortcuts), to 32-bit float and to 8 bits, and checked:
 //   - parse_args: exit code 0 or 2; a usage error is one line "raycast: error:
 //     ..." on the error stream; an accepted job has a valid camera;
 //   - float output is finite everywhere (no NaN, no infinity);
@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "options.h"
-#include "render.h"
+#include "render/render.h"
 
 namespace {
 
@@ -63,8 +63,8 @@ void check_finite(const rendered& img, const std::string& where) {
   }
 }
 
-// `some_omissions`: a mix of the kernels' omit_* flags picked by the input.
-void render_everywhere(const cli::job& j, unsigned some_omissions) {
+// `some_shortcuts`: a set of the plan's shortcuts picked by the input.
+void render_everywhere(const cli::job& j, unsigned some_shortcuts) {
   scene s = j.sc;
   s.cam.image_width = std::min(s.cam.image_width, max_width);
   const int64_t H = s.cam.image_height;
@@ -87,7 +87,7 @@ void render_everywhere(const cli::job& j, unsigned some_omissions) {
   }
 
   for (precision p : {precision::exact, precision::fast}) {
-    for (unsigned omit : {~0u, omit_nothing, some_omissions}) {
+    for (unsigned shortcuts : {shortcut::all, shortcut::none, some_shortcuts}) {
       // Exact: the float paths (scalar and the SIMD kernels) must agree to the
       // bit; the reference renders in double and is not part of that promise.
       std::string base_name;
@@ -98,10 +98,10 @@ void render_everywhere(const cli::job& j, unsigned some_omissions) {
         o.which = b;
         o.prec = p;
         o.threads = 1;
-        o.omit = omit;
+        o.shortcuts = shortcuts;
         const renderer r(s, o);
         const std::string where = std::string(to_string(b)) + " " + std::string(to_string(p)) +
-                                  " omit=" + std::to_string(omit);
+                                  " shortcuts=" + std::to_string(shortcuts);
         const bool compare = p == precision::exact && b != backend::reference;
         for (size_t k = 0; k < bands.size(); ++k) {
           const auto [r0, r1] = bands[k];
@@ -169,6 +169,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 
   unsigned mix = 0;
   for (size_t k = 0; k < size; ++k) mix = mix * 31 + data[k];
-  render_everywhere(j, (mix >> 7) & (omit_lanes | omit_channels | omit_clamps | omit_mirrored));
+  render_everywhere(j, (mix >> 7) & shortcut::all);
   return 0;
 }

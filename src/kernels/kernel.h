@@ -1,0 +1,53 @@
+// The interface between the renderer and the per-ISA sky kernels.
+#pragma once
+#include <cstdint>
+
+#include "image/image.h"
+#include "kernels/float_scene.h"
+#include "kernels/precision.h"
+
+namespace raycast::kernels {
+
+// Everything a kernel reads, prepared once per render by the plan
+// (render/plan.h), which also decides which shortcuts this render takes.
+struct kernel_args {
+  const float_scene* scene = nullptr;
+  precision prec = precision::exact;
+  // Per column i, the part of the direction that depends on su only:
+  // column_part[k][i] = centre[k] + su_i * horizontal[k] (scalar.h's inner
+  // bracket; the rest, sv * vertical[k], is per row). Padded with zeros to a
+  // multiple of 16 columns.
+  const float* column_part[3] = {};
+  // Shortcut `lanes` (the camera is axis-aligned): a batch carries no x or z
+  // lanes; direction y and z are per row, column_x2[i] = column_part[0][i]^2.
+  bool lanes = false;
+  const float* column_x2 = nullptr;
+  // Shortcut `mirror` (with `lanes`): mirrored columns (and, with `paired`,
+  // rows) share one |d|.
+  bool mirror = false;
+  // Shortcut `channels`: channel k's two sky colours are equal, so it never
+  // varies and is written as a constant.
+  bool constant[3] = {};
+  float constant_value[3] = {};
+  int32_t constant_byte[3] = {};
+  // Shortcut `clamps`, in two parts. bottom + 1 * delta == top in float for
+  // every channel: the lerp reaches its end points exactly, so scalar.h's
+  // select and clamp never change a value...
+  bool lerp_exact = false;
+  // ...and, for 8-bit output, sky colours within [0, 1]: the clamp to [0, 1]
+  // before quantizing is a no-op.
+  bool colours_in_unit_range = false;
+};
+
+// Fills rows [r0, r1) of the band; single-threaded. One per instruction set.
+// With `paired` (shortcut `mirror` only; the band must hold both), each row r
+// also fills its mirror row H-1-r, which shares every |d| (sky_kernel.inl).
+using render_rows_fn = void (*)(const kernel_args& args, const image_band& band, int64_t r0,
+                                int64_t r1, bool paired);
+
+namespace sse2 { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
+namespace avx2 { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
+namespace avx512 { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
+namespace neon { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
+
+}  // namespace raycast::kernels

@@ -1,0 +1,103 @@
+#include "kernels/scalar.h"
+
+#include <cfloat>
+#include <cmath>
+#include <cstring>
+
+#include "kernels/newton.h"
+
+#if defined(__SSE__) || defined(__x86_64__)
+#include <xmmintrin.h>
+#endif
+
+namespace raycast {
+namespace {
+
+// The hardware's reciprocal-square-root estimate, as SSE's rsqrtps gives it.
+float rsqrt_estimate(float x) {
+#if defined(__SSE__) || defined(__x86_64__)
+  return _mm_cvtss_f32(_mm_rsqrt_ss(_mm_set_ss(x)));
+#else
+  return 1.0f / std::sqrt(x);
+#endif
+}
+
+// max and min as the vector units define them (maxps: a > b ? a : b), so that
+// the SIMD backends agree bit for bit, signed zeros included.
+float vmax(float a, float b) { return a > b ? a : b; }
+float vmin(float a, float b) { return a < b ? a : b; }
+float clampf(float x, float lo, float hi) { return vmin(vmax(x, lo), hi); }
+
+}  // namespace
+
+namespace {
+
+struct pixel_dir {
+  float dy, n2;
+};
+
+pixel_dir direction(const float_scene& f, int64_t i, int64_t j) {
+  const float su = pixel_su(f, i), sv = pixel_sv(f, j);
+  float d[3];
+  for (int k = 0; k < 3; ++k) d[k] = (f.centre[k] + su * f.horizontal[k]) + sv * f.vertical[k];
+  return {d[1], (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2]};
+}
+
+float fast_uy(pixel_dir d) {
+  const float n2 = vmax(d.n2, FLT_MIN);
+  const float r = rsqrt_estimate(n2);
+  const float uy = (d.dy * r) * (fast_nr_a - ((n2 * r) * r) * fast_nr_b);
+  return clampf(uy, -1.0f, 1.0f);
+}
+
+float exact_t(pixel_dir d) {
+  const float uy = d.dy / std::sqrt(vmax(d.n2, FLT_MIN));
+  return clampf((uy + 1.0f) * 0.5f, 0.0f, 1.0f);
+}
+
+void shade(const float_scene& f, float t, float out[3]) {
+  for (int k = 0; k < 3; ++k)
+    out[k] = clampf(t == 1.0f ? f.top[k] : f.bottom[k] + t * f.delta[k], f.lo[k], f.hi[k]);
+}
+
+}  // namespace
+
+float pixel_su(const float_scene& f, int64_t i) {
+  return f.width == 1 ? 0.0f : (float(i) - f.mid_col) / f.last_col;
+}
+
+float pixel_sv(const float_scene& f, int64_t j) {
+  return f.height == 1 ? 0.0f : (float(j) - f.mid_row) / f.last_row;
+}
+
+void scalar_pixel(const float_scene& f, precision p, int64_t i, int64_t j, float out[3]) {
+  const pixel_dir d = direction(f, i, j);
+  const float t = p == precision::exact ? exact_t(d) : (fast_uy(d) + 1.0f) * 0.5f;
+  shade(f, t, out);
+}
+
+void render_scalar(const float_scene& f, precision p, const image_band& band) {
+  for (int64_t r = band.row_begin; r < band.row_end; ++r) {
+    const int64_t j = f.height - 1 - r;
+    unsigned char* row = band.row(r);
+    for (int64_t i = 0; i < f.width; ++i) {
+      if (band.format == pixel_format::rgb_f32) {
+        float c[3];
+        scalar_pixel(f, p, i, j, c);
+        std::memcpy(row + 12 * i, c, sizeof c);
+      } else if (p == precision::exact) {
+        float c[3];
+        scalar_pixel(f, p, i, j, c);
+        for (int k = 0; k < 3; ++k)
+          row[3 * i + k] = static_cast<unsigned char>(int(clampf(c[k], 0.0f, 1.0f) * 255.999f));
+      } else {
+        const float uy = fast_uy(direction(f, i, j));
+        for (int k = 0; k < 3; ++k)
+          row[3 * i + k] = static_cast<unsigned char>(
+              int(clampf(uy * f.fast_qa[k] + f.fast_qb[k], 0.0f, 255.999f)));
+      }
+    }
+  }
+}
+
+}  // namespace raycast

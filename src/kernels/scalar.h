@@ -1,0 +1,56 @@
+// The float renderer: the reference's formulas in float, in one fixed order
+// that every SIMD backend reproduces bit for bit in exact mode.
+//
+// For pixel column i, row j (j = 0 at the bottom), with the float_scene f:
+//   su = W == 1 ? 0 : (float(i) - f.mid_col) / f.last_col   (= u - 1/2, in [-1/2, 1/2])
+//   sv = H == 1 ? 0 : (float(j) - f.mid_row) / f.last_row   likewise for rows
+//   d  = (f.centre + su * f.horizontal) + sv * f.vertical    per component
+// Measuring from the viewport centre keeps the centre exact (no cancellation
+// of corner + u * horizontal when the focal length is tiny next to the
+// viewport) and makes mirrored pixels exact mirrors: su(W-1-i) = -su(i), so the
+// lesson camera's image is symmetric bit for bit and the kernels compute each
+// |d| once for up to four pixels.
+//   n2 = (d.x * d.x + d.y * d.y) + d.z * d.z
+//
+// exact (IEEE sqrt and divide; every backend gives these bits):
+//   uy = d.y / sqrt(max(n2, FLT_MIN))
+//      (n2 below the smallest normal float happens only where d.y is 0, so
+//      uy = 0 there: no 0/0, and denormal flushing cannot change a result)
+//   t  = clamp((uy + 1) * 0.5, 0, 1)
+//   c  = clamp(t == 1 ? top : bottom + t * delta, lo, hi)     per channel
+//   8-bit: int(clamp(c, 0, 1) * 255.999f)
+//
+// fast (a hardware reciprocal-square-root estimate r and one Newton step,
+// biased up by 2^-20 so that straight up and down land on exactly +-1):
+//   r  = rsqrt_estimate(max(n2, FLT_MIN))
+//   uy = (d.y * r) * (A - ((n2 * r) * r) * B),  A = 1.5 (1 + 2^-20), B = 0.5 (1 + 2^-20)
+//        (fast_nr_a and fast_nr_b, kernels/newton.h)
+//   uy = clamp(uy, -1, 1)
+//   8-bit: int(clamp(uy * fast_qa + fast_qb, 0, 255.999))   (one multiply-add)
+//   float: t = (uy + 1) * 0.5, then c as in exact mode
+// The estimate differs between instruction sets (12 bits on SSE and AVX2, 14
+// on AVX-512), AVX2/AVX-512 fuse the multiply-adds, and the kernels regroup
+// (the lesson camera folds d.y into A and B and adds y^2 + z^2 first), so fast
+// mode's bits differ by backend; its error bound is in README.md and tested
+// (tests/support/error_bounds.h).
+//
+// Every operation is a single IEEE operation; this file is compiled with
+// -ffp-contract=off, so no fused multiply-add changes a rounding.
+#pragma once
+#include "image/image.h"
+#include "kernels/float_scene.h"
+#include "kernels/precision.h"
+
+namespace raycast {
+
+// su and sv above.
+float pixel_su(const float_scene& f, int64_t i);
+float pixel_sv(const float_scene& f, int64_t j);
+
+// Colour of pixel (i, j) in the documented order; out receives r, g, b.
+void scalar_pixel(const float_scene& f, precision p, int64_t i, int64_t j, float out[3]);
+
+// Fills the band's rows; single-threaded.
+void render_scalar(const float_scene& f, precision p, const image_band& band);
+
+}  // namespace raycast

@@ -1,0 +1,312 @@
+// The sky kernel, written once against the width-generic vector layer and
+// compiled per instruction set (sky_sse2.cpp, sky_avx2.cpp, sky_avx512.cpp and,
+// on AArch64, sky_neon.cpp each define RAYCAST_ISA and include their simd/
+// header first).
+//
+// One batch is vfloat::size pixels of a row (8, or 16 with AVX-512), a
+// structure of arrays in registers: the rays (ray_batch), then t, then the
+// channels, then bytes or floats stored interleaved -- no float image in
+// memory for 8-bit output.
+// Exact mode performs scalar.h's operations in scalar.h's order, so its output
+// is bit-identical to render_scalar; fast mode swaps sqrt + divide for an
+// estimate refined by Newton.
+#include <cfloat>
+#include <type_traits>
+
+#include "kernels/kernel.h"
+#include "kernels/newton.h"
+
+namespace raycast::kernels::RAYCAST_ISA {
+namespace {
+
+using namespace raycast::simd::RAYCAST_ISA;
+constexpr int N = vfloat::size;
+
+struct row_setup {
+  // Per row: sv * vertical[k] (the rest of scalar.h's direction), and for the
+  // axis-aligned camera the row's constant direction y and squares.
+  float row_part[3];
+  float dy, y2, z2;
+  // Fast mode, lesson camera: y2 + z2 in one (fast mode need not keep exact
+  // mode's order), and the Newton constants times the row's y.
+  float yz2, nr_a, nr_b;
+};
+
+// A batch of N rays of one row as a structure of arrays in registers. The sky
+// reads only the direction's y and its squared length, so that is all a batch
+// carries: no origin lanes (the sky never reads the origin), and for the lesson
+// camera no x or z lanes either (x^2 comes from a per-column table, y and z
+// are constant along the row).
+struct ray_batch {
+  vfloat dir_y;  // d.y
+  vfloat len2;   // |d|^2 = (d.x^2 + d.y^2) + d.z^2, in scalar.h's order for exact mode
+};
+
+template <bool Lanes, bool Fast>
+inline ray_batch generate(const kernel_args& a, const row_setup& rs, int64_t i0) {
+  if constexpr (Lanes) {
+    const vfloat x2 = vfloat::load(a.column_x2 + i0);
+    if constexpr (Fast) return {rs.dy, x2 + rs.yz2};
+    return {rs.dy, (x2 + rs.y2) + rs.z2};
+  } else {
+    const vfloat dx = vfloat::load(a.column_part[0] + i0) + rs.row_part[0];
+    const vfloat dy = vfloat::load(a.column_part[1] + i0) + rs.row_part[1];
+    const vfloat dz = vfloat::load(a.column_part[2] + i0) + rs.row_part[2];
+    return {dy, (dx * dx + dy * dy) + dz * dz};
+  }
+}
+
+// Exact mode: uy = y / |d|, |d| = sqrt(max(n2, FLT_MIN)) (scalar.h). Since
+// |y| <= sqrt(fl(y^2)) <= |d|, t = (uy + 1) * 0.5 is already in [0, 1]:
+// scalar.h's clamp of t cannot change it and is left out.
+inline vfloat exact_uy(const ray_batch& b) { return b.dir_y / sqrt(max(b.len2, FLT_MIN)); }
+
+// Fast mode: y / |d| from the estimate and one (biased) Newton step, clamped
+// to [-1, 1] (scalar.h). The lesson camera's y is constant along the row, so
+// it is folded into the Newton constants.
+template <bool Lanes>
+inline vfloat fast_uy(const row_setup& rs, const ray_batch& b) {
+  const vfloat n2 = max(b.len2, FLT_MIN);
+  const vfloat r = rsqrt_est(n2);
+  const vfloat e = (n2 * r) * r;
+  vfloat uy;
+  if constexpr (Lanes) uy = r * nmadd(e, rs.nr_b, rs.nr_a);
+  else uy = (b.dir_y * r) * nmadd(e, fast_nr_b, fast_nr_a);
+  return clamp(uy, -1.0f, 1.0f);
+}
+
+// Channel sets the kernel has loops for (bit k: channel k is computed per
+// pixel; otherwise shortcut `channels` writes it as a constant).
+constexpr int all_channels = 0b111;
+constexpr int red_green = 0b011;  // the lesson's sky: blue is 1 at both ends
+
+// The shading constants in registers, loaded once per call (stores to the
+// image may alias anything, so nothing is re-read from the scene per batch).
+template <bool NoClamps, int Computed>
+struct shader {
+  vfloat bottom[3], top[3], delta[3], lo[3], hi[3];
+  vfloat constant_value[3];
+  vint constant_byte[3];
+  vfloat fast_qa[3], fast_qb[3];
+
+  explicit shader(const kernel_args& a) {
+    const float_scene& s = *a.scene;
+    for (int k = 0; k < 3; ++k) {
+      bottom[k] = s.bottom[k];
+      top[k] = s.top[k];
+      delta[k] = s.delta[k];
+      lo[k] = s.lo[k];
+      hi[k] = s.hi[k];
+      constant_value[k] = a.constant_value[k];
+      constant_byte[k] = splat_int(a.constant_byte[k]);
+      fast_qa[k] = s.fast_qa[k];
+      fast_qb[k] = s.fast_qb[k];
+    }
+  }
+
+  // scalar.h: clamp(t == 1 ? top : bottom + t * delta, lo, hi). The lerp is
+  // monotone in t, so when its end points are exact (NoClamps: shortcut `clamps`) the select and
+  // the clamp are no-ops and are left out; a constant channel is not computed.
+  template <int K>
+  vfloat channel(vfloat t) const {
+    if constexpr (!(Computed & (1 << K))) return constant_value[K];
+    const vfloat c = bottom[K] + t * delta[K];
+    if constexpr (NoClamps) return c;
+    return clamp(select(t == 1.0f, top[K], c), lo[K], hi[K]);
+  }
+  template <int K>
+  vint byte(vfloat c) const {
+    if constexpr (!(Computed & (1 << K))) return constant_byte[K];
+    return to_int((NoClamps ? c : clamp(c, 0.0f, 1.0f)) * 255.999f);
+  }
+  // Fast mode, 8-bit: shading and quantization in one multiply-add on uy. With
+  // colours in [0, 1] and uy in [-1, 1] the result stays inside [0, 256), so
+  // the clamp is left out.
+  template <int K>
+  vint fast_byte(vfloat uy) const {
+    if constexpr (!(Computed & (1 << K))) return constant_byte[K];
+    const vfloat x = madd(uy, fast_qa[K], fast_qb[K]);
+    return to_int(NoClamps ? x : clamp(x, 0.0f, 255.999f));
+  }
+};
+
+// 8-bit: shades one batch of one row from its uy and interleaves it in a
+// register; Reversed puts its pixels in the opposite order (the mirrored batch).
+template <bool Fast, bool Reversed, bool NoClamps, int Computed>
+inline rgb8_pack shade_rgb8(const shader<NoClamps, Computed>& sh, vfloat uy) {
+  if constexpr (Fast) {
+    return pack_rgb8<Reversed>(sh.template fast_byte<0>(uy), sh.template fast_byte<1>(uy),
+                               sh.template fast_byte<2>(uy));
+  } else {
+    const vfloat t = (uy + 1.0f) * 0.5f;
+    return pack_rgb8<Reversed>(sh.template byte<0>(sh.template channel<0>(t)),
+                               sh.template byte<1>(sh.template channel<1>(t)),
+                               sh.template byte<2>(sh.template channel<2>(t)));
+  }
+}
+
+// Float: shades one batch of one row and stores n pixels at column i0;
+// mirrored, with its lanes reversed so that lane L lands on column
+// i0 + N - 1 - L.
+template <bool NoClamps, int Computed>
+inline void shade_store_f32(const shader<NoClamps, Computed>& sh, vfloat uy, unsigned char* out,
+                            int64_t i0, int n, bool mirrored) {
+  const vfloat t = (uy + 1.0f) * 0.5f;
+  vfloat c0 = sh.template channel<0>(t), c1 = sh.template channel<1>(t), c2 = sh.template channel<2>(t);
+  if (mirrored) {
+    if constexpr ((Computed & 1) != 0) c0 = reverse(c0);
+    if constexpr ((Computed & 2) != 0) c1 = reverse(c1);
+    if constexpr ((Computed & 4) != 0) c2 = reverse(c2);
+  }
+  float* dst = reinterpret_cast<float*>(out) + 3 * i0;
+  if (n == N) {
+    store_rgbf(dst, c0, c1, c2);
+  } else {
+    alignas(64) float tmp[3 * N];
+    store_rgbf(tmp, c0, c1, c2);
+    __builtin_memcpy(dst, tmp, sizeof(float) * 3 * size_t(n));
+  }
+}
+
+template <bool Fast, bool NoClamps, int Computed>
+inline void shade_store_rgb8(const shader<NoClamps, Computed>& sh, vfloat uy, unsigned char* out,
+                             int64_t i0, int n, bool mirrored) {
+  unsigned char* dst = out + 3 * i0;
+  if (mirrored) {
+    store(dst, shade_rgb8<Fast, true>(sh, uy));
+  } else if (n == N) {
+    store(dst, shade_rgb8<Fast, false>(sh, uy));
+  } else {
+#ifdef RAYCAST_HAS_MASKED_BYTE_STORE
+    store_first(dst, shade_rgb8<Fast, false>(sh, uy), n);
+#else
+    alignas(64) unsigned char tmp[3 * N];
+    store(tmp, shade_rgb8<Fast, false>(sh, uy));
+    __builtin_memcpy(dst, tmp, 3 * size_t(n));
+#endif
+  }
+}
+
+// Four packs side by side: as whole cache-line writes where the instruction
+// set has them (store4), else one pack at a time.
+inline void store_four(unsigned char* dst, rgb8_pack a, rgb8_pack b, rgb8_pack c, rgb8_pack d) {
+#ifdef RAYCAST_HAS_STORE4
+  store4(dst, a, b, c, d);
+#else
+  store(dst, a);
+  store(dst + 3 * N, b);
+  store(dst + 6 * N, c);
+  store(dst + 9 * N, d);
+#endif
+}
+
+// Rows [r0, r1); with `paired`, each row r together with its mirror H-1-r.
+//
+// The lesson camera's image is symmetric bit for bit (scalar.h: su(W-1-i) =
+// -su(i), sv(H-1-j) = -sv(j)): column W-1-i has the same |d| and y as column
+// i, and row H-1-r has the same |d| and -y. So a batch's |d| (the square root
+// and divide, or the estimate and Newton step) serves up to four batches:
+// itself, its mirror in the row, and both of those in the mirrored row. Only
+// the middle of a row, less than two batches wide, is computed unmirrored.
+// 8-bit rows go four batches at a time where they can, so a backend can store
+// them as whole cache-line-sized writes (store4).
+template <bool Lanes, bool Fast, bool Float, bool NoClamps, int Computed>
+void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1, bool paired) {
+  const float_scene& s = *a.scene;
+  const shader<NoClamps, Computed> sh(a);
+  const int64_t W = s.width;
+  // Pixels at each end of a row computed once for both ends (whole batches).
+  const int64_t mirrored = Lanes && a.mirror ? W / (2 * N) * N : 0;
+  for (int64_t r = r0; r < r1; ++r) {
+    const int64_t j = s.height - 1 - r;
+    const float sv = s.height == 1 ? 0.0f : (float(j) - s.mid_row) / s.last_row;  // scalar.h
+    row_setup rs;
+    for (int k = 0; k < 3; ++k) rs.row_part[k] = sv * s.vertical[k];
+    // Lesson camera: centre = (0, 0, -f), horizontal = (hx, 0, 0), vertical =
+    // (0, vy, 0), so scalar.h's d.y = (0 + su*0) + sv*vy and d.z = (-f + su*0)
+    // + sv*0: sv*vy and -f up to the sign of a zero, which no square sees.
+    rs.dy = (s.centre[1] + 0.0f) + rs.row_part[1];
+    rs.y2 = rs.dy * rs.dy;
+    rs.z2 = s.centre[2] * s.centre[2];
+    rs.yz2 = rs.y2 + rs.z2;
+    rs.nr_a = fast_nr_a * rs.dy;
+    rs.nr_b = fast_nr_b * rs.dy;
+    unsigned char* const rows[2] = {
+        band.row(r), paired && s.height - 1 - r != r ? band.row(s.height - 1 - r) : nullptr};
+    const auto uy_at = [&](int64_t i0) {
+      const ray_batch rays = generate<Lanes, Fast>(a, rs, i0);
+      return Fast ? fast_uy<Lanes>(rs, rays) : exact_uy(rays);
+    };
+    // The mirrored row's y is -y (and so its uy is -uy, sign for sign).
+    const auto row_uy = [](vfloat uy, int k) { return k == 0 ? uy : -uy; };
+
+    int64_t i0 = 0;
+    if constexpr (!Float) {
+      for (; i0 + 4 * N <= mirrored; i0 += 4 * N) {
+        const vfloat uy[4] = {uy_at(i0), uy_at(i0 + N), uy_at(i0 + 2 * N), uy_at(i0 + 3 * N)};
+        for (int k = 0; k < 2 && rows[k]; ++k) {
+          rgb8_pack p[4], m[4];
+          for (int b = 0; b < 4; ++b) {
+            p[b] = shade_rgb8<Fast, false>(sh, row_uy(uy[b], k));
+            m[b] = shade_rgb8<Fast, true>(sh, row_uy(uy[b], k));
+          }
+          store_four(rows[k] + 3 * i0, p[0], p[1], p[2], p[3]);
+          store_four(rows[k] + 3 * (W - i0 - 4 * N), m[3], m[2], m[1], m[0]);
+        }
+      }
+    }
+    for (; i0 < W - mirrored; i0 += N) {
+      const bool mirror = i0 < mirrored;
+      const int n = mirror || W - mirrored - i0 >= N ? N : int(W - mirrored - i0);
+      const vfloat uy = uy_at(i0);
+      for (int k = 0; k < 2 && rows[k]; ++k) {
+        const vfloat u = row_uy(uy, k);
+        if constexpr (Float) {
+          shade_store_f32(sh, u, rows[k], i0, n, false);
+          if (mirror) shade_store_f32(sh, u, rows[k], W - i0 - N, N, true);
+        } else {
+          shade_store_rgb8<Fast>(sh, u, rows[k], i0, n, false);
+          if (mirror) shade_store_rgb8<Fast>(sh, u, rows[k], W - i0 - N, N, true);
+        }
+      }
+    }
+  }
+}
+
+// Calls f with a compile-time copy of a run-time flag, so that each
+// combination of flags is its own loop and no per-batch branch asks again.
+template <class F>
+inline void with_flag(bool flag, F&& f) {
+  if (flag) f(std::true_type{});
+  else f(std::false_type{});
+}
+
+}  // namespace
+
+void render_rows(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1, bool paired) {
+  const bool fast = a.prec == precision::fast;
+  const bool f32 = band.format == pixel_format::rgb_f32;
+  // Shortcut `clamps`: float output needs only the exact lerp; 8-bit output
+  // also needs colours in [0, 1].
+  const bool no_clamps = a.lerp_exact && (f32 || a.colours_in_unit_range);
+  int computed = 0;
+  for (int k = 0; k < 3; ++k) computed |= a.constant[k] ? 0 : 1 << k;
+  paired = paired && a.lanes && a.mirror;
+  // Channel sets other than "all" and the lesson's "red and green" run the
+  // all-channels loop, which is exact for them too (a constant channel's lerp
+  // is bottom + t * 0 = bottom).
+  with_flag(a.lanes, [&](auto lanes) {
+    with_flag(fast, [&](auto fast_mode) {
+      with_flag(f32, [&](auto float_out) {
+        with_flag(no_clamps, [&](auto unclamped) {
+          constexpr bool Lanes = decltype(lanes)::value, Fast = decltype(fast_mode)::value,
+                         Float = decltype(float_out)::value, NoClamps = decltype(unclamped)::value;
+          if (computed == red_green) render<Lanes, Fast, Float, NoClamps, red_green>(a, band, r0, r1, paired);
+          else render<Lanes, Fast, Float, NoClamps, all_channels>(a, band, r0, r1, paired);
+        });
+      });
+    });
+  });
+}
+
+}  // namespace raycast::kernels::RAYCAST_ISA

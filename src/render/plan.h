@@ -1,0 +1,47 @@
+// The plan: what a scene lets the SIMD kernels leave out, decided once per
+// render, and the per-column tables that make it possible.
+//
+// Each way of leaving work out is a *shortcut*. A render may take any set of
+// them (render_options::shortcuts); the plan takes those the scene allows.
+// Every shortcut, alone and with the others, is bit-identical to taking none
+// (tests/test_equivalence.cpp); raycast-bench's shortcuts/ rows time each.
+#pragma once
+#include <cstdlib>
+#include <memory>
+
+#include "kernels/float_scene.h"
+#include "kernels/kernel.h"
+#include "kernels/precision.h"
+
+namespace raycast {
+
+namespace shortcut {
+inline constexpr unsigned none = 0;
+inline constexpr unsigned lanes = 1;     // axis-aligned camera: no x/z lanes, y and z per row
+inline constexpr unsigned channels = 2;  // a channel whose two sky colours are equal: a constant
+inline constexpr unsigned clamps = 4;    // the lerp's select and clamps, when provably no-ops
+inline constexpr unsigned mirror = 8;    // with lanes: mirrored pixels reuse their twin's |d|
+inline constexpr unsigned all = lanes | channels | clamps | mirror;
+}  // namespace shortcut
+
+class plan {
+ public:
+  // For a SIMD kernel: the shortcuts of `allowed` this scene permits, and their
+  // tables. `f` must outlive the plan (the kernel arguments point at it).
+  plan(const float_scene& f, precision p, unsigned allowed);
+  plan(const plan&) = delete;  // args_ points into the tables
+  plan& operator=(const plan&) = delete;
+
+  const kernels::kernel_args& args() const { return args_; }
+
+ private:
+  struct free_deleter {
+    void operator()(float* p) const { std::free(p); }
+  };
+  using aligned_floats = std::unique_ptr<float[], free_deleter>;
+
+  kernels::kernel_args args_;
+  aligned_floats column_part_[3], column_x2_;  // 64-byte aligned, behind args_
+};
+
+}  // namespace raycast

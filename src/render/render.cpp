@@ -1,0 +1,142 @@
+#include "render/render.h"
+
+#include <pthread.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <mutex>
+#include <vector>
+
+#include <omp.h>
+
+#include "kernels/scalar.h"
+#include "reference/reference.h"
+
+namespace raycast {
+
+int available_cores() { return std::max(1, omp_get_num_procs()); }
+
+namespace {
+
+// The stack size libgomp gives its threads: OMP_STACKSIZE or GOMP_STACKSIZE
+// ("<n>[B|K|M|G]", kilobytes without a unit), else the pthread default.
+size_t omp_stack_size() {
+  for (const char* name : {"OMP_STACKSIZE", "GOMP_STACKSIZE"}) {
+    const char* v = std::getenv(name);
+    if (!v) continue;
+    char* end = nullptr;
+    const unsigned long long n = std::strtoull(v, &end, 10);
+    while (end && std::isspace(static_cast<unsigned char>(*end))) ++end;
+    unsigned shift = 10;
+    switch (end ? std::tolower(static_cast<unsigned char>(*end)) : 0) {
+      case 'b': shift = 0; break;
+      case 'm': shift = 20; break;
+      case 'g': shift = 30; break;
+      default: break;
+    }
+    if (end == v || n > (~0ull >> shift)) return ~size_t{0};
+    return size_t(n << shift);
+  }
+  return 0;
+}
+
+// How many threads a parallel region of `wanted` can really have. libgomp
+// calls exit() when it cannot start a thread (a container's pids limit,
+// RLIMIT_NPROC, an OMP_STACKSIZE the address space cannot hold), which would
+// end raycast with a library's line and skip every clean-up. So, once per
+// process and before the first region that needs more threads than were
+// proven, start that many threads with libgomp's stack size ourselves: where
+// some cannot start, the regions get only as many as did (at least the
+// calling thread). libgomp keeps the threads of its first region for later
+// ones, so the proof holds for the rest of the run.
+int threads_that_start(int wanted) {
+  static std::mutex m;
+  static int proven = 1, limit = 0;  // limit 0: none found yet
+  const std::lock_guard<std::mutex> lock(m);
+  if (limit > 0) return std::min(wanted, limit);
+  if (wanted <= proven) return wanted;
+  pthread_attr_t attr;
+  pthread_attr_init(&attr);
+  const size_t stack = omp_stack_size();
+  bool ok = stack == 0 || pthread_attr_setstacksize(&attr, stack) == 0;
+  // Each thread waits on `hold` until all were tried, so they coexist.
+  static pthread_mutex_t hold = PTHREAD_MUTEX_INITIALIZER;
+  pthread_mutex_lock(&hold);
+  std::vector<pthread_t> started;
+  while (ok && int(started.size()) + 1 < wanted) {
+    pthread_t t;
+    ok = pthread_create(
+             &t, &attr,
+             [](void*) -> void* {
+               pthread_mutex_lock(&hold);
+               pthread_mutex_unlock(&hold);
+               return nullptr;
+             },
+             nullptr) == 0;
+    if (ok) started.push_back(t);
+  }
+  pthread_mutex_unlock(&hold);
+  for (pthread_t t : started) pthread_join(t, nullptr);
+  pthread_attr_destroy(&attr);
+  const int got = int(started.size()) + 1;
+  if (got < wanted) limit = got;
+  proven = std::max(proven, got);
+  return got;
+}
+
+}  // namespace
+
+renderer::renderer(const scene& s, const render_options& opts)
+    : scene_(s),
+      fscene_(prepare_float_scene(s)),
+      which_(opts.which == backend::automatic ? best_backend() : opts.which),
+      prec_(opts.prec),
+      threads_(opts.threads > 0 ? opts.threads : available_cores()) {
+  if (auto why = backend_unavailable(which_)) throw unsupported_backend(*why);
+  kernel_ = kernel_for(which_);
+  if (kernel_) plan_.emplace(fscene_, prec_, opts.shortcuts);  // reference and scalar need none
+}
+
+void renderer::render_rows(const image_band& band, int64_t r0, int64_t r1, bool paired) const {
+  if (kernel_) {
+    kernel_(plan_->args(), band, r0, r1, paired);
+    return;
+  }
+  image_band part = band;
+  part.data = band.row(r0);
+  part.row_begin = r0;
+  part.row_end = r1;
+  if (which_ == backend::reference) render_reference(scene_, part);
+  else render_scalar(fscene_, prec_, part);
+}
+
+void renderer::render(const image_band& band) const {
+  const int64_t rows = band.row_end - band.row_begin;
+  if (rows <= 0) return;
+  // The lesson camera's image is symmetric top to bottom: when the band holds
+  // both rows of each mirrored pair, the kernel renders them together
+  // (kernels/kernel.h), and the work is split over the top rows of the pairs.
+  const bool paired = kernel_ && plan_->args().mirror &&
+                      band.row_begin + band.row_end == scene_.cam.image_height;
+  const int64_t units = paired ? (rows + 1) / 2 : rows;
+  // Bands of consecutive rows, a few per thread so uneven cores even out. A
+  // thread costs tens of microseconds to start, about what 2^17 pixels take
+  // to render: smaller jobs (the default 400x225 sky) stay on one thread.
+  const int64_t pixels = rows * scene_.cam.image_width;
+  int64_t nthreads = std::min<int64_t>({threads_, units, std::max<int64_t>(1, pixels >> 17)});
+  if (nthreads > 1) nthreads = threads_that_start(int(nthreads));
+  if (nthreads <= 1) {
+    render_rows(band, band.row_begin, band.row_begin + units, paired);
+    return;
+  }
+  const int64_t chunks = std::min<int64_t>(units, nthreads * 4);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(int(nthreads))
+  for (int64_t c = 0; c < chunks; ++c) {
+    const int64_t r0 = band.row_begin + units * c / chunks;
+    const int64_t r1 = band.row_begin + units * (c + 1) / chunks;
+    render_rows(band, r0, r1, paired);
+  }
+}
+
+}  // namespace raycast

@@ -1,0 +1,56 @@
+// The one entry point for rendering: pick a backend, prepare the scene and
+// plan the shortcuts once, then fill bands of rows on as many threads as asked.
+#pragma once
+#include <optional>
+
+#include "image/image.h"
+#include "kernels/float_scene.h"
+#include "kernels/precision.h"
+#include "render/backend.h"
+#include "render/plan.h"
+#include "scene/scene.h"
+
+namespace raycast {
+
+struct render_options {
+  backend which = backend::automatic;
+  precision prec = default_precision;
+  int threads = 0;  // 0: one per available core
+  // The shortcuts the plan may take when the scene allows them
+  // (render/plan.h); shortcut::none runs the general path, for tests and the
+  // benchmark. Every set is bit-identical in exact mode.
+  unsigned shortcuts = shortcut::all;
+};
+
+class renderer {
+ public:
+  // Throws unsupported_backend when the CPU cannot run the requested backend.
+  renderer(const scene& s, const render_options& opts);
+  renderer(const renderer&) = delete;  // the plan points at fscene_
+  renderer& operator=(const renderer&) = delete;
+
+  backend selected() const { return which_; }
+  precision prec() const { return prec_; }
+  int threads() const { return threads_; }
+  const scene& scene_ref() const { return scene_; }
+
+  // Fills the band's rows (any subset of the image), the same bytes whatever
+  // the thread count.
+  void render(const image_band& band) const;
+
+ private:
+  void render_rows(const image_band& band, int64_t r0, int64_t r1, bool paired) const;
+
+  scene scene_;
+  float_scene fscene_;
+  backend which_;
+  precision prec_;
+  int threads_;
+  kernels::render_rows_fn kernel_ = nullptr;
+  std::optional<plan> plan_;  // SIMD backends only
+};
+
+// Number of threads "all cores" means here.
+int available_cores();
+
+}  // namespace raycast

@@ -1,0 +1,90 @@
+#include "scene/camera.h"
+
+#include <cmath>
+#include <numbers>
+
+#include <glm/geometric.hpp>
+
+
+namespace raycast {
+
+int64_t default_height(int64_t width, double aspect_ratio) {
+  const double h = double(width) / aspect_ratio;
+  if (!(h >= 1.0)) return 1;
+  if (h >= double(max_dimension)) return max_dimension + 1;  // refused by validate()
+  return static_cast<int64_t>(h);
+}
+
+std::optional<invalid_field> validate(const camera_params& p) {
+  using enum scene_field;
+  const auto bad = [](scene_field f, std::string why) {
+    return std::optional<invalid_field>(invalid_field{f, std::move(why)});
+  };
+  auto positive_finite = [](double x) { return std::isfinite(x) && x > 0.0; };
+  if (!positive_finite(p.aspect_ratio)) return bad(aspect, "aspect ratio must be a positive finite number");
+  if (!positive_finite(p.viewport_height))
+    return bad(viewport_height, "viewport height must be a positive finite number");
+  if (!positive_finite(p.focal_length))
+    return bad(focal_length, "focal length must be a positive finite number");
+  if (!positive_finite(p.aspect_ratio * p.viewport_height))
+    return bad(viewport_height, "viewport width (aspect x viewport height) overflows a double");
+  for (double c : {p.origin.x, p.origin.y, p.origin.z})
+    if (!std::isfinite(c)) return bad(origin, "origin must be finite");
+  if (p.vfov_degrees) {
+    const double f = *p.vfov_degrees;
+    if (!(f > 0.0 && f < 180.0))
+      return bad(vfov, "vertical field of view must be between 0 and 180 degrees (exclusive)");
+    if (!positive_finite(2.0 * std::tan(f * std::numbers::pi / 360.0) * p.focal_length * p.aspect_ratio))
+      return bad(vfov, "vertical field of view gives a viewport that overflows a double");
+  }
+  if (p.lookat) {
+    for (double c : {p.lookat->x, p.lookat->y, p.lookat->z})
+      if (!std::isfinite(c)) return bad(lookat, "lookat must be finite");
+    for (double c : {p.vup.x, p.vup.y, p.vup.z})
+      if (!std::isfinite(c)) return bad(vup, "vup must be finite");
+    const vec3 back = p.origin - *p.lookat;
+    if (!std::isfinite(back.x) || !std::isfinite(back.y) || !std::isfinite(back.z))
+      return bad(lookat, "lookfrom - lookat overflows a double");
+    if (back == vec3(0.0)) return bad(lookat, "lookfrom and lookat are the same point");
+    if (p.vup == vec3(0.0)) return bad(vup, "vup must not be the zero vector");
+    // Parallel when the sine of the angle between them is below 1e-9.
+    if (glm::length(glm::cross(unit_vector(p.vup), unit_vector(back))) < 1e-9)
+      return bad(vup, "vup is parallel to the view direction");
+  }
+  const auto dims_ok = [](int64_t n) { return n >= 1 && n <= max_dimension; };
+  const std::string range = " must be between 1 and " + std::to_string(max_dimension);
+  if (!dims_ok(p.image_width))
+    return bad(width, "width" + range + ", got " + std::to_string(p.image_width));
+  if (p.image_height && !dims_ok(*p.image_height))
+    return bad(height, "height" + range + ", got " + std::to_string(*p.image_height));
+  if (!p.image_height && !dims_ok(default_height(p.image_width, p.aspect_ratio)))
+    return bad(aspect, "height (width / aspect)" + range);
+  return std::nullopt;
+}
+
+camera make_camera(const camera_params& p) {
+  camera c;
+  c.image_width = p.image_width;
+  c.image_height = p.image_height.value_or(default_height(p.image_width, p.aspect_ratio));
+  c.aspect_ratio = p.aspect_ratio;
+  c.viewport_height = p.vfov_degrees
+                          ? 2.0 * std::tan(*p.vfov_degrees * std::numbers::pi / 360.0) * p.focal_length
+                          : p.viewport_height;
+  c.viewport_width = p.aspect_ratio * c.viewport_height;
+  c.focal_length = p.focal_length;
+  c.origin = p.origin;
+  if (p.lookat) {
+    // The book's frame, from directions only: a far-away lookfrom loses
+    // nothing, since the sky never reads a position.
+    c.axis_w = unit_vector(p.origin - *p.lookat);
+    c.axis_u = unit_vector(glm::cross(p.vup, c.axis_w));
+    c.axis_v = glm::cross(c.axis_w, c.axis_u);
+  }
+  c.horizontal = c.viewport_width * c.axis_u;
+  c.vertical = c.viewport_height * c.axis_v;
+  c.corner_dir = -c.horizontal / 2.0 - c.vertical / 2.0 - c.focal_length * c.axis_w;
+  c.lower_left_corner = c.origin + c.corner_dir;
+  return c;
+}
+
+}  // namespace raycast

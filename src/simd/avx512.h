@@ -1,0 +1,143 @@
+// AVX-512 F + BW + VL: 16 float lanes in one __m512, masks in k-registers.
+// See README.md.
+#pragma once
+#include <immintrin.h>
+
+#include <cstdint>
+
+#include "simd/inline.h"
+
+// What this instruction set offers beyond the common vocabulary (README.md),
+// for the kernel to test with #ifdef (each kernel translation unit includes
+// exactly one ISA header): store4, four packs as three 64-byte writes, and
+// store_first, a row's tail as one byte-masked store.
+#define RAYCAST_HAS_STORE4 1
+#define RAYCAST_HAS_MASKED_BYTE_STORE 1
+
+namespace raycast::simd::avx512 {
+
+struct vmask {
+  __mmask16 m;
+};
+
+struct vfloat {
+  static constexpr int size = 16;
+  __m512 v;
+  vfloat() = default;
+  RAYCAST_INLINE vfloat(__m512 x) : v(x) {}
+  // Every lane s; implicit, as Embree's, so that kernels write (uy + 1.0f) * 0.5f.
+  RAYCAST_INLINE vfloat(float s) : v(_mm512_set1_ps(s)) {}
+  static RAYCAST_INLINE vfloat load(const float* p) { return _mm512_loadu_ps(p); }
+};
+
+struct vint {
+  __m512i v;
+};
+
+RAYCAST_INLINE vfloat operator+(vfloat a, vfloat b) { return _mm512_add_ps(a.v, b.v); }
+RAYCAST_INLINE vfloat operator-(vfloat a, vfloat b) { return _mm512_sub_ps(a.v, b.v); }
+RAYCAST_INLINE vfloat operator*(vfloat a, vfloat b) { return _mm512_mul_ps(a.v, b.v); }
+RAYCAST_INLINE vfloat operator/(vfloat a, vfloat b) { return _mm512_div_ps(a.v, b.v); }
+// IEEE negation (the sign bit flipped), as the scalar -x: -(+0) is -0. An
+// integer xor: the float one needs AVX-512 DQ.
+RAYCAST_INLINE vfloat operator-(vfloat a) {
+  return _mm512_castsi512_ps(_mm512_xor_si512(_mm512_castps_si512(a.v), _mm512_set1_epi32(INT32_MIN)));
+}
+RAYCAST_INLINE void store(float* p, vfloat a) { _mm512_storeu_ps(p, a.v); }
+RAYCAST_INLINE vmask operator==(vfloat a, vfloat b) { return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_EQ_OQ)}; }
+RAYCAST_INLINE vfloat min(vfloat a, vfloat b) { return _mm512_min_ps(a.v, b.v); }
+RAYCAST_INLINE vfloat max(vfloat a, vfloat b) { return _mm512_max_ps(a.v, b.v); }
+RAYCAST_INLINE vfloat clamp(vfloat x, vfloat lo, vfloat hi) { return min(max(x, lo), hi); }
+RAYCAST_INLINE vfloat select(vmask m, vfloat a, vfloat b) { return _mm512_mask_blend_ps(m.m, b.v, a.v); }
+RAYCAST_INLINE vfloat sqrt(vfloat a) { return _mm512_sqrt_ps(a.v); }
+RAYCAST_INLINE vfloat madd(vfloat a, vfloat b, vfloat c) { return _mm512_fmadd_ps(a.v, b.v, c.v); }
+RAYCAST_INLINE vfloat nmadd(vfloat a, vfloat b, vfloat c) { return _mm512_fnmadd_ps(a.v, b.v, c.v); }  // c - a b
+// 1/sqrt(x), hardware estimate: relative error below 2^-14.
+RAYCAST_INLINE vfloat rsqrt_est(vfloat x) { return _mm512_rsqrt14_ps(x.v); }
+RAYCAST_INLINE vint to_int(vfloat a) { return {_mm512_cvttps_epi32(a.v)}; }
+// Lanes in the opposite order (the mirrored pixels of a batch).
+RAYCAST_INLINE __m512i reverse_index() {
+  return _mm512_setr_epi32(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0);
+}
+RAYCAST_INLINE vfloat reverse(vfloat a) { return _mm512_permutexvar_ps(reverse_index(), a.v); }
+RAYCAST_INLINE vint reverse(vint a) { return {_mm512_permutexvar_epi32(reverse_index(), a.v)}; }
+RAYCAST_INLINE vint splat_int(int32_t x) { return {_mm512_set1_epi32(x)}; }
+
+// 16 pixels of RGB8, interleaved in a register: 48 bytes in dwords 0-11.
+struct rgb8_pack {
+  __m512i v;
+};
+
+// Interleaves r, g, b (bytes in 32-bit lanes) in a register: (r g b 0) dwords,
+// the zero bytes squeezed out per 128-bit lane, then the twelve useful dwords
+// gathered. Reversed, the same two shuffles with other constants put the
+// pixels in the opposite order (the mirrored batch) at no extra cost.
+template <bool Reversed = false>
+RAYCAST_INLINE rgb8_pack pack_rgb8(vint r, vint g, vint b) {
+  const __m512i w = _mm512_or_si512(
+      r.v, _mm512_or_si512(_mm512_slli_epi32(g.v, 8), _mm512_slli_epi32(b.v, 16)));
+  if constexpr (Reversed) {
+    const __m512i pack = _mm512_broadcast_i32x4(
+        _mm_setr_epi8(12, 13, 14, 8, 9, 10, 4, 5, 6, 0, 1, 2, -1, -1, -1, -1));
+    return {_mm512_permutexvar_epi32(
+        _mm512_setr_epi32(12, 13, 14, 8, 9, 10, 4, 5, 6, 0, 1, 2, 15, 15, 15, 15),
+        _mm512_shuffle_epi8(w, pack))};
+  } else {
+    const __m512i pack = _mm512_broadcast_i32x4(
+        _mm_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1));
+    return {_mm512_permutexvar_epi32(
+        _mm512_setr_epi32(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, 15, 15, 15, 15),
+        _mm512_shuffle_epi8(w, pack))};
+  }
+}
+RAYCAST_INLINE void store(unsigned char* dst, rgb8_pack p) {
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst), _mm512_castsi512_si256(p.v));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(dst + 32), _mm512_extracti32x4_epi32(p.v, 2));
+}
+// The first n pixels only (n < 16): a byte-granular masked store, nothing past
+// 3n bytes is touched.
+RAYCAST_INLINE void store_first(unsigned char* dst, rgb8_pack p, int n) {
+  _mm512_mask_storeu_epi8(dst, (__mmask64{1} << (3 * n)) - 1, p.v);
+}
+// Four packs side by side (192 bytes) as three full 64-byte stores.
+RAYCAST_INLINE void store4(unsigned char* dst, rgb8_pack a, rgb8_pack b, rgb8_pack c, rgb8_pack d) {
+  const __m512i lo = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 16, 17, 18, 19);
+  const __m512i mid = _mm512_setr_epi32(4, 5, 6, 7, 8, 9, 10, 11, 16, 17, 18, 19, 20, 21, 22, 23);
+  const __m512i hi = _mm512_setr_epi32(8, 9, 10, 11, 16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27);
+  _mm512_storeu_si512(dst, _mm512_permutex2var_epi32(a.v, lo, b.v));
+  _mm512_storeu_si512(dst + 64, _mm512_permutex2var_epi32(b.v, mid, c.v));
+  _mm512_storeu_si512(dst + 128, _mm512_permutex2var_epi32(c.v, hi, d.v));
+}
+
+// Writes 48 floats r0 g0 b0 r1 ...: the in-lane triple shuffles, then the
+// 128-bit lanes in pixel order.
+RAYCAST_INLINE void store_rgbf(float* dst, vfloat r, vfloat g, vfloat b) {
+  const __m512 a = _mm512_unpacklo_ps(r.v, g.v);
+  const __m512 c = _mm512_shuffle_ps(b.v, r.v, _MM_SHUFFLE(1, 1, 0, 0));
+  const __m512 o0 = _mm512_shuffle_ps(a, c, _MM_SHUFFLE(2, 0, 1, 0));
+  const __m512 d = _mm512_shuffle_ps(g.v, b.v, _MM_SHUFFLE(1, 1, 1, 1));
+  const __m512 e = _mm512_shuffle_ps(r.v, g.v, _MM_SHUFFLE(2, 2, 2, 2));
+  const __m512 o1 = _mm512_shuffle_ps(d, e, _MM_SHUFFLE(2, 0, 2, 0));
+  const __m512 f = _mm512_shuffle_ps(b.v, r.v, _MM_SHUFFLE(3, 3, 2, 2));
+  const __m512 h = _mm512_shuffle_ps(g.v, b.v, _MM_SHUFFLE(3, 3, 3, 3));
+  const __m512 o2 = _mm512_shuffle_ps(f, h, _MM_SHUFFLE(2, 0, 2, 0));
+  // oK holds part K of pixel quads A, B, C, D in its four 128-bit lanes. Output:
+  // [o0.A o1.A o2.A o0.B] [o1.B o2.B o0.C o1.C] [o2.C o0.D o1.D o2.D]; each is
+  // one two-source permute plus one masked permute for its third source.
+  const auto idx = [](int l0, int l1, int l2, int l3) {  // 128-bit lanes; 4..7: second source
+    return _mm512_setr_epi32(4 * l0, 4 * l0 + 1, 4 * l0 + 2, 4 * l0 + 3, 4 * l1, 4 * l1 + 1,
+                             4 * l1 + 2, 4 * l1 + 3, 4 * l2, 4 * l2 + 1, 4 * l2 + 2, 4 * l2 + 3,
+                             4 * l3, 4 * l3 + 1, 4 * l3 + 2, 4 * l3 + 3);
+  };
+  __m512 out0 = _mm512_permutex2var_ps(o0, idx(0, 4, 0, 1), o1);
+  out0 = _mm512_mask_permutexvar_ps(out0, 0x0F00, idx(0, 0, 0, 0), o2);
+  __m512 out1 = _mm512_permutex2var_ps(o1, idx(1, 1, 6, 2), o0);
+  out1 = _mm512_mask_permutexvar_ps(out1, 0x00F0, idx(1, 1, 1, 1), o2);
+  __m512 out2 = _mm512_permutex2var_ps(o2, idx(2, 7, 2, 3), o0);
+  out2 = _mm512_mask_permutexvar_ps(out2, 0x0F00, idx(3, 3, 3, 3), o1);
+  _mm512_storeu_ps(dst + 0, out0);
+  _mm512_storeu_ps(dst + 16, out1);
+  _mm512_storeu_ps(dst + 32, out2);
+}
+
+}  // namespace raycast::simd::avx512

@@ -1,0 +1,81 @@
+#include "simd/cpu.h"
+
+#include <cstdlib>
+#include <string>
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <cpuid.h>
+#include <cstdint>
+#elif defined(__aarch64__)
+#include <asm/hwcap.h>
+#include <sys/auxv.h>
+#endif
+
+namespace raycast {
+namespace {
+
+#if defined(__x86_64__) || defined(__i386__)
+uint64_t xgetbv0() {
+  uint32_t lo = 0, hi = 0;
+  __asm__ volatile("xgetbv" : "=a"(lo), "=d"(hi) : "c"(0));
+  return (uint64_t{hi} << 32) | lo;
+}
+
+cpu_features detect() {
+  cpu_features f;
+  unsigned a = 0, b = 0, c = 0, d = 0;
+  if (!__get_cpuid(1, &a, &b, &c, &d)) return f;
+  f.sse2 = (d >> 26) & 1;
+  const bool osxsave = (c >> 27) & 1, avx = (c >> 28) & 1, fma = (c >> 12) & 1;
+  if (!osxsave || !avx) return f;
+  const uint64_t xcr0 = xgetbv0();
+  const bool os_ymm = (xcr0 & 0x6) == 0x6;     // SSE and AVX state
+  const bool os_zmm = (xcr0 & 0xE6) == 0xE6;   // + opmask, ZMM_Hi256, Hi16_ZMM
+  if (!__get_cpuid_count(7, 0, &a, &b, &c, &d)) return f;
+  const bool avx2 = (b >> 5) & 1;
+  const bool avx512f = (b >> 16) & 1, avx512bw = (b >> 30) & 1, avx512vl = (b >> 31) & 1;
+  f.avx2_fma = os_ymm && avx2 && fma;
+  f.avx512 = f.avx2_fma && os_zmm && avx512f && avx512bw && avx512vl;
+  return f;
+}
+#elif defined(__aarch64__)
+// Advanced SIMD is part of every AArch64 CPU the Linux kernel runs on; ask the
+// kernel's HWCAP anyway, so this stays the only place that decides.
+cpu_features detect() {
+  cpu_features f;
+  f.neon = (getauxval(AT_HWCAP) & HWCAP_ASIMD) != 0;
+  return f;
+}
+#else
+cpu_features detect() { return {}; }
+#endif
+
+// RAYCAST_MAX_ISA=sse2|avx2|avx512|neon|scalar caps what this process believes the
+// CPU has, so the dispatch and the refusal of unsupported backends can be
+// exercised as on an older CPU (tests, and users comparing paths).
+cpu_features capped(cpu_features f) {
+  const char* cap = std::getenv("RAYCAST_MAX_ISA");
+  if (!cap) return f;
+  const std::string c = cap;
+  if (c == "scalar") f = cpu_features{};
+  if (c == "sse2") f.avx2_fma = f.avx512 = false;
+  if (c == "avx2") f.avx512 = false;
+  return f;
+}
+
+}  // namespace
+
+std::optional<std::string> max_isa_error() {
+  const char* cap = std::getenv("RAYCAST_MAX_ISA");
+  if (!cap || !*cap) return std::nullopt;
+  const std::string c = cap;
+  if (c == "scalar" || c == "sse2" || c == "avx2" || c == "avx512" || c == "neon") return std::nullopt;
+  return "'" + c + "' is not one of scalar, sse2, avx2, avx512, neon";
+}
+
+const cpu_features& cpu() {
+  static const cpu_features f = capped(detect());
+  return f;
+}
+
+}  // namespace raycast

@@ -1,0 +1,66 @@
+// ops.h's table for one instruction set: ops_<isa>.cpp defines RAYCAST_ISA
+// and includes its simd/ header first. Intrinsics and arrays only.
+#include "ops.h"
+
+namespace raycast_test::RAYCAST_ISA {
+namespace {
+
+using namespace raycast::simd::RAYCAST_ISA;
+constexpr int N = vfloat::size;
+
+void load_store(const float* in, float* out) { store(out, vfloat::load(in)); }
+void reverse_lanes(const float* in, float* out) { store(out, reverse(vfloat::load(in))); }
+void half_plus_and_negate(const float* in, float* half_plus, float* negated) {
+  const vfloat x = vfloat::load(in);
+  store(half_plus, (x + 1.0f) * 0.5f);
+  store(negated, -x);
+}
+void select_zero(const float* key, const float* a, float b, float* out) {
+  store(out, select(vfloat::load(key) == 0.0f, vfloat::load(a), b));
+}
+void pack(const float* r, const float* g, const float* b, bool reversed, unsigned char* out) {
+  const vint ri = to_int(vfloat::load(r)), gi = to_int(vfloat::load(g)), bi = to_int(vfloat::load(b));
+  store(out, reversed ? pack_rgb8<true>(ri, gi, bi) : pack_rgb8<false>(ri, gi, bi));
+}
+void reverse_ints_then_pack(const float* r, const float* g, const float* b, unsigned char* out) {
+  store(out, pack_rgb8<false>(reverse(to_int(vfloat::load(r))), reverse(to_int(vfloat::load(g))),
+                              reverse(to_int(vfloat::load(b)))));
+}
+void store_interleaved(const float* r, const float* g, const float* b, float* out) {
+  store_rgbf(out, vfloat::load(r), vfloat::load(g), vfloat::load(b));
+}
+#ifdef RAYCAST_HAS_STORE4
+void store_four(const float* rgb, unsigned char* out) {
+  rgb8_pack p[4];
+  for (int k = 0; k < 4; ++k) {
+    const float* c = rgb + 3 * N * k;
+    p[k] = pack_rgb8<false>(to_int(vfloat::load(c)), to_int(vfloat::load(c + N)),
+                            to_int(vfloat::load(c + 2 * N)));
+  }
+  store4(out, p[0], p[1], p[2], p[3]);
+}
+#endif
+#ifdef RAYCAST_HAS_MASKED_BYTE_STORE
+void store_first_pixels(const float* r, const float* g, const float* b, int n, unsigned char* out) {
+  store_first(out, pack_rgb8<false>(to_int(vfloat::load(r)), to_int(vfloat::load(g)), to_int(vfloat::load(b))), n);
+}
+#endif
+
+}  // namespace
+
+extern const simd_ops ops = {
+    N, load_store, reverse_lanes, half_plus_and_negate, select_zero, pack, reverse_ints_then_pack,
+    store_interleaved,
+#ifdef RAYCAST_HAS_STORE4
+    store_four,
+#else
+    nullptr,
+#endif
+#ifdef RAYCAST_HAS_MASKED_BYTE_STORE
+    store_first_pixels,
+#else
+    nullptr,
+#endif
+};
+
+}  // namespace raycast_test::RAYCAST_ISA
