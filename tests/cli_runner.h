@@ -67,6 +67,13 @@ struct run_options {
   // Run as this user and group (from root), e.g. where root would bypass a
   // file permission under test.
   std::optional<std::pair<uid_t, gid_t>> run_as;
+  // With file_size_limit: leave SIGXFSZ at its default action (death), as a
+  // shell's `ulimit -f` does; raycast must ignore it itself.
+  bool default_sigxfsz = false;
+  // Other resource limits for the child (soft and hard), e.g. RLIMIT_AS.
+  std::vector<std::pair<int, rlim_t>> limits;
+  // Signals ignored when raycast starts, as `nohup` leaves SIGHUP.
+  std::vector<int> ignored_signals;
   // Extra environment entries, "NAME=value".
   std::vector<std::string> env;
 };
@@ -136,7 +143,7 @@ class cli_sandbox {
     std::error_code ec;
     for (auto it = fs::recursive_directory_iterator(work_, fs::directory_options::skip_permission_denied, ec);
          !ec && it != fs::recursive_directory_iterator(); it.increment(ec))
-      names.push_back(fs::relative(it->path(), work_).string());
+      names.push_back(it->path().lexically_relative(work_).string());  // no link followed
     std::sort(names.begin(), names.end());
     return names;
   }
@@ -147,6 +154,28 @@ class cli_sandbox {
     for (const std::string& n : entries())
       if (fs::path(n).filename().string().rfind('.', 0) == 0) dot.push_back(n);
     return dot;
+  }
+
+  // The size of the file a running raycast is writing under work(): an
+  // unnamed O_TMPFILE file, seen through /proc/<pid>/fd, or a named temporary
+  // where the file system has no O_TMPFILE. nullopt until there is one.
+  std::optional<uintmax_t> output_in_progress(pid_t pid) const {
+    std::error_code ec;
+    const fs::path fds = fs::path("/proc") / std::to_string(pid) / "fd";
+    for (auto it = fs::directory_iterator(fds, ec); !ec && it != fs::directory_iterator(); it.increment(ec)) {
+      const fs::path target = fs::read_symlink(it->path(), ec);
+      if (ec) {
+        ec.clear();
+        continue;
+      }
+      if (target.parent_path() != work_ && target.string().rfind(work_.string() + "/", 0) != 0) continue;
+      struct stat st {};
+      if (stat(it->path().c_str(), &st) == 0 && S_ISREG(st.st_mode)) return uintmax_t(st.st_size);
+    }
+    const auto dot = leftovers();
+    if (dot.empty()) return std::nullopt;
+    const uintmax_t n = fs::file_size(work_ / dot.front(), ec);
+    return ec ? std::optional<uintmax_t>() : n;
   }
 
   pid_t start(const std::vector<std::string>& args, const run_options& opts = {}) const {
@@ -180,17 +209,23 @@ class cli_sandbox {
       sigset_t none;
       sigemptyset(&none);
       sigprocmask(SIG_SETMASK, &none, nullptr);
+      struct sigaction ignore {};
+      ignore.sa_handler = SIG_IGN;
       if (opts.file_size_limit) {
-        struct sigaction ignore {};
-        ignore.sa_handler = SIG_IGN;
-        sigaction(SIGXFSZ, &ignore, nullptr);
+        if (!opts.default_sigxfsz) sigaction(SIGXFSZ, &ignore, nullptr);
         const struct rlimit rl = {*opts.file_size_limit, *opts.file_size_limit};
         if (setrlimit(RLIMIT_FSIZE, &rl) != 0) _exit(125);
       }
+      for (const int sig : opts.ignored_signals) sigaction(sig, &ignore, nullptr);
       if (opts.run_as) {
         if (setgroups(0, nullptr) != 0 || setgid(opts.run_as->second) != 0 ||
             setuid(opts.run_as->first) != 0)
           _exit(125);
+      }
+      // After setuid: RLIMIT_NPROC counts the processes of the user we run as.
+      for (const auto& [resource, value] : opts.limits) {
+        const struct rlimit rl = {value, value};
+        if (setrlimit(resource, &rl) != 0) _exit(125);
       }
       execve(argv[0], argv.data(), envp.data());
       _exit(127);

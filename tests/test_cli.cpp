@@ -593,12 +593,12 @@ TEST_F(Cli, TerminationRemovesTheTemporaryFile) {
   bool seen = false;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
   while (!seen && std::chrono::steady_clock::now() < deadline) {
-    seen = !box.leftovers().empty();
+    seen = box.output_in_progress(pid).has_value();
     if (!seen) std::this_thread::sleep_for(std::chrono::microseconds(200));
   }
   kill(pid, SIGTERM);
   const run_result r = box.finish(pid);  // also checks that no temporary file remains
-  ASSERT_TRUE(seen) << "the temporary file never appeared";
+  ASSERT_TRUE(seen) << "the file being written never appeared";
   EXPECT_EQ(r.signal, SIGTERM) << "exit code " << r.exit_code << ": " << r.err;
   EXPECT_EQ(read_file(box.work() / "big.png"), "precious");
   EXPECT_EQ(box.entries(), std::vector<std::string>{"big.png"});

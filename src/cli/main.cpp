@@ -11,10 +11,12 @@
 #include <string>
 #include <string_view>
 
-#include "image_sink.h"
+#include "io/image_sink.h"
+#include "io/signals.h"
+#include "io/timestamp.h"
 #include "options.h"
-#include "output.h"
 #include "render/render.h"
+#include "simd/cpu.h"
 
 namespace {
 
@@ -55,17 +57,17 @@ class progress {
 int run(const cli::job& j) {
   const renderer r(j.sc, j.render);
   const int64_t W = j.sc.cam.image_width, H = j.sc.cam.image_height;
-  const pixel_format fmt = cli::sink_pixel_format(j);
+  const pixel_format fmt = io::pixel_format_for(j.format);
   const size_t stride = size_t(W) * bytes_per_pixel(fmt);
   const int64_t band_rows = std::clamp<int64_t>(band_pixels / W, 1, H);
 
   std::unique_ptr<unsigned char, aligned_free> buffer(
       static_cast<unsigned char*>(std::aligned_alloc(64, (stride * size_t(band_rows) + 63) / 64 * 64)));
   if (!buffer)
-    throw cli::io_error(j.output + ": cannot allocate " + std::to_string(stride * size_t(band_rows)) +
+    throw io::io_error(j.output + ": cannot allocate " + std::to_string(stride * size_t(band_rows)) +
                         " bytes for a band of rows");
 
-  auto sink = cli::open_sink(j);
+  auto sink = j.output == "-" ? io::open_stdout_sink(W, H) : io::open_file_sink(j.output, j.format, W, H);
   progress bar(!j.quiet && isatty(STDERR_FILENO), H);
   for (int64_t y0 = 0; y0 < H; y0 += band_rows) {
     const int64_t y1 = std::min(H, y0 + band_rows);
@@ -97,16 +99,26 @@ bool standard_output_flushed() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  cli::reserve_standard_streams();
-  cli::install_signal_handlers();
+  io::reserve_standard_streams();
+  io::install_signal_handlers();
   cli::parse_result parsed = cli::parse_args(argc, argv, std::cout, std::cerr);
   if (!parsed.run) {
     if (parsed.exit_code == 0 && !standard_output_flushed()) return 1;
     return parsed.exit_code;
   }
+  // The environment is part of the command: a malformed value is refused
+  // like a malformed option, before anything is touched.
+  if (auto why = max_isa_error()) {
+    print_error("RAYCAST_MAX_ISA: " + *why);
+    return 2;
+  }
+  if (auto why = io::source_date_epoch().error) {
+    print_error("SOURCE_DATE_EPOCH: " + *why);
+    return 2;
+  }
   try {
     return run(*parsed.run);
-  } catch (const cli::io_error& e) {
+  } catch (const io::io_error& e) {
     print_error(e.what());
   } catch (const unsupported_backend& e) {
     print_error(std::string("--backend: ") + e.what());

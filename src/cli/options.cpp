@@ -19,19 +19,6 @@
 
 namespace raycast::cli {
 
-std::string_view to_string(file_format f) {
-  switch (f) {
-    case file_format::png: return "png";
-    case file_format::ppm: return "ppm";
-    case file_format::jpg: return "jpg";
-    case file_format::tif: return "tif";
-    case file_format::exr: return "exr";
-  }
-  return "?";
-}
-
-bool is_float_format(file_format f) { return f == file_format::exr; }
-
 namespace {
 
 constexpr std::string_view supported_extensions = ".png, .ppm, .pnm, .jpg, .jpeg, .tif, .tiff, .exr";
@@ -349,6 +336,14 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
   }
   j.quiet = quiet;
   j.sc = make_scene(sp);
+  if (const int64_t side = io::max_side(j.format); side > 0) {
+    const std::string limit = std::string(io::display_name(j.format)) + " supports at most " +
+                              std::to_string(side) + " pixels per side, got ";
+    if (j.sc.cam.image_width > side) return usage("--width", limit + std::to_string(j.sc.cam.image_width));
+    if (j.sc.cam.image_height > side)
+      return usage(cp.image_height ? "--height" : "--aspect",
+                   limit + (cp.image_height ? "" : "a height of ") + std::to_string(j.sc.cam.image_height));
+  }
   return {std::move(j), 0};
 }
 

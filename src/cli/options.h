@@ -6,14 +6,14 @@
 #include <string>
 #include <string_view>
 
+#include "io/format.h"
 #include "render/render.h"
 
 namespace raycast::cli {
 
-enum class file_format { png, ppm, jpg, tif, exr };
-
-std::string_view to_string(file_format f);
-bool is_float_format(file_format f);  // EXR carries linear 32-bit float
+using io::file_format;
+using io::is_float_format;
+using io::to_string;
 
 struct job {
   std::string output;  // "-": binary PPM on standard output

@@ -18,16 +18,19 @@
 extern "C" {
 #endif
 
-#define RAYCAST_IMAGE_MODULE_ABI 2
+#define RAYCAST_IMAGE_MODULE_ABI 3
 
 typedef struct raycast_image_writer raycast_image_writer;
 
 typedef struct raycast_image_module {
   int abi_version;  // RAYCAST_IMAGE_MODULE_ABI
   // format: "png", "jpg", "tif", "exr". Channels are RGB, 8-bit unless
-  // is_float (32-bit float). Returns null and fills err on failure.
+  // is_float (32-bit float). timestamp: seconds since 1970 UTC to record as
+  // the image's DateTime (EXR, TIFF), or -1 for now. fd may be a pipe for
+  // formats that write in order (PNG, JPEG). Returns null and fills err on
+  // failure. The caller keeps the libraries' own messages off standard error.
   raycast_image_writer* (*open)(int fd, const char* format, int64_t width, int64_t height,
-                                int is_float, char* err, size_t errlen);
+                                int is_float, int64_t timestamp, char* err, size_t errlen);
   // Rows [y0, y1), top first; row y starts at data + (y - y0) * stride.
   // Returns 0 on success.
   int (*write_rows)(raycast_image_writer* w, int64_t y0, int64_t y1, const void* data,

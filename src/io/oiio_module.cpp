@@ -8,8 +8,13 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <memory>
+#include <mutex>
 #include <string>
+#include <system_error>
+#include <thread>
+#include <vector>
 
 #include "image_module.h"
 
@@ -21,18 +26,23 @@ using OIIO::Filesystem::IOProxy;
 // remembers the first error instead of returning a short count.
 class fd_proxy final : public IOProxy {
  public:
-  explicit fd_proxy(int fd) : IOProxy("", IOProxy::Write), fd_(fd) {}
+  explicit fd_proxy(int fd) : IOProxy("", IOProxy::Write), fd_(fd) {
+    seekable_ = lseek(fd, 0, SEEK_CUR) >= 0;
+  }
   const char* proxytype() const override { return "raycast_fd"; }
   size_t write(const void* buf, size_t size) override {
     const size_t n = pwrite(buf, size, m_pos);
     m_pos += int64_t(size);
     return n;
   }
+  // A pipe or a terminal takes the bytes in order (write); going back is
+  // ESPIPE there. A file takes them at their offset.
   size_t pwrite(const void* buf, size_t size, int64_t offset) override {
     const char* p = static_cast<const char*>(buf);
     size_t left = size;
+    if (!seekable_ && offset != end_ && errno_ == 0) errno_ = ESPIPE;
     while (left > 0 && errno_ == 0) {
-      const ssize_t n = ::pwrite(fd_, p, left, offset);
+      const ssize_t n = seekable_ ? ::pwrite(fd_, p, left, offset) : ::write(fd_, p, left);
       if (n < 0 && errno == EINTR) continue;
       if (n <= 0) {
         errno_ = n < 0 ? errno : EIO;
@@ -60,6 +70,7 @@ class fd_proxy final : public IOProxy {
 
  private:
   int fd_;
+  bool seekable_ = true;
   int errno_ = 0;
   int64_t end_ = 0;
 };
@@ -98,6 +109,35 @@ class stderr_silenced {
  private:
   int saved_ = -1;
 };
+
+// OpenImageIO and OpenEXR start pools of threads as wide as the machine, and
+// a thread that cannot start (a container's pids limit, RLIMIT_NPROC) throws
+// std::system_error where nothing catches it: std::terminate. So, once, start
+// that many threads ourselves; where some cannot start, both libraries work
+// on the calling thread alone.
+void fit_thread_pools_to_limits() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    const unsigned wanted = std::max(1u, std::min(std::thread::hardware_concurrency(), 64u));
+    std::mutex hold;
+    std::vector<std::thread> started;
+    bool all = true;
+    {
+      const std::lock_guard<std::mutex> lock(hold);
+      try {
+        while (started.size() < wanted)
+          started.emplace_back([&hold] { const std::lock_guard<std::mutex> wait(hold); });
+      } catch (const std::system_error&) {
+        all = false;
+      }
+    }
+    for (std::thread& t : started) t.join();
+    if (!all) {
+      OIIO::attribute("threads", 1);
+      OIIO::attribute("exr_threads", -1);  // no OpenEXR pool at all
+    }
+  });
+}
 
 void set_err(char* err, size_t len, const std::string& msg) {
   if (err && len) std::snprintf(err, len, "%s", msg.c_str());
@@ -154,12 +194,13 @@ void abandon_writer(raycast_image_writer* w) {
 }
 
 raycast_image_writer* open_writer(int fd, const char* format, int64_t width, int64_t height,
-                                  int is_float, char* err, size_t errlen) {
+                                  int is_float, int64_t timestamp, char* err, size_t errlen) {
   const char* name = oiio_format_name(format ? format : "");
   if (!name) {
     set_err(err, errlen, std::string("unsupported format ") + (format ? format : "(null)"));
     return nullptr;
   }
+  fit_thread_pools_to_limits();
   auto w = std::make_unique<raycast_image_writer>();
   w->proxy = std::make_unique<fd_proxy>(fd);
   w->out = OIIO::ImageOutput::create(name);
@@ -173,6 +214,18 @@ raycast_image_writer* open_writer(int fd, const char* format, int64_t width, int
   // We carry no EXIF data, and OpenImageIO 2.4's TIFF writer fails to write
   // its (empty) EXIF directory through an I/O proxy.
   spec.attribute("tiff:write_exif", 0);
+  // Classic TIFF's offsets are 32-bit: past 4 GiB (with room for the
+  // directories), BigTIFF.
+  if (uint64_t(width) * uint64_t(height) * 3 * w->type.size() > (uint64_t{15} << 28))
+    spec.attribute("tiff:bigtiff", 1);
+  if (timestamp >= 0) {
+    // What OpenImageIO would otherwise fill in with the current time.
+    const time_t t = time_t(timestamp);
+    struct tm tm {};
+    char date[32];
+    if (gmtime_r(&t, &tm) && std::strftime(date, sizeof date, "%Y:%m:%d %H:%M:%S", &tm) > 0)
+      spec.attribute("DateTime", date);
+  }
   if (!w->out->set_ioproxy(w->proxy.get())) {
     set_err(err, errlen, std::string(name) + " writer cannot write through an I/O proxy");
     return nullptr;

@@ -1,6 +1,12 @@
 #include "render/render.h"
 
+#include <pthread.h>
+
 #include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <mutex>
+#include <vector>
 
 #include <omp.h>
 
@@ -10,6 +16,76 @@
 namespace raycast {
 
 int available_cores() { return std::max(1, omp_get_num_procs()); }
+
+namespace {
+
+// The stack size libgomp gives its threads: OMP_STACKSIZE or GOMP_STACKSIZE
+// ("<n>[B|K|M|G]", kilobytes without a unit), else the pthread default.
+size_t omp_stack_size() {
+  for (const char* name : {"OMP_STACKSIZE", "GOMP_STACKSIZE"}) {
+    const char* v = std::getenv(name);
+    if (!v) continue;
+    char* end = nullptr;
+    const unsigned long long n = std::strtoull(v, &end, 10);
+    while (end && std::isspace(static_cast<unsigned char>(*end))) ++end;
+    unsigned shift = 10;
+    switch (end ? std::tolower(static_cast<unsigned char>(*end)) : 0) {
+      case 'b': shift = 0; break;
+      case 'm': shift = 20; break;
+      case 'g': shift = 30; break;
+      default: break;
+    }
+    if (end == v || n > (~0ull >> shift)) return ~size_t{0};
+    return size_t(n << shift);
+  }
+  return 0;
+}
+
+// How many threads a parallel region of `wanted` can really have. libgomp
+// calls exit() when it cannot start a thread (a container's pids limit,
+// RLIMIT_NPROC, an OMP_STACKSIZE the address space cannot hold), which would
+// end raycast with a library's line and skip every clean-up. So, once per
+// process and before the first region that needs more threads than were
+// proven, start that many threads with libgomp's stack size ourselves: where
+// some cannot start, the regions get only as many as did (at least the
+// calling thread). libgomp keeps the threads of its first region for later
+// ones, so the proof holds for the rest of the run.
+int threads_that_start(int wanted) {
+  static std::mutex m;
+  static int proven = 1, limit = 0;  // limit 0: none found yet
+  const std::lock_guard<std::mutex> lock(m);
+  if (limit > 0) return std::min(wanted, limit);
+  if (wanted <= proven) return wanted;
+  pthread_attr_t attr;
+  pthread_attr_init(&attr);
+  const size_t stack = omp_stack_size();
+  bool ok = stack == 0 || pthread_attr_setstacksize(&attr, stack) == 0;
+  // Each thread waits on `hold` until all were tried, so they coexist.
+  static pthread_mutex_t hold = PTHREAD_MUTEX_INITIALIZER;
+  pthread_mutex_lock(&hold);
+  std::vector<pthread_t> started;
+  while (ok && int(started.size()) + 1 < wanted) {
+    pthread_t t;
+    ok = pthread_create(
+             &t, &attr,
+             [](void*) -> void* {
+               pthread_mutex_lock(&hold);
+               pthread_mutex_unlock(&hold);
+               return nullptr;
+             },
+             nullptr) == 0;
+    if (ok) started.push_back(t);
+  }
+  pthread_mutex_unlock(&hold);
+  for (pthread_t t : started) pthread_join(t, nullptr);
+  pthread_attr_destroy(&attr);
+  const int got = int(started.size()) + 1;
+  if (got < wanted) limit = got;
+  proven = std::max(proven, got);
+  return got;
+}
+
+}  // namespace
 
 renderer::renderer(const scene& s, const render_options& opts)
     : scene_(s),
@@ -52,8 +128,8 @@ void renderer::render(const image_band& band) const {
   // thread costs tens of microseconds to start, about what 2^17 pixels take
   // to render: smaller jobs (the default 400x225 sky) stay on one thread.
   const int64_t pixels = rows * scene_.cam.image_width;
-  const int64_t nthreads =
-      std::min<int64_t>({threads_, units, std::max<int64_t>(1, pixels >> 17)});
+  int64_t nthreads = std::min<int64_t>({threads_, units, std::max<int64_t>(1, pixels >> 17)});
+  if (nthreads > 1) nthreads = threads_that_start(int(nthreads));
   if (nthreads <= 1) {
     render_rows(band, band.row_begin, band.row_begin + units, paired);
     return;

@@ -65,6 +65,14 @@ cpu_features capped(cpu_features f) {
 
 }  // namespace
 
+std::optional<std::string> max_isa_error() {
+  const char* cap = std::getenv("RAYCAST_MAX_ISA");
+  if (!cap || !*cap) return std::nullopt;
+  const std::string c = cap;
+  if (c == "scalar" || c == "sse2" || c == "avx2" || c == "avx512" || c == "neon") return std::nullopt;
+  return "'" + c + "' is not one of scalar, sse2, avx2, avx512, neon";
+}
+
 const cpu_features& cpu() {
   static const cpu_features f = capped(detect());
   return f;

@@ -1,0 +1,29 @@
+// The image file formats raycast writes, and the pixels each one takes.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "image/image.h"
+
+namespace raycast::io {
+
+enum class file_format { png, ppm, jpg, tif, exr };
+
+std::string_view to_string(file_format f);  // "png", "ppm", "jpg", "tif", "exr"
+bool is_float_format(file_format f);        // EXR carries linear 32-bit float
+pixel_format pixel_format_for(file_format f);
+std::string_view display_name(file_format f);  // "PNG", "JPEG", "TIFF", ... for messages
+
+// The longest side each format's encoder accepts: libjpeg's 65500 (JPEG's
+// 16-bit sizes), libpng's default user limit of 1,000,000; the others take
+// anything up to raycast's own limit (this returns 0). Checked before
+// anything is written, so the libraries never get to refuse (libjpeg would
+// print and exit() itself).
+int64_t max_side(file_format f);
+
+// Whether the encoder goes back to earlier bytes (TIFF's directory offsets,
+// EXR's line offset table), so the file cannot be a pipe or a terminal.
+bool needs_seekable_file(file_format f);
+
+}  // namespace raycast::io

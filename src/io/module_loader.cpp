@@ -1,0 +1,112 @@
+#include "io/module_loader.h"
+
+#include <dlfcn.h>
+#include <unistd.h>
+
+#include <pthread.h>
+
+#include <chrono>
+#include <climits>
+#include <condition_variable>
+#include <csignal>
+#include <mutex>
+#include <string>
+#include <system_error>
+#include <thread>
+
+#include "io/io_error.h"
+#include "io/signals.h"
+
+namespace raycast::io {
+namespace {
+
+std::string executable_dir() {
+  char buf[PATH_MAX];
+  const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
+  if (n <= 0) return ".";
+  std::string path(buf, size_t(n));
+  return path.substr(0, path.find_last_of('/'));
+}
+
+// While the image module loads: a thread that keeps the process killable and
+// bounds the wait. Under an address-space limit, log4cplus (pulled in by
+// OpenImageIO's DICOM support) fails to start the third thread of its pool in
+// a static constructor and deadlocks destroying the pool, in threads that
+// block every signal: SIGINT and SIGTERM would have no thread to go to. This
+// one takes them (the handler then ends the process as usual), and reports
+// the load as failed if it has not finished in load_timeout.
+class load_watchdog {
+ public:
+  static constexpr auto load_timeout = std::chrono::seconds(30);
+
+  load_watchdog() {
+    try {
+      thread_ = std::thread([this] {
+        sigset_t all;
+        sigfillset(&all);
+        pthread_sigmask(SIG_UNBLOCK, &all, nullptr);
+        std::unique_lock<std::mutex> lock(m_);
+        if (!done_cv_.wait_for(lock, load_timeout, [this] { return done_; }))
+          crash_means_failure::fail("its libraries did not finish starting in 30 s");
+      });
+    } catch (const std::system_error&) {
+      // No thread to spare: load without a watchdog. (The libraries that
+      // start threads then fail to, which crash_means_failure reports.)
+    }
+  }
+  ~load_watchdog() {
+    if (!thread_.joinable()) return;
+    {
+      const std::lock_guard<std::mutex> lock(m_);
+      done_ = true;
+    }
+    done_cv_.notify_one();
+    thread_.join();
+  }
+  load_watchdog(const load_watchdog&) = delete;
+  load_watchdog& operator=(const load_watchdog&) = delete;
+
+ private:
+  std::mutex m_;
+  std::condition_variable done_cv_;
+  bool done_ = false;
+  std::thread thread_;
+};
+
+}  // namespace
+
+const raycast_image_module* load_image_module(const std::string& for_file) {
+  static const raycast_image_module* cached = nullptr;
+  if (cached) return cached;
+  const std::string dir = executable_dir();
+  // The error to report: that of the first candidate that is there (a
+  // library that cannot be mapped under an address-space limit, say), or
+  // else that of the first candidate ("cannot open shared object file").
+  std::string first_error, first_present_error;
+  const std::string what = for_file + ": cannot load the image module";
+  for (const std::string& candidate :
+       {dir + "/raycast_oiio.so", dir + "/" RAYCAST_MODULE_RELDIR "/raycast_oiio.so"}) {
+    std::string error;
+    {
+      // dlopen runs the static constructors of OpenImageIO's libraries, which
+      // abort or crash when memory or threads run short: one line, exit 1.
+      const crash_means_failure crash(what);
+      const load_watchdog watchdog;
+      if (void* h = dlopen(candidate.c_str(), RTLD_LAZY | RTLD_LOCAL)) {
+        using get_fn = const raycast_image_module* (*)();
+        auto get = reinterpret_cast<get_fn>(dlsym(h, "raycast_image_module_get"));
+        const raycast_image_module* m = get ? get() : nullptr;
+        if (m && m->abi_version == RAYCAST_IMAGE_MODULE_ABI) return cached = m;
+        error = candidate + ": not a raycast image module of this version";
+      } else {
+        const char* e = dlerror();
+        error = e ? e : candidate;
+      }
+    }
+    if (first_error.empty()) first_error = error;
+    if (first_present_error.empty() && access(candidate.c_str(), F_OK) == 0) first_present_error = error;
+  }
+  throw io_error(what + " (" + (first_present_error.empty() ? first_error : first_present_error) + ")");
+}
+
+}  // namespace raycast::io

@@ -1,0 +1,15 @@
+// Finds and loads the image module (raycast_oiio.so, image_module.h) with
+// dlopen, once per process.
+#pragma once
+#include <string>
+
+#include "io/image_module.h"
+
+namespace raycast::io {
+
+// Beside the executable (build tree), or in <prefix>/<libdir>/raycast relative
+// to <prefix>/bin (install). Throws io_error("<for_file>: cannot load the image
+// module (<loader error>)").
+const raycast_image_module* load_image_module(const std::string& for_file);
+
+}  // namespace raycast::io
