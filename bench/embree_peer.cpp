@@ -45,6 +45,7 @@ struct embree_peer::impl {
   std::vector<float3> centers;
   std::vector<float3> flat;      // the flat colour, for flat-shaded spheres
   std::vector<char> is_flat;
+  std::vector<vec3> column;      // u_of(i) horizontal, per column: no division per pixel
   float3 origin{}, bottom{}, top{}, lo{}, hi{};
 
   explicit impl(const scene& sc) : s(sc) {
@@ -79,6 +80,8 @@ struct embree_peer::impl {
       is_flat.push_back(sp.shade == shading::flat);
     }
     const camera& cam = s.cam;
+    column.resize(size_t(cam.image_width));
+    for (int64_t i = 0; i < cam.image_width; ++i) column[size_t(i)] = cam.u_of(i) * cam.horizontal;
     origin = {float(cam.origin.x), float(cam.origin.y), float(cam.origin.z)};
     bottom = {float(s.sky.bottom.r), float(s.sky.bottom.g), float(s.sky.bottom.b)};
     top = {float(s.sky.top.r), float(s.sky.top.g), float(s.sky.top.b)};
@@ -95,7 +98,7 @@ struct embree_peer::impl {
   // from the camera and rounded to float once, as an Embree user with our
   // camera would hand it over.
   float3 direction(const vec3& row_base, int64_t i) const {
-    const vec3 d = row_base + s.cam.u_of(i) * s.cam.horizontal;
+    const vec3 d = row_base + column[size_t(i)];
     return {float(d.x), float(d.y), float(d.z)};
   }
 

@@ -218,7 +218,7 @@ void print_embree_summary(std::ostream& os, const run_table& table, int64_t w, i
   os << "\nPeers on world, " << w << "x" << h << ", 1 thread, rgb8 (ns/px; x = peer / ours):\n";
   auto peer_line = [&](const char* label, std::optional<double> v) {
     if (!v) return;
-    std::snprintf(line, sizeof line, "  %-22s %9.2f", label, *v);
+    std::snprintf(line, sizeof line, "  %-26s %9.2f", label, *v);
     os << line;
     if (ours && *ours > 0) {
       std::snprintf(line, sizeof line, "   %7.1fx", *v / *ours);
