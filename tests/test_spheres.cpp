@@ -170,6 +170,26 @@ const std::vector<sphere_case>& sphere_cases() {
   tilted.lookat = point3(0, 0, -1);
   tilted.vfov_degrees = 40;
   v.push_back({"tilted_world", *builtin_spheres("world"), tilted});
+  // Many small spheres (fixed seed), seen straight and from a tilted camera:
+  // the rows' sphere culling (spheres_near_row) leaves most of them out of
+  // each row, and must never change a pixel.
+  std::vector<sphere> many = {{{0, -1000.5, 0}, 1000, shading::normal}};
+  uint64_t state = 12345;
+  const auto next = [&state] {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return double(state >> 11) * 0x1p-53;
+  };
+  for (int k = 0; k < 300; ++k) {
+    sphere sp{{next() * 8 - 4, next() * 0.6, -next() * 8 - 0.5}, 0.05 + 0.2 * next()};
+    if (k % 3 == 0) sp = {sp.center, sp.radius, shading::flat, {next(), next(), next()}};
+    many.push_back(sp);
+  }
+  v.push_back({"many_spheres", many, {}});
+  camera_params high;
+  high.origin = {3, 2, 2};
+  high.lookat = point3(0, 0, -3);
+  high.vfov_degrees = 60;
+  v.push_back({"many_spheres_tilted", many, high});
   return v;
   }();
   return all;
@@ -386,6 +406,7 @@ std::vector<stiff_sphere_case> stiff_sphere_cases() {
   p.image_width = 200;
   v.push_back({"camera_inside", {{{0.2, 0.1, -0.3}, 3.0, shading::normal}}, p});
   v.push_back({"camera_touching", {{{0, 0, -0.5}, 0.5, shading::normal}, {{0, 0, -2}, 0.5, shading::normal}}, p});
+  v.push_back({"camera_on_the_ground", {{{0, -1000, 0}, 1000, shading::normal}, {{0, 0, -2}, 0.5, shading::normal}}, p});
   v.push_back({"sphere_behind_camera", {{{0, 0, 2}, 1.0, shading::normal}, {{0, 0, -2}, 0.5, shading::normal}}, p});
   return v;
 }

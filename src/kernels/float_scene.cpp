@@ -54,7 +54,7 @@ float_scene prepare_float_scene(const scene& s) {
     sp.fz.push_back(float(fo.z));
     sp.c.push_back(float(cc));
     sp.r2.push_back(float(b.radius * b.radius));
-    sp.inv_r.push_back(float((cc < 0.0 ? -1.0 : 1.0) / b.radius));
+    sp.inv_r.push_back(float(1.0 / b.radius));
     const bool flat = b.shade == shading::flat;
     sp.red.push_back(flat ? flush(b.flat_color.r) + 0.0f : 0.0f);
     sp.green.push_back(flat ? flush(b.flat_color.g) + 0.0f : 0.0f);
@@ -64,6 +64,32 @@ float_scene prepare_float_scene(const scene& s) {
     sp.any_normal = sp.any_normal || !flat;
   }
   return f;
+}
+
+size_t spheres_near_row(const float_scene& f, float sv, uint32_t* out) {
+  const float_spheres& sp = f.spheres;
+  size_t count = 0;
+  // The plane's normal, a x h with a = centre + sv * vertical (as scalar.h's
+  // direction, in double).
+  double a[3], h[3];
+  for (int k = 0; k < 3; ++k) {
+    a[k] = double(f.centre[k]) + double(sv) * double(f.vertical[k]);
+    h[k] = double(f.horizontal[k]);
+  }
+  const double n[3] = {a[1] * h[2] - a[2] * h[1], a[2] * h[0] - a[0] * h[2], a[0] * h[1] - a[1] * h[0]};
+  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  if (!(len > 0.0) || !std::isfinite(len)) {  // a degenerate row: keep every sphere
+    for (uint32_t k = 0; k < uint32_t(sp.size()); ++k) out[count++] = k;
+    return count;
+  }
+  for (uint32_t k = 0; k < uint32_t(sp.size()); ++k) {
+    const double fx = sp.fx[k], fy = sp.fy[k], fz = sp.fz[k];
+    const double dist = std::abs(fx * n[0] + fy * n[1] + fz * n[2]) / len;
+    const double r = std::sqrt(double(sp.r2[k]));
+    const double f_len = std::sqrt(fx * fx + fy * fy + fz * fz);
+    if (!(dist > r + 1e-4 * (f_len + r))) out[count++] = k;  // NaN: kept
+  }
+  return count;
 }
 
 }  // namespace raycast

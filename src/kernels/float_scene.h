@@ -7,6 +7,7 @@
 // The origin is not here: the sky depends on the direction only; the spheres
 // carry it in their per-sphere constants (kernels/float_spheres.h).
 #pragma once
+#include <cstddef>
 #include <cstdint>
 
 #include "kernels/float_spheres.h"
@@ -36,5 +37,16 @@ struct float_scene {
 };
 
 float_scene prepare_float_scene(const scene& s);
+
+// The spheres a ray of the row with this sv (kernels/scalar.h) may hit, in
+// scene order: every ray of a row lies in the plane through the camera origin
+// spanned by centre + sv * vertical and horizontal, so a sphere whose centre is
+// farther than its radius from that plane is hit by none of them. The test is
+// in double on the float renderers' own constants, with a margin (1e-4 of
+// |f| + r) hundreds of times the float intersection's rounding, so leaving a
+// sphere out never changes a pixel. Writes their indices to out (room for
+// every sphere) and returns how many. (Raw memory: the kernels, compiled per
+// instruction set, instantiate no standard-library templates.)
+size_t spheres_near_row(const float_scene& f, float sv, uint32_t* out);
 
 }  // namespace raycast

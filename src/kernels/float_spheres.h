@@ -5,9 +5,7 @@
 // All primary rays start at the camera origin O, so everything that depends on
 // O and a sphere only is a per-sphere constant, computed once in double and
 // rounded to float once (prepare_float_scene):
-//   f = O - C,   c = |f|^2 - r^2,   r2 = r^2,   inv_r = +-1 / r
-// (inv_r is negative when the camera is inside the sphere, c < 0: the book's
-// set_face_normal then flips every normal of that sphere to face the ray).
+//   f = O - C,   c = |f|^2 - r^2,   r2 = r^2,   inv_r = 1 / r
 //
 // Per pixel, with the camera direction d of kernels/scalar.h (scaled, not unit)
 // and n2 = (d.x d.x + d.y d.y) + d.z d.z:
@@ -27,7 +25,10 @@
 //        hittable_list; closest starts at FLT_MAX, so no infinite or NaN t hits)
 // Shading of the closest hit, per channel k:
 //   flat:   the sphere's colour
-//   normal: n_k = (f_k + t u_k) inv_r;  colour_k = (n_k + 1) 0.5
+//   normal: n_k = (f_k + t u_k) inv_r                       the outward normal
+//           n = -n where (n_0 u_0 + n_1 u_1) + n_2 u_2 >= 0  the book's set_face_normal:
+//                                                          it faces the ray (inside a sphere too)
+//           colour_k = (n_k + 1) 0.5
 // 8-bit: int(clamp(colour, 0, 1) * 255.999f), as the sky.
 //
 // Why this form: the textbook b^2 - c loses everything to cancellation for a
@@ -54,7 +55,7 @@ struct float_spheres {
   std::vector<float> fx, fy, fz;  // f = O - C
   std::vector<float> c;           // |f|^2 - r^2
   std::vector<float> r2;          // r^2
-  std::vector<float> inv_r;       // 1 / r, negated when the camera is inside
+  std::vector<float> inv_r;       // 1 / r
   std::vector<float> red, green, blue;  // flat colour (0 for normal-shaded spheres)
   std::vector<float> flat;        // 1 for flat-shaded spheres, 0 for normal-shaded
   bool any_flat = false, any_normal = false;
@@ -62,5 +63,22 @@ struct float_spheres {
   size_t size() const { return fx.size(); }
   bool empty() const { return fx.empty(); }
 };
+
+// The same arrays as plain pointers, for the kernels: they are compiled per
+// instruction set and must instantiate no standard-library template (an
+// inline function built for AVX-512 could be picked by the linker for the
+// others). The plan (render/plan.cpp) fills it.
+struct sphere_arrays {
+  const float *fx = nullptr, *fy = nullptr, *fz = nullptr, *c = nullptr, *r2 = nullptr,
+              *inv_r = nullptr;
+  const float *red = nullptr, *green = nullptr, *blue = nullptr, *flat = nullptr;
+  size_t n = 0;
+  bool any_flat = false, any_normal = false;
+};
+
+inline sphere_arrays arrays_of(const float_spheres& s) {
+  return {s.fx.data(), s.fy.data(), s.fz.data(), s.c.data(), s.r2.data(), s.inv_r.data(),
+          s.red.data(), s.green.data(), s.blue.data(), s.flat.data(), s.size(), s.any_flat, s.any_normal};
+}
 
 }  // namespace raycast

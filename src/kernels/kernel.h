@@ -37,6 +37,8 @@ struct kernel_args {
   // ...and, for 8-bit output, sky colours within [0, 1]: the clamp to [0, 1]
   // before quantizing is a no-op.
   bool colours_in_unit_range = false;
+  // The sphere kernel's spheres (kernels/float_spheres.h); n = 0 for the sky.
+  sphere_arrays spheres;
 };
 
 // Fills rows [r0, r1) of the band; single-threaded. One per instruction set.

@@ -94,7 +94,10 @@ void sphere_pixel(const float_scene& f, int64_t i, int64_t j, float out[3]) {
     out[2] = sp.blue[hit];
   } else {
     const float fo[3] = {sp.fx[hit], sp.fy[hit], sp.fz[hit]};
-    for (int k = 0; k < 3; ++k) out[k] = ((fo[k] + closest * u[k]) * sp.inv_r[hit] + 1.0f) * 0.5f;
+    float n[3];
+    for (int k = 0; k < 3; ++k) n[k] = (fo[k] + closest * u[k]) * sp.inv_r[hit];
+    const bool back = (n[0] * u[0] + n[1] * u[1]) + n[2] * u[2] >= 0.0f;  // face the ray
+    for (int k = 0; k < 3; ++k) out[k] = ((back ? -n[k] : n[k]) + 1.0f) * 0.5f;
   }
 }
 

@@ -12,12 +12,16 @@
 // Both precisions perform kernels/float_spheres.h's operations in its order,
 // so the output is bit-identical to render_scalar.
 //
-// Left out where the scene does not need it: a sphere that no lane of the
+// Left out where the scene does not need it: a sphere whose centre is farther
+// than its radius from the plane of a row's rays is not tested on that row
+// (spheres_near_row, kernels/float_scene.h); a sphere that no lane of the
 // batch can hit (every disc < 0) costs no square root or division; a
 // flat-shaded scene tracks no centres and computes no normals, a
 // normal-shaded one tracks no colours; a batch where no lane hit anything
 // computes no shading but the sky's.
 #include <cfloat>
+#include <cstdint>
+#include <cstdlib>
 
 #include "kernels/kernel.h"
 
@@ -40,11 +44,12 @@ struct closest_hit {
   vfloat red = 0.0f, green = 0.0f, blue = 0.0f, flat = 0.0f;  // flat shading
 };
 
+// Tests the spheres near[0 .. count) (every sphere, 0 .. count, when near is null).
 template <int Shades>
-RAYCAST_INLINE void intersect(const float_spheres& sp, vfloat ux, vfloat uy, vfloat uz,
-                              closest_hit<Shades>& h) {
-  const size_t n = sp.size();
-  for (size_t k = 0; k < n; ++k) {
+RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* near, size_t count, vfloat ux,
+                              vfloat uy, vfloat uz, closest_hit<Shades>& h) {
+  for (size_t x = 0; x < count; ++x) {
+    const size_t k = near ? near[x] : x;
     const vfloat fx = sp.fx[k], fy = sp.fy[k], fz = sp.fz[k];
     const vfloat b = (fx * ux + fy * uy) + fz * uz;
     const vfloat vx = fx - b * ux, vy = fy - b * uy, vz = fz - b * uz;
@@ -107,7 +112,10 @@ RAYCAST_INLINE void shade(const sky_shader& sky, const closest_hit<Shades>& h, c
   vfloat hit_colour[3];
   if constexpr ((Shades & normal_shading) != 0) {
     const vfloat f[3] = {h.fx, h.fy, h.fz};
-    for (int k = 0; k < 3; ++k) hit_colour[k] = ((f[k] + h.t * u[k]) * h.inv_r + 1.0f) * 0.5f;
+    vfloat n[3];
+    for (int k = 0; k < 3; ++k) n[k] = (f[k] + h.t * u[k]) * h.inv_r;
+    const vmask back = (n[0] * u[0] + n[1] * u[1]) + n[2] * u[2] >= 0.0f;  // face the ray
+    for (int k = 0; k < 3; ++k) hit_colour[k] = (select(back, -n[k], n[k]) + 1.0f) * 0.5f;
   }
   if constexpr (Shades == flat_shading) {
     hit_colour[0] = h.red;
@@ -127,12 +135,17 @@ RAYCAST_INLINE void shade(const sky_shader& sky, const closest_hit<Shades>& h, c
 template <int Shades, bool Float>
 void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
   const float_scene& s = *a.scene;
-  const float_spheres& sp = s.spheres;
+  const sphere_arrays& sp = a.spheres;
   const sky_shader sky(s);
   const int64_t W = s.width;
+  // The spheres each row may hit; malloc rather than a container (no
+  // standard-library template is instantiated with this instruction set's
+  // flags). Without memory, every row tests every sphere.
+  uint32_t* const near = static_cast<uint32_t*>(std::malloc(sp.n * sizeof(uint32_t)));
   for (int64_t r = r0; r < r1; ++r) {
     const int64_t j = s.height - 1 - r;
     const float sv = s.height == 1 ? 0.0f : (float(j) - s.mid_row) / s.last_row;  // scalar.h
+    const size_t count = near ? spheres_near_row(s, sv, near) : sp.n;  // the others cannot be hit here
     const vfloat row_part[3] = {sv * s.vertical[0], sv * s.vertical[1], sv * s.vertical[2]};
     unsigned char* const out = band.row(r);
     for (int64_t i0 = 0; i0 < W; i0 += N) {
@@ -145,7 +158,7 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
       const vfloat u[3] = {d[0] / len, d[1] / len, d[2] / len};
 
       closest_hit<Shades> h;
-      intersect(sp, u[0], u[1], u[2], h);
+      intersect(sp, near, count, u[0], u[1], u[2], h);
       vfloat c[3];
       shade(sky, h, u, c);
 
@@ -177,6 +190,7 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
       }
     }
   }
+  std::free(near);
 }
 
 template <int Shades>
@@ -188,7 +202,7 @@ void render_shades(const kernel_args& a, const image_band& band, int64_t r0, int
 }  // namespace
 
 void render_sphere_rows(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1, bool) {
-  const float_spheres& sp = a.scene->spheres;
+  const sphere_arrays& sp = a.spheres;
   if (!sp.any_flat) render_shades<normal_shading>(a, band, r0, r1);
   else if (!sp.any_normal) render_shades<flat_shading>(a, band, r0, r1);
   else render_shades<normal_shading | flat_shading>(a, band, r0, r1);

@@ -10,6 +10,7 @@ namespace raycast {
 plan::plan(const float_scene& f, precision p, unsigned allowed) {
   args_.scene = &f;
   args_.prec = p;
+  args_.spheres = arrays_of(f.spheres);
   // Per-column parts of the direction, in scalar.h's operations and order;
   // padded with zeros to whole 16-lane batches.
   const size_t padded = size_t(f.width + 15) / 16 * 16;
