@@ -117,7 +117,8 @@ struct embree_peer::impl {
     if (is_flat[prim]) return flat[prim];
     const float len = std::sqrt((ng.x * ng.x + ng.y * ng.y) + ng.z * ng.z);
     float sgn = 1.0f / len;
-    if ((d.x * ng.x + d.y * ng.y) + d.z * ng.z > 0.0f) sgn = -sgn;  // face the ray
+    // Face the ray as the book's set_face_normal does: front face only where d.N < 0.
+    if (!((d.x * ng.x + d.y * ng.y) + d.z * ng.z < 0.0f)) sgn = -sgn;
     return {(ng.x * sgn + 1.0f) * 0.5f, (ng.y * sgn + 1.0f) * 0.5f, (ng.z * sgn + 1.0f) * 0.5f};
   }
 
