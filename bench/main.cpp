@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "embree_rows.h"
 #include "errors.h"
 #include "gbench_flags.h"
 #include "report.h"
@@ -266,6 +267,7 @@ int run(int argc, char** argv) {
   for (const size2& sz : sizes)
     if (sz.w <= 3840) scene_sizes.emplace_back(sz.w, sz.h);  // the reference at 15360x8640 takes minutes
   register_sphere_rows(scene_sizes, threads);
+  register_embree_rows(scene_sizes, opt.quick);
 
   run_table table;
   run_rows(table);
@@ -295,6 +297,7 @@ int run(int argc, char** argv) {
   std::vector<std::string> names;
   for (const shortcut_set& v : shortcut_sets()) names.push_back(v.name);
   print_shortcuts(os, table, names);
+  print_embree_summary(os, table, so.width, so.height, opt.quick);
   print_stiff(os, paths(), run_stiff_cases());
   os.flush();
   return 0;

@@ -1,0 +1,220 @@
+#include "embree_peer.h"
+
+#include <embree3/rtcore.h>
+#include <xmmintrin.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+namespace raycast::bench {
+namespace {
+
+// Embree reports through this instead of printing on our stderr; the first
+// message is kept.
+void keep_error(void* user, RTCError code, const char* str) {
+  auto* msg = static_cast<std::string*>(user);
+  if (msg->empty())
+    *msg = "Embree error " + std::to_string(int(code)) + (str ? std::string(": ") + str : std::string());
+}
+
+// Embree's advice for speed: flush-to-zero and denormals-are-zero while it
+// traces; the caller's MXCSR is restored afterwards.
+class ftz_daz {
+ public:
+  ftz_daz() : saved_(_mm_getcsr()) { _mm_setcsr(saved_ | 0x8040); }
+  ~ftz_daz() { _mm_setcsr(saved_); }
+
+ private:
+  unsigned saved_;
+};
+
+struct float3 {
+  float x, y, z;
+};
+
+}  // namespace
+
+struct embree_peer::impl {
+  const scene& s;
+  std::string error;
+  RTCDevice device = nullptr;
+  RTCScene rtc_scene = nullptr;
+  std::vector<float3> centers;
+  std::vector<float3> flat;      // the flat colour, for flat-shaded spheres
+  std::vector<char> is_flat;
+  std::vector<vec3> column;      // u_of(i) horizontal, per column: no division per pixel
+  float3 origin{}, bottom{}, top{}, lo{}, hi{};
+
+  explicit impl(const scene& sc) : s(sc) {
+    device = rtcNewDevice("threads=1,verbose=0");
+    if (!device) {
+      error = "rtcNewDevice failed (Embree error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")";
+      return;
+    }
+    rtcSetDeviceErrorFunction(device, keep_error, &error);
+    rtc_scene = rtcNewScene(device);
+    rtcSetSceneBuildQuality(rtc_scene, RTC_BUILD_QUALITY_HIGH);
+    if (!s.spheres.empty()) {
+      RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+      auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+          g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), s.spheres.size()));
+      if (v)
+        for (size_t k = 0; k < s.spheres.size(); ++k) {
+          const sphere& sp = s.spheres[k];
+          v[4 * k + 0] = float(sp.center.x);
+          v[4 * k + 1] = float(sp.center.y);
+          v[4 * k + 2] = float(sp.center.z);
+          v[4 * k + 3] = float(sp.radius);
+        }
+      rtcCommitGeometry(g);
+      rtcAttachGeometry(rtc_scene, g);
+      rtcReleaseGeometry(g);
+    }
+    rtcCommitScene(rtc_scene);
+    for (const sphere& sp : s.spheres) {
+      centers.push_back({float(sp.center.x), float(sp.center.y), float(sp.center.z)});
+      flat.push_back({float(sp.flat_color.r), float(sp.flat_color.g), float(sp.flat_color.b)});
+      is_flat.push_back(sp.shade == shading::flat);
+    }
+    const camera& cam = s.cam;
+    column.resize(size_t(cam.image_width));
+    for (int64_t i = 0; i < cam.image_width; ++i) column[size_t(i)] = cam.u_of(i) * cam.horizontal;
+    origin = {float(cam.origin.x), float(cam.origin.y), float(cam.origin.z)};
+    bottom = {float(s.sky.bottom.r), float(s.sky.bottom.g), float(s.sky.bottom.b)};
+    top = {float(s.sky.top.r), float(s.sky.top.g), float(s.sky.top.b)};
+    lo = {std::min(bottom.x, top.x), std::min(bottom.y, top.y), std::min(bottom.z, top.z)};
+    hi = {std::max(bottom.x, top.x), std::max(bottom.y, top.y), std::max(bottom.z, top.z)};
+  }
+
+  ~impl() {
+    if (rtc_scene) rtcReleaseScene(rtc_scene);
+    if (device) rtcReleaseDevice(device);
+  }
+
+  // The ray direction of pixel (i, row j from the bottom), formed in double
+  // from the camera and rounded to float once, as an Embree user with our
+  // camera would hand it over.
+  float3 direction(const vec3& row_base, int64_t i) const {
+    const vec3 d = row_base + column[size_t(i)];
+    return {float(d.x), float(d.y), float(d.z)};
+  }
+
+  // The colour of a ray that hit sphere prim at distance t with Embree's
+  // geometric normal ng (unnormalized), or missed (prim = invalid).
+  float3 shade(const float3& d, unsigned geom, unsigned prim, const float3& ng) const {
+    if (geom == RTC_INVALID_GEOMETRY_ID) {
+      // The sky, in float: t = 0.5 (unit.y + 1), the lerp clamped between the colours.
+      const float len = std::sqrt(std::max((d.x * d.x + d.y * d.y) + d.z * d.z,
+                                           std::numeric_limits<float>::min()));
+      const float t = (d.y / len + 1.0f) * 0.5f;
+      return {std::clamp(bottom.x + t * (top.x - bottom.x), lo.x, hi.x),
+              std::clamp(bottom.y + t * (top.y - bottom.y), lo.y, hi.y),
+              std::clamp(bottom.z + t * (top.z - bottom.z), lo.z, hi.z)};
+    }
+    if (is_flat[prim]) return flat[prim];
+    const float len = std::sqrt((ng.x * ng.x + ng.y * ng.y) + ng.z * ng.z);
+    float sgn = 1.0f / len;
+    // Face the ray as the book's set_face_normal does: front face only where d.N < 0.
+    if (!((d.x * ng.x + d.y * ng.y) + d.z * ng.z < 0.0f)) sgn = -sgn;
+    return {(ng.x * sgn + 1.0f) * 0.5f, (ng.y * sgn + 1.0f) * 0.5f, (ng.z * sgn + 1.0f) * 0.5f};
+  }
+
+  static void store(const image_band& band, unsigned char* row, int64_t i, const float3& c) {
+    if (band.format == pixel_format::rgb8) {
+      row[3 * i + 0] = static_cast<unsigned char>(int(std::clamp(c.x, 0.0f, 1.0f) * 255.999f));
+      row[3 * i + 1] = static_cast<unsigned char>(int(std::clamp(c.y, 0.0f, 1.0f) * 255.999f));
+      row[3 * i + 2] = static_cast<unsigned char>(int(std::clamp(c.z, 0.0f, 1.0f) * 255.999f));
+    } else {
+      const float f[3] = {c.x, c.y, c.z};
+      std::memcpy(row + 12 * i, f, sizeof f);
+    }
+  }
+
+  void render16(const image_band& band) const {
+    const camera& cam = s.cam;
+    const int64_t W = cam.image_width, H = cam.image_height;
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // primary rays: Embree's fast path
+    alignas(64) RTCRayHit16 rh;
+    alignas(64) int valid[16];
+    float3 dir[16];
+    for (int64_t r = band.row_begin; r < band.row_end; ++r) {
+      const vec3 base = cam.corner_dir + cam.v_of(H - 1 - r) * cam.vertical;
+      unsigned char* row = band.row(r);
+      for (int64_t i0 = 0; i0 < W; i0 += 16) {
+        const int n = int(std::min<int64_t>(16, W - i0));
+        for (int k = 0; k < 16; ++k) {
+          valid[k] = k < n ? -1 : 0;
+          dir[k] = direction(base, std::min(i0 + k, W - 1));
+          rh.ray.org_x[k] = origin.x;
+          rh.ray.org_y[k] = origin.y;
+          rh.ray.org_z[k] = origin.z;
+          rh.ray.dir_x[k] = dir[k].x;
+          rh.ray.dir_y[k] = dir[k].y;
+          rh.ray.dir_z[k] = dir[k].z;
+          rh.ray.tnear[k] = 0.0f;
+          rh.ray.tfar[k] = std::numeric_limits<float>::infinity();
+          rh.ray.time[k] = 0.0f;
+          rh.ray.mask[k] = ~0u;
+          rh.ray.id[k] = 0;
+          rh.ray.flags[k] = 0;
+          rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+          rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+        }
+        rtcIntersect16(valid, rtc_scene, &ctx, &rh);
+        for (int k = 0; k < n; ++k)
+          store(band, row, i0 + k,
+                shade(dir[k], rh.hit.geomID[k], rh.hit.primID[k],
+                      {rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]}));
+      }
+    }
+  }
+
+  void render1(const image_band& band) const {
+    const camera& cam = s.cam;
+    const int64_t W = cam.image_width, H = cam.image_height;
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRayHit rh;
+    for (int64_t r = band.row_begin; r < band.row_end; ++r) {
+      const vec3 base = cam.corner_dir + cam.v_of(H - 1 - r) * cam.vertical;
+      unsigned char* row = band.row(r);
+      for (int64_t i = 0; i < W; ++i) {
+        const float3 d = direction(base, i);
+        rh.ray.org_x = origin.x;
+        rh.ray.org_y = origin.y;
+        rh.ray.org_z = origin.z;
+        rh.ray.dir_x = d.x;
+        rh.ray.dir_y = d.y;
+        rh.ray.dir_z = d.z;
+        rh.ray.tnear = 0.0f;
+        rh.ray.tfar = std::numeric_limits<float>::infinity();
+        rh.ray.time = 0.0f;
+        rh.ray.mask = ~0u;
+        rh.ray.id = 0;
+        rh.ray.flags = 0;
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(rtc_scene, &ctx, &rh);
+        store(band, row, i, shade(d, rh.hit.geomID, rh.hit.primID, {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z}));
+      }
+    }
+  }
+};
+
+embree_peer::embree_peer(const scene& s) : impl_(std::make_unique<impl>(s)) {}
+embree_peer::~embree_peer() = default;
+const std::string& embree_peer::error() const { return impl_->error; }
+
+void embree_peer::render(const image_band& band, mode m) const {
+  if (!impl_->error.empty()) return;
+  const ftz_daz guard;
+  if (m == mode::packet16) impl_->render16(band);
+  else impl_->render1(band);
+}
+
+}  // namespace raycast::bench

@@ -1,0 +1,40 @@
+// Embree 3 (Debian's libembree-dev) as a peer: the scene's spheres as one
+// RTC_GEOMETRY_TYPE_SPHERE_POINT geometry (float4 x, y, z, r), primary rays
+// traced with rtcIntersect16 (16 pixels of a row per packet, a valid mask for
+// the row's tail) or rtcIntersect1, shaded and quantized as our float
+// renderers do (kernels/float_spheres.h): the unit normal of the closest hit,
+// facing the ray, 0.5 (N + 1), or the flat colour; the sky in float where
+// nothing is hit; 8-bit int(clamp(c, 0, 1) * 255.999f). Single-threaded. Only
+// the bench links Embree; the product does not.
+#pragma once
+#include <memory>
+#include <string>
+
+#include "image/image.h"
+#include "scene/scene.h"
+
+namespace raycast::bench {
+
+class embree_peer {
+ public:
+  enum class mode { packet16, single };
+
+  // Builds the device and the committed scene (Embree's errors are kept, not
+  // printed: see error()). s must outlive this.
+  explicit embree_peer(const scene& s);
+  ~embree_peer();
+  embree_peer(const embree_peer&) = delete;
+  embree_peer& operator=(const embree_peer&) = delete;
+
+  // Empty when the device and scene were built; otherwise Embree's message.
+  const std::string& error() const;
+
+  // Renders rows [band.row_begin, band.row_end), rgb8 or rgb_f32, on this thread.
+  void render(const image_band& band, mode m) const;
+
+ private:
+  struct impl;
+  std::unique_ptr<impl> impl_;
+};
+
+}  // namespace raycast::bench
