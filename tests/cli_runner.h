@@ -47,6 +47,12 @@ inline void write_file(const fs::path& p, const std::string& text) {
 
 inline size_t count_lines(const std::string& s) { return size_t(std::count(s.begin(), s.end(), '\n')); }
 
+// Built without the image module (RAYCAST_IMAGE_MODULE=OFF, the aarch64
+// cross build), raycast writes PPM only.
+inline bool have_image_module() {
+  return fs::exists(fs::path(RAYCAST_EXE).parent_path() / "raycast_oiio.so");
+}
+
 struct run_result {
   int exit_code = -1;  // when the process exited
   int signal = 0;      // when a signal ended it

@@ -250,8 +250,8 @@ TEST_P(Unwritable, ReadOnlyDirectoryKeepsTheOldFile) {
 // the control character written as \xNN.
 TEST(UnwritableName, ALineBreakInTheNameStaysOneLine) {
   cli_sandbox box;
-  const std::string dest = box.path("no_such\ndir/sky.png");
-  expect_runtime_error(box.run({"-o", dest}), box.path("no_such\\x0adir/sky.png"),
+  const std::string dest = box.path("no_such\ndir/sky.ppm");
+  expect_runtime_error(box.run({"-o", dest}), box.path("no_such\\x0adir/sky.ppm"),
                        "No such file or directory");
   EXPECT_TRUE(box.entries().empty());
 }

@@ -30,6 +30,7 @@ namespace {
 
 using raycast_test::cli_sandbox;
 using raycast_test::count_lines;
+using raycast_test::have_image_module;
 using raycast_test::parse_ppm;
 using raycast_test::read_file;
 using raycast_test::run_options;
@@ -83,12 +84,6 @@ bool sanitized() {
 #endif
 #endif
   return false;
-}
-
-// Built without the image module (RAYCAST_IMAGE_MODULE=OFF, the aarch64
-// cross build), raycast writes PPM only.
-bool have_image_module() {
-  return fs::exists(fs::path(RAYCAST_EXE).parent_path() / "raycast_oiio.so");
 }
 
 // Under an emulator (qemu-user), limits on the process limit the emulator.
