@@ -42,17 +42,6 @@ const path& best_path() {
   return p;
 }
 
-unsigned char* buffer(size_t bytes) {
-  static std::unique_ptr<unsigned char[]> buf;
-  static size_t capacity = 0;
-  if (bytes > capacity) {
-    buf.reset(new unsigned char[bytes]);
-    std::memset(buf.get(), 0, bytes);
-    capacity = bytes;
-  }
-  return buf.get();
-}
-
 const char* mode_name(embree_peer::mode m) {
   return m == embree_peer::mode::packet16 ? "embree16" : "embree1";
 }
@@ -108,7 +97,7 @@ void bench_embree(benchmark::State& state, std::string name, int64_t w, int64_t 
   const scene s = builtin_scene(name, w, h);
   const embree_peer peer(s);
   const size_t stride = size_t(w) * 3;
-  const image_band band{buffer(stride * size_t(h)), stride, pixel_format::rgb8, 0, h};
+  const image_band band{scratch(stride * size_t(h)), stride, pixel_format::rgb8, 0, h};
   for (auto _ : state) {
     peer.render(band, m);
     benchmark::ClobberMemory();
@@ -126,7 +115,7 @@ void bench_scaling_ours(benchmark::State& state, int n, int64_t w, int64_t h) {
   const scene s = random_scene(n, w, h);
   const painter paint(best_path(), s, 1);
   const size_t stride = size_t(w) * 3;
-  const image_band band{buffer(stride * size_t(h)), stride, pixel_format::rgb8, 0, h};
+  const image_band band{scratch(stride * size_t(h)), stride, pixel_format::rgb8, 0, h};
   for (auto _ : state) {
     paint.render(band);
     benchmark::ClobberMemory();
@@ -142,7 +131,7 @@ void bench_scaling_embree(benchmark::State& state, int n, int64_t w, int64_t h) 
     return;
   }
   const size_t stride = size_t(w) * 3;
-  const image_band band{buffer(stride * size_t(h)), stride, pixel_format::rgb8, 0, h};
+  const image_band band{scratch(stride * size_t(h)), stride, pixel_format::rgb8, 0, h};
   for (auto _ : state) {
     peer.render(band, embree_peer::mode::packet16);
     benchmark::ClobberMemory();

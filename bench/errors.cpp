@@ -106,4 +106,18 @@ std::vector<error_stats> measure_errors(const scene& s, const std::vector<path>&
   return total;
 }
 
+// One buffer for every row, grown when a row needs more and touched once, so
+// that no timed iteration pays for page faults.
+unsigned char* scratch(size_t bytes) {
+  static std::unique_ptr<unsigned char[]> buf;
+  static size_t capacity = 0;
+  if (bytes > capacity) {
+    buf.reset();
+    buf.reset(new unsigned char[bytes]);
+    std::memset(buf.get(), 0, bytes);
+    capacity = bytes;
+  }
+  return buf.get();
+}
+
 }  // namespace raycast::bench

@@ -62,4 +62,8 @@ using raycast_test::stiff_cases;
 // Bands of rows are spread over all cores.
 std::vector<error_stats> measure_errors(const scene& s, const std::vector<path>& paths);
 
+// The one output buffer every timed row writes into (bench/errors.cpp): grown
+// when a row needs more and touched once, so no timed iteration pays for page faults.
+unsigned char* scratch(size_t bytes);
+
 }  // namespace raycast::bench

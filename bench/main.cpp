@@ -37,20 +37,6 @@ const std::vector<path>& paths() {
   return all;
 }
 
-// One buffer for every row, grown when a row needs more and touched once, so
-// that no timed iteration pays for page faults.
-unsigned char* scratch(size_t bytes) {
-  static std::unique_ptr<unsigned char[]> buf;
-  static size_t capacity = 0;
-  if (bytes > capacity) {
-    buf.reset();
-    buf.reset(new unsigned char[bytes]);
-    std::memset(buf.get(), 0, bytes);
-    capacity = bytes;
-  }
-  return buf.get();
-}
-
 // Errors of every path at one size, measured the first time a row of that
 // size asks (outside any timed loop), so each path and size costs one pass.
 const error_stats& errors_for(size_t path_index, int64_t w, int64_t h) {

@@ -31,17 +31,6 @@ scene scene_of(const std::string& name, int64_t w, int64_t h) {
   return make_scene(sized(w, h), {}, *builtin_spheres(name));
 }
 
-unsigned char* buffer(size_t bytes) {
-  static std::unique_ptr<unsigned char[]> buf;
-  static size_t capacity = 0;
-  if (bytes > capacity) {
-    buf.reset(new unsigned char[bytes]);
-    std::memset(buf.get(), 0, bytes);
-    capacity = bytes;
-  }
-  return buf.get();
-}
-
 // Errors per (scene, size): the core paths', then the book's (8-bit only).
 struct scene_errors {
   std::vector<error_stats> core;
@@ -83,7 +72,7 @@ void bench_scene(benchmark::State& state, std::string name, size_t path_index, i
   const scene s = scene_of(name, w, h);
   const painter paint(core_paths()[path_index], s, threads);
   const size_t stride = size_t(w) * bytes_per_pixel(format);
-  const image_band band{buffer(stride * size_t(h)), stride, format, 0, h};
+  const image_band band{scratch(stride * size_t(h)), stride, format, 0, h};
   for (auto _ : state) {
     paint.render(band);
     benchmark::ClobberMemory();
@@ -96,7 +85,7 @@ void bench_book(benchmark::State& state, int64_t w, int64_t h) {
   const scene s = scene_of("world", w, h);
   const book_ch6 book(s);
   const size_t stride = size_t(w) * 3;
-  const image_band band{buffer(stride * size_t(h)), stride, pixel_format::rgb8, 0, h};
+  const image_band band{scratch(stride * size_t(h)), stride, pixel_format::rgb8, 0, h};
   for (auto _ : state) {
     book.render(band);
     benchmark::ClobberMemory();

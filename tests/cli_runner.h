@@ -321,4 +321,22 @@ inline ppm parse_ppm(const std::string& data) {
   return p;
 }
 
+// What a fault test writes first, to check that a failure leaves it intact.
+inline const std::string precious = "precious: the user's last good image\n";
+
+inline std::string how_it_ended(const run_result& r) {
+  if (r.signal != 0) return std::string("killed by signal ") + strsignal(r.signal);
+  return "exit status " + std::to_string(r.exit_code);
+}
+
+// The one shape of a runtime failure: exit 1, one line naming the file and the
+// cause, nothing on standard output.
+inline void expect_runtime_error(const run_result& r, const std::string& file, const std::string& cause) {
+  EXPECT_EQ(r.signal, 0) << how_it_ended(r) << "; standard error: " << r.err;
+  EXPECT_EQ(r.exit_code, 1) << how_it_ended(r) << "; standard error: " << r.err;
+  EXPECT_EQ(r.err, "raycast: error: " + file + ": " + cause + "\n");
+  EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out.size() << " bytes on standard output";
+}
+
 }  // namespace raycast_test

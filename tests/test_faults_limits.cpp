@@ -30,6 +30,9 @@ namespace {
 
 using raycast_test::cli_sandbox;
 using raycast_test::count_lines;
+using raycast_test::expect_runtime_error;
+using raycast_test::how_it_ended;
+using raycast_test::precious;
 using raycast_test::have_image_module;
 using raycast_test::parse_ppm;
 using raycast_test::read_file;
@@ -39,21 +42,9 @@ using raycast_test::write_file;
 
 namespace fs = std::filesystem;
 
-const std::string precious = "precious: the user's last good image\n";
 constexpr uid_t nobody = 65534;
 constexpr gid_t nogroup = 65534;
 
-std::string how_it_ended(const run_result& r) {
-  if (r.signal != 0) return std::string("killed by signal ") + strsignal(r.signal);
-  return "exit status " + std::to_string(r.exit_code);
-}
-
-void expect_runtime_error(const run_result& r, const std::string& file, const std::string& cause) {
-  EXPECT_EQ(r.signal, 0) << how_it_ended(r) << "; standard error: " << r.err;
-  EXPECT_EQ(r.exit_code, 1) << how_it_ended(r) << "; standard error: " << r.err;
-  EXPECT_EQ(r.err, "raycast: error: " + file + ": " + cause + "\n");
-  EXPECT_TRUE(r.out.empty()) << r.out.size() << " bytes on standard output";
-}
 
 void expect_usage_error(const run_result& r, const std::string& line) {
   EXPECT_EQ(r.signal, 0) << how_it_ended(r);
