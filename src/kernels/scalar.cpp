@@ -62,7 +62,13 @@ void shade(const float_scene& f, float t, float out[3]) {
 
 // A pixel of a scene with spheres, in kernels/float_spheres.h's order (both
 // precisions: fast mode has no sphere path of its own yet).
-void sphere_pixel(const float_scene& f, int64_t i, int64_t j, float out[3]) {
+struct traced {
+  float u[3];
+  float closest;
+  size_t hit;  // sp.size(): none
+};
+
+traced trace(const float_scene& f, int64_t i, int64_t j) {
   const float su = pixel_su(f, i), sv = pixel_sv(f, j);
   float d[3];
   for (int k = 0; k < 3; ++k) d[k] = (f.centre[k] + su * f.horizontal[k]) + sv * f.vertical[k];
@@ -86,6 +92,15 @@ void sphere_pixel(const float_scene& f, int64_t i, int64_t j, float out[3]) {
       hit = k;
     }
   }
+  return {{u[0], u[1], u[2]}, closest, hit};
+}
+
+void sphere_pixel(const float_scene& f, int64_t i, int64_t j, float out[3]) {
+  const traced tr = trace(f, i, j);
+  const float_spheres& sp = f.spheres;
+  const float* u = tr.u;
+  const float closest = tr.closest;
+  const size_t hit = tr.hit;
   if (hit == sp.size()) {
     shade(f, clampf((u[1] + 1.0f) * 0.5f, 0.0f, 1.0f), out);
   } else if (sp.flat[hit] == 1.0f) {
@@ -119,6 +134,13 @@ void scalar_pixel(const float_scene& f, precision p, int64_t i, int64_t j, float
   const pixel_dir d = direction(f, i, j);
   const float t = p == precision::exact ? exact_t(d) : (fast_uy(d) + 1.0f) * 0.5f;
   shade(f, t, out);
+}
+
+scalar_hit scalar_trace(const float_scene& f, int64_t i, int64_t j) {
+  if (f.spheres.empty()) return {};
+  const traced tr = trace(f, i, j);
+  if (tr.hit == f.spheres.size()) return {};
+  return {int64_t(tr.hit), double(tr.closest)};
 }
 
 void render_scalar(const float_scene& f, precision p, const image_band& band) {

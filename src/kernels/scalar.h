@@ -53,6 +53,18 @@ float pixel_sv(const float_scene& f, int64_t j);
 // Colour of pixel (i, j) in the documented order; out receives r, g, b.
 void scalar_pixel(const float_scene& f, precision p, int64_t i, int64_t j, float out[3]);
 
+// What the float renderer's ray through pixel (i, j) hits, for measuring its
+// numerics against the double reference (the bench's stiff-sphere table and
+// tests): sphere = the index of the closest sphere hit, -1 for none;
+// distance = the float renderer's hit distance from the camera origin in
+// world units, widened to double (0 when nothing is hit). Exact mode; every
+// backend renders these hits bit for bit.
+struct scalar_hit {
+  int64_t sphere = -1;
+  double distance = 0.0;
+};
+scalar_hit scalar_trace(const float_scene& f, int64_t i, int64_t j);
+
 // Fills the band's rows; single-threaded.
 void render_scalar(const float_scene& f, precision p, const image_band& band);
 
