@@ -80,32 +80,43 @@ TEST_P(SimdOps, SelectTakesTheFirstWhereTheMaskHolds) {
 // the all-false mask vmask{} (what the sphere kernel's closest hit starts from).
 TEST_P(SimdOps, ComparisonsAndMasks) {
   const size_t N = size_t(n);
-  std::vector<float> a(N), b(N), ge(N), le(N), both(N), either(N), empty(N);
+  std::vector<float> a(N), b(N), ge(N), le(N), both(N), either(N), not_ge(N), empty(N);
   for (int i = 0; i < n; ++i) {
     a[size_t(i)] = i % 4 == 3 ? NAN : float(i % 3);
     b[size_t(i)] = 1.0f;
   }
-  bool any_ge = false, none_ge = true;
+  bool any_ge = false, none_ge = true, all_ge = true;
   ops->compare(a.data(), b.data(), ge.data(), le.data(), both.data(), either.data(), &any_ge, &none_ge,
-               empty.data());
+               &all_ge, not_ge.data(), empty.data());
   for (size_t i = 0; i < N; ++i) {
     const float x = a[i];
     EXPECT_EQ(ge[i], x >= 1.0f ? 1.0f : 0.0f) << "lane " << i;
     EXPECT_EQ(le[i], x <= 1.0f ? 1.0f : 0.0f) << "lane " << i;
     EXPECT_EQ(both[i], x == 1.0f ? 1.0f : 0.0f) << "lane " << i;
     EXPECT_EQ(either[i], std::isnan(x) ? 0.0f : 1.0f) << "lane " << i;
+    EXPECT_EQ(not_ge[i], x >= 1.0f ? 0.0f : 1.0f) << "lane " << i;
     EXPECT_EQ(empty[i], 0.0f) << "lane " << i;
   }
   EXPECT_TRUE(any_ge);
   EXPECT_FALSE(none_ge);
+  EXPECT_FALSE(all_ge);
+  std::fill(a.begin(), a.end(), 2.0f);
+  ops->compare(a.data(), b.data(), ge.data(), le.data(), both.data(), either.data(), &any_ge, &none_ge,
+               &all_ge, not_ge.data(), empty.data());
+  EXPECT_TRUE(all_ge);
+  a[0] = NAN;  // only the first lane: the low half on SSE2
+  ops->compare(a.data(), b.data(), ge.data(), le.data(), both.data(), either.data(), &any_ge, &none_ge,
+               &all_ge, not_ge.data(), empty.data());
+  EXPECT_FALSE(all_ge);
+  EXPECT_EQ(not_ge[0], 1.0f);
   std::fill(a.begin(), a.end(), 0.5f);
   a[N - 1] = 1.0f;  // only the last lane: the high half on SSE2
   ops->compare(a.data(), b.data(), ge.data(), le.data(), both.data(), either.data(), &any_ge, &none_ge,
-               empty.data());
+               &all_ge, not_ge.data(), empty.data());
   EXPECT_TRUE(any_ge);
   a[N - 1] = NAN;
   ops->compare(a.data(), b.data(), ge.data(), le.data(), both.data(), either.data(), &any_ge, &none_ge,
-               empty.data());
+               &all_ge, not_ge.data(), empty.data());
   EXPECT_FALSE(any_ge);
   EXPECT_TRUE(none_ge);
 }

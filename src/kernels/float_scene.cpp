@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace raycast {
 
@@ -48,13 +49,24 @@ float_scene prepare_float_scene(const scene& s) {
   float_spheres& sp = f.spheres;
   for (const sphere& b : s.spheres) {
     const vec3 fo = c.origin - b.center;
-    const double cc = (fo.x * fo.x + fo.y * fo.y + fo.z * fo.z) - b.radius * b.radius;
-    sp.fx.push_back(float(fo.x));
-    sp.fy.push_back(float(fo.y));
-    sp.fz.push_back(float(fo.z));
-    sp.c.push_back(float(cc));
-    sp.r2.push_back(float(b.radius * b.radius));
-    sp.inv_r.push_back(float(1.0 / b.radius));
+    // The sphere's own unit, 2^e: max(|f|, r) 2^-e in [0.5, 1) (exact in
+    // double for every finite scene; the float constants then neither
+    // overflow nor underflow but for radii below 2^-126 of the distance).
+    const double size = std::max({std::abs(fo.x), std::abs(fo.y), std::abs(fo.z), b.radius});
+    int e = 0;
+    std::frexp(size, &e);
+    const double down = std::ldexp(1.0, -e);
+    const vec3 f = fo * down;
+    const double r = b.radius * down;
+    const double f2 = f.x * f.x + f.y * f.y + f.z * f.z;
+    sp.fx.push_back(float(f.x));
+    sp.fy.push_back(float(f.y));
+    sp.fz.push_back(float(f.z));
+    sp.c.push_back(float(f2 - r * r));
+    sp.r2.push_back(float(r * r));
+    sp.inv_r.push_back(float(1.0 / r));
+    sp.scale.push_back(float(std::ldexp(1.0, e)));
+    sp.near.push_back(f2 < 2.0 * r * r ? 1 : 0);
     const bool flat = b.shade == shading::flat;
     sp.red.push_back(flat ? flush(b.flat_color.r) + 0.0f : 0.0f);
     sp.green.push_back(flat ? flush(b.flat_color.g) + 0.0f : 0.0f);
@@ -66,28 +78,92 @@ float_scene prepare_float_scene(const scene& s) {
   return f;
 }
 
-size_t spheres_near_row(const float_scene& f, float sv, uint32_t* out) {
-  const float_spheres& sp = f.spheres;
-  size_t count = 0;
-  // The plane's normal, a x h with a = centre + sv * vertical (as scalar.h's
-  // direction, in double).
+namespace {
+
+// Rays of a row: d(su) = a + su h, su in [-1/2, 1/2] (scalar.h, in double).
+struct row_rays {
   double a[3], h[3];
+};
+
+double dot(const double* x, const double* y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; }
+
+void cross(const double* x, const double* y, double* out) {
+  out[0] = x[1] * y[2] - x[2] * y[1];
+  out[1] = x[2] * y[0] - x[0] * y[2];
+  out[2] = x[0] * y[1] - x[1] * y[0];
+}
+
+// The columns [lo, hi] of the row whose rays come within r of the sphere's
+// centre (f = O - C, both in the sphere's unit). Their lines do where
+// |f x d|^2 <= r^2 |d|^2, a quadratic in su; and unless the camera is within
+// r of the centre, a ray (s >= 0, not the whole line) also needs the centre
+// ahead, f.d <= 0, linear in su (here with slack m). False when no column's does.
+bool columns_near(const float_scene& fs, const row_rays& rr, const double* f, double r, double m,
+                  int64_t& lo, int64_t& hi) {
+  double A[3], B[3];
+  cross(f, rr.a, A);
+  cross(f, rr.h, B);
+  const double r2 = r * r;
+  const double alpha = dot(B, B) - r2 * dot(rr.h, rr.h);
+  const double beta = dot(A, B) - r2 * dot(rr.a, rr.h);
+  const double gamma = dot(A, A) - r2 * dot(rr.a, rr.a);
+  double s0 = -INFINITY, s1 = INFINITY;  // the su interval; unbounded unless shown otherwise
+  if (alpha > 0.0) {
+    const double disc = beta * beta - alpha * gamma;
+    if (disc < 0.0) return false;  // no line comes near
+    if (disc >= 0.0) {             // (NaN: keep the row)
+      // The roots, without cancellation.
+      const double q = -(beta + std::copysign(std::sqrt(disc), beta));
+      s0 = q / alpha;
+      s1 = q != 0.0 ? gamma / q : s0;
+      if (s0 > s1) std::swap(s0, s1);
+    }
+  }
+  if (dot(f, f) > r2) {  // the camera outside: the centre must be ahead
+    const double g0 = dot(f, rr.a), g1 = dot(f, rr.h);
+    if (g1 > 0.0) s1 = std::min(s1, (m - g0) / g1);
+    else if (g1 < 0.0) s0 = std::max(s0, (m - g0) / g1);
+    else if (g0 > m) return false;
+  }
+  if (fs.width == 1) return !(s0 > 0.0 || s1 < 0.0);
+  // su = (i - mid_col) / last_col; one column of slack each way.
+  const double last = double(fs.last_col), mid = double(fs.mid_col);
+  const double c0 = std::floor(s0 * last + mid) - 1.0, c1 = std::ceil(s1 * last + mid) + 1.0;
+  if (c1 < 0.0 || c0 > double(fs.width - 1) || c0 > c1) return false;
+  lo = c0 > 0.0 ? int64_t(c0) : 0;  // (NaN: 0)
+  hi = c1 < double(fs.width - 1) ? int64_t(c1) : fs.width - 1;
+  return true;
+}
+
+}  // namespace
+
+size_t spheres_in_row(const float_scene& f, float sv, int batch, sphere_span* out) {
+  const float_spheres& sp = f.spheres;
+  const int64_t last_batch = (f.width - 1) / batch;
+  size_t count = 0;
+  // The row's plane through the camera origin, spanned by a = centre + sv *
+  // vertical (as scalar.h's direction, in double) and horizontal; n its normal.
+  row_rays rr;
   for (int k = 0; k < 3; ++k) {
-    a[k] = double(f.centre[k]) + double(sv) * double(f.vertical[k]);
-    h[k] = double(f.horizontal[k]);
+    rr.a[k] = double(f.centre[k]) + double(sv) * double(f.vertical[k]);
+    rr.h[k] = double(f.horizontal[k]);
   }
-  const double n[3] = {a[1] * h[2] - a[2] * h[1], a[2] * h[0] - a[0] * h[2], a[0] * h[1] - a[1] * h[0]};
-  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  if (!(len > 0.0) || !std::isfinite(len)) {  // a degenerate row: keep every sphere
-    for (uint32_t k = 0; k < uint32_t(sp.size()); ++k) out[count++] = k;
-    return count;
-  }
+  double n[3];
+  cross(rr.a, rr.h, n);
+  const double len = std::sqrt(dot(n, n));
+  const bool plane = len > 0.0 && std::isfinite(len);  // else a degenerate row: no plane test
   for (uint32_t k = 0; k < uint32_t(sp.size()); ++k) {
-    const double fx = sp.fx[k], fy = sp.fy[k], fz = sp.fz[k];
-    const double dist = std::abs(fx * n[0] + fy * n[1] + fz * n[2]) / len;
+    const double fk[3] = {sp.fx[k], sp.fy[k], sp.fz[k]};
     const double r = std::sqrt(double(sp.r2[k]));
-    const double f_len = std::sqrt(fx * fx + fy * fy + fz * fz);
-    if (!(dist > r + 1e-4 * (f_len + r))) out[count++] = k;  // NaN: kept
+    // The margin: 1e-4 of |f| + r, hundreds of times the float intersection's
+    // rounding (and the direction's, about 1e-7 of |f|), so that leaving a
+    // sphere out never changes a pixel.
+    const double wide = r + 1e-4 * (std::sqrt(dot(fk, fk)) + r);
+    if (plane && std::abs(dot(fk, n)) / len > wide) continue;  // NaN: kept
+    int64_t lo = 0, hi = f.width - 1;
+    const double ahead_slack = 1e-4 * (std::sqrt(dot(fk, fk)) + r) * (std::sqrt(dot(rr.a, rr.a)) + std::sqrt(dot(rr.h, rr.h)));
+    if (!columns_near(f, rr, fk, wide, ahead_slack, lo, hi)) continue;
+    out[count++] = {k, int32_t(std::min(lo / batch, last_batch)), int32_t(std::min(hi / batch, last_batch))};
   }
   return count;
 }

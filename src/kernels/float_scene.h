@@ -38,15 +38,25 @@ struct float_scene {
 
 float_scene prepare_float_scene(const scene& s);
 
+// A sphere some ray of a row may hit, and the batches of `batch` columns
+// (batch lo .. hi, inclusive: columns lo * batch .. hi * batch + batch - 1)
+// whose rays may hit it.
+struct sphere_span {
+  uint32_t sphere;
+  int32_t lo, hi;
+};
+
 // The spheres a ray of the row with this sv (kernels/scalar.h) may hit, in
-// scene order: every ray of a row lies in the plane through the camera origin
-// spanned by centre + sv * vertical and horizontal, so a sphere whose centre is
-// farther than its radius from that plane is hit by none of them. The test is
-// in double on the float renderers' own constants, with a margin (1e-4 of
-// |f| + r) hundreds of times the float intersection's rounding, so leaving a
-// sphere out never changes a pixel. Writes their indices to out (room for
-// every sphere) and returns how many. (Raw memory: the kernels, compiled per
-// instruction set, instantiate no standard-library templates.)
-size_t spheres_near_row(const float_scene& f, float sv, uint32_t* out);
+// scene order, with their batches. Every ray of a row lies in the plane
+// through the camera origin spanned by centre + sv * vertical and horizontal,
+// so a sphere whose centre is farther than its radius from that plane is hit
+// by none of them; of the others, a column's ray can hit the sphere only if
+// its line comes within the radius of the centre, a quadratic in the column.
+// The tests are in double on the float renderers' own constants, with a
+// margin (1e-4 of |f| + r) hundreds of times the float intersection's
+// rounding, so leaving a sphere out never changes a pixel. Writes to out
+// (room for every sphere) and returns how many. (Raw memory: the kernels,
+// compiled per instruction set, instantiate no standard-library templates.)
+size_t spheres_in_row(const float_scene& f, float sv, int batch, sphere_span* out);
 
 }  // namespace raycast

@@ -4,39 +4,56 @@
 //
 // All primary rays start at the camera origin O, so everything that depends on
 // O and a sphere only is a per-sphere constant, computed once in double and
-// rounded to float once (prepare_float_scene):
-//   f = O - C,   c = |f|^2 - r^2,   r2 = r^2,   inv_r = 1 / r
+// rounded to float once (prepare_float_scene). Each sphere first gets its own
+// power of two 2^e with max(|f|, r) 2^-e in [0.5, 1), f = O - C (exact, and
+// it changes no result but overflow and underflow: a sphere of radius 1e-30 or
+// 1e30, or one 1e30 away, is as accurate as one of radius 1 next door). Per
+// sphere, in that scaled unit:
+//   f = (O - C) 2^-e,  c = |f|^2 - r^2 (double),  r2 = r^2,  inv_r = 1 / r,
+//   scale = 2^e,  near = |f|^2 < 2 r^2  (the camera inside, or less than
+//   0.42 r from the surface)
 //
-// Per pixel, with the camera direction d of kernels/scalar.h (scaled, not unit)
-// and n2 = (d.x d.x + d.y d.y) + d.z d.z:
-//   len = sqrt(max(n2, FLT_MIN));  u = (d.x / len, d.y / len, d.z / len)
-//   (u.y is the sky's uy bit for bit: a ray that hits nothing gets the sky
-//   colour of kernels/scalar.h's exact mode.)
-// Per sphere, in scene order, with closest = FLT_MAX at the start:
-//   b    = (f.x u.x + f.y u.y) + f.z u.z
-//   v    = (f.x - b u.x, f.y - b u.y, f.z - b u.z)          the chord's midpoint - C
-//   disc = r2 - ((v.x v.x + v.y v.y) + v.z v.z)              Hearn & Baker: r^2 - |f - (f.u)u|^2
-//   s    = sqrt(max(disc, 0))
-//   q    = -(b + copysign(s, b))                             Press et al.: no cancellation
-//   t0   = c / q,  t1 = q                                    the two roots, t0 t1 = c
-//   t    = t0 >= 0 ? t0 : t1                                 the nearest root that is not behind
-//   hit  when disc >= 0 and t >= 0 and t <= closest; then closest = t
+// Per pixel, the camera direction d of kernels/scalar.h (not normalized: the
+// plan scales the camera so its largest component is in [0.5, 1)), and
+//   n2 = (d.x d.x + d.y d.y) + d.z d.z,   inv_n2 = 1 / n2
+// A ray is P(s) = O + s d; per sphere, in scene order, with closest = FLT_MAX:
+//   b    = (f.x d.x + f.y d.y) + f.z d.z
+//   near:   disc = b b - n2 c                          the textbook discriminant
+//   far:    k = b inv_n2
+//           v = (f.x - k d.x, f.y - k d.y, f.z - k d.z)  the chord's midpoint - C
+//           disc = n2 (r2 - ((v.x v.x + v.y v.y) + v.z v.z))     Hearn & Baker
+//   q    = -(b + copysign(sqrt(max(disc, 0)), b))      Press et al.: no cancellation
+//   s0   = c / q,  s1 = q inv_n2                       the two roots, s0 s1 = c / n2
+//   s    = s0 >= 0 ? s0 : s1                           the nearest root not behind
+//   t    = s scale                                     exact: a power of two
+//   hit  when disc >= 0 and s >= 0 and t <= closest; then closest = t
 //        (t <= closest: on a tie the later sphere wins, as in the book's
 //        hittable_list; closest starts at FLT_MAX, so no infinite or NaN t hits)
-// Shading of the closest hit, per channel k:
+// Shading of the closest hit (its s, f, inv_r), per channel k:
 //   flat:   the sphere's colour
-//   normal: n_k = (f_k + t u_k) inv_r                       the outward normal
-//           n = -n where (n_0 u_0 + n_1 u_1) + n_2 u_2 >= 0  the book's set_face_normal:
-//                                                          it faces the ray (inside a sphere too)
+//   normal: n_k = (f_k + s d_k) inv_r                    the outward normal
+//           n = -n where (n_0 d_0 + n_1 d_1) + n_2 d_2 >= 0  the book's set_face_normal:
+//                                                       it faces the ray (inside a sphere too)
 //           colour_k = (n_k + 1) 0.5
-// 8-bit: int(clamp(colour, 0, 1) * 255.999f), as the sky.
+// Where nothing is hit: kernels/scalar.h's exact sky, uy = d.y / sqrt(max(n2,
+// FLT_MIN)), bit for bit. 8-bit: int(clamp(colour, 0, 1) * 255.999f), as the sky.
 //
-// Why this form: the textbook b^2 - c loses everything to cancellation for a
-// small sphere far away (Ray Tracing Gems ch. 7: a unit sphere 4100 units away
-// renders as a solid square); r^2 - |f - (f.u)u|^2 has an error relative to
-// r^2, not to |f|^2. q never cancels, and t0 = c / q takes the near root from
-// the product of the roots rather than from -b - s, which cancels when the
-// camera is near the surface. c in double is exact to one rounding.
+// Why this form:
+//  - far spheres: the textbook b^2 - c loses everything to cancellation for a
+//    small sphere far away (Ray Tracing Gems ch. 7: a unit sphere 4100 units
+//    away renders as a solid square); r^2 - |v|^2 has an error relative to
+//    r^2, not to |f|^2.
+//  - near spheres (the ground under the camera): r^2 - |v|^2 subtracts two
+//    numbers of size r^2 where the answer is small; b^2 - n2 c does not,
+//    because c = |f|^2 - r^2 (tiny next to r^2: the camera is close to the
+//    surface) is computed in double once. This is where the shared origin
+//    pays: a float renderer with per-ray origins (the book in float, Embree)
+//    forms c in float and loses it.
+//  - q never cancels, and s0 = c / q takes the near root from the product of
+//    the roots rather than from -b - sqrt(disc), which cancels when the camera
+//    is near the surface.
+//  - d is not normalized: no square root and no division per pixel but
+//    inv_n2; t = s |d| is never formed, since every sphere compares the same s.
 //
 // Precision `fast` renders spheres exactly as `exact` does (no estimate is
 // used yet); only the sky-only scene has a separate fast path.
@@ -52,10 +69,12 @@ namespace raycast {
 
 // A structure of arrays, one entry per sphere in scene order.
 struct float_spheres {
-  std::vector<float> fx, fy, fz;  // f = O - C
-  std::vector<float> c;           // |f|^2 - r^2
-  std::vector<float> r2;          // r^2
-  std::vector<float> inv_r;       // 1 / r
+  std::vector<float> fx, fy, fz;  // f = (O - C) 2^-e
+  std::vector<float> c;           // |f|^2 - r^2, in double, in the scaled unit
+  std::vector<float> r2;          // r^2 (scaled)
+  std::vector<float> inv_r;       // 1 / r (scaled)
+  std::vector<float> scale;       // 2^e
+  std::vector<uint8_t> near;      // 1: the textbook discriminant; 0: Hearn & Baker
   std::vector<float> red, green, blue;  // flat colour (0 for normal-shaded spheres)
   std::vector<float> flat;        // 1 for flat-shaded spheres, 0 for normal-shaded
   bool any_flat = false, any_normal = false;
@@ -70,7 +89,8 @@ struct float_spheres {
 // others). The plan (render/plan.cpp) fills it.
 struct sphere_arrays {
   const float *fx = nullptr, *fy = nullptr, *fz = nullptr, *c = nullptr, *r2 = nullptr,
-              *inv_r = nullptr;
+              *inv_r = nullptr, *scale = nullptr;
+  const uint8_t* near = nullptr;
   const float *red = nullptr, *green = nullptr, *blue = nullptr, *flat = nullptr;
   size_t n = 0;
   bool any_flat = false, any_normal = false;
@@ -78,7 +98,7 @@ struct sphere_arrays {
 
 inline sphere_arrays arrays_of(const float_spheres& s) {
   return {s.fx.data(), s.fy.data(), s.fz.data(), s.c.data(), s.r2.data(), s.inv_r.data(),
-          s.red.data(), s.green.data(), s.blue.data(), s.flat.data(), s.size(), s.any_flat, s.any_normal};
+          s.scale.data(), s.near.data(), s.red.data(), s.green.data(), s.blue.data(), s.flat.data(), s.size(), s.any_flat, s.any_normal};
 }
 
 }  // namespace raycast

@@ -63,46 +63,56 @@ void shade(const float_scene& f, float t, float out[3]) {
 // A pixel of a scene with spheres, in kernels/float_spheres.h's order (both
 // precisions: fast mode has no sphere path of its own yet).
 struct traced {
-  float u[3];
-  float closest;
-  size_t hit;  // sp.size(): none
+  float d[3], n2;
+  float s, closest;  // the closest hit's s and t
+  size_t hit;        // sp.size(): none
 };
 
 traced trace(const float_scene& f, int64_t i, int64_t j) {
   const float su = pixel_su(f, i), sv = pixel_sv(f, j);
-  float d[3];
+  traced tr;
+  float* d = tr.d;
   for (int k = 0; k < 3; ++k) d[k] = (f.centre[k] + su * f.horizontal[k]) + sv * f.vertical[k];
   const float n2 = (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2];
-  const float len = std::sqrt(vmax(n2, FLT_MIN));
-  const float u[3] = {d[0] / len, d[1] / len, d[2] / len};
+  const float inv_n2 = 1.0f / n2;
+  tr.n2 = n2;
 
   const float_spheres& sp = f.spheres;
-  float closest = FLT_MAX;
-  size_t hit = sp.size();
+  tr.closest = FLT_MAX;
+  tr.s = 0.0f;
+  tr.hit = sp.size();
   for (size_t k = 0; k < sp.size(); ++k) {
-    const float b = (sp.fx[k] * u[0] + sp.fy[k] * u[1]) + sp.fz[k] * u[2];
-    const float vx = sp.fx[k] - b * u[0], vy = sp.fy[k] - b * u[1], vz = sp.fz[k] - b * u[2];
-    const float disc = sp.r2[k] - ((vx * vx + vy * vy) + vz * vz);
+    const float b = (sp.fx[k] * d[0] + sp.fy[k] * d[1]) + sp.fz[k] * d[2];
+    float disc;
+    if (sp.near[k]) {
+      disc = b * b - n2 * sp.c[k];
+    } else {
+      const float kb = b * inv_n2;
+      const float vx = sp.fx[k] - kb * d[0], vy = sp.fy[k] - kb * d[1], vz = sp.fz[k] - kb * d[2];
+      disc = n2 * (sp.r2[k] - ((vx * vx + vy * vy) + vz * vz));
+    }
     const float sq = std::sqrt(vmax(disc, 0.0f));
     const float q = -(b + std::copysign(sq, b));
-    const float t0 = sp.c[k] / q;
-    const float t = t0 >= 0.0f ? t0 : q;
-    if (disc >= 0.0f && t >= 0.0f && t <= closest) {
-      closest = t;
-      hit = k;
+    const float s0 = sp.c[k] / q;
+    const float s = s0 >= 0.0f ? s0 : q * inv_n2;
+    const float t = s * sp.scale[k];
+    if (disc >= 0.0f && s >= 0.0f && t <= tr.closest) {
+      tr.closest = t;
+      tr.s = s;
+      tr.hit = k;
     }
   }
-  return {{u[0], u[1], u[2]}, closest, hit};
+  return tr;
 }
 
 void sphere_pixel(const float_scene& f, int64_t i, int64_t j, float out[3]) {
   const traced tr = trace(f, i, j);
   const float_spheres& sp = f.spheres;
-  const float* u = tr.u;
-  const float closest = tr.closest;
   const size_t hit = tr.hit;
+  const float* d = tr.d;
   if (hit == sp.size()) {
-    shade(f, clampf((u[1] + 1.0f) * 0.5f, 0.0f, 1.0f), out);
+    const float uy = d[1] / std::sqrt(vmax(tr.n2, FLT_MIN));
+    shade(f, clampf((uy + 1.0f) * 0.5f, 0.0f, 1.0f), out);
   } else if (sp.flat[hit] == 1.0f) {
     out[0] = sp.red[hit];
     out[1] = sp.green[hit];
@@ -110,8 +120,8 @@ void sphere_pixel(const float_scene& f, int64_t i, int64_t j, float out[3]) {
   } else {
     const float fo[3] = {sp.fx[hit], sp.fy[hit], sp.fz[hit]};
     float n[3];
-    for (int k = 0; k < 3; ++k) n[k] = (fo[k] + closest * u[k]) * sp.inv_r[hit];
-    const bool back = (n[0] * u[0] + n[1] * u[1]) + n[2] * u[2] >= 0.0f;  // face the ray
+    for (int k = 0; k < 3; ++k) n[k] = (fo[k] + tr.s * d[k]) * sp.inv_r[hit];
+    const bool back = (n[0] * d[0] + n[1] * d[1]) + n[2] * d[2] >= 0.0f;  // face the ray
     for (int k = 0; k < 3; ++k) out[k] = ((back ? -n[k] : n[k]) + 1.0f) * 0.5f;
   }
 }
@@ -140,7 +150,10 @@ scalar_hit scalar_trace(const float_scene& f, int64_t i, int64_t j) {
   if (f.spheres.empty()) return {};
   const traced tr = trace(f, i, j);
   if (tr.hit == f.spheres.size()) return {};
-  return {int64_t(tr.hit), double(tr.closest)};
+  // P = O + t d in world units, so the distance is t |d|.
+  const double d_len = std::sqrt(double(tr.d[0]) * tr.d[0] + double(tr.d[1]) * tr.d[1] +
+                                 double(tr.d[2]) * tr.d[2]);
+  return {int64_t(tr.hit), double(tr.closest) * d_len};
 }
 
 void render_scalar(const float_scene& f, precision p, const image_band& band) {

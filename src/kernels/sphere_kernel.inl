@@ -4,21 +4,23 @@
 // first), as the sky kernel is.
 //
 // One batch is vfloat::size pixels of a row (8, or 16 with AVX-512). The rays
-// are a structure of arrays in registers (unit direction x, y, z; the origin is
-// shared by every primary ray and lives in the spheres' constants); the
-// spheres are a structure of arrays in memory (kernels/float_spheres.h), each
-// sphere's constants broadcast to every lane. Closest hit with masks: per
-// lane, the nearest t so far and what shading needs of the sphere that gave it.
-// Both precisions perform kernels/float_spheres.h's operations in its order,
-// so the output is bit-identical to render_scalar.
+// are a structure of arrays in registers (the camera direction d, not
+// normalized; the origin is shared by every primary ray and lives in the
+// spheres' constants); the spheres are a structure of arrays in memory
+// (kernels/float_spheres.h), each sphere's constants broadcast to every lane.
+// Closest hit with masks: per lane, the nearest t so far and what shading
+// needs of the sphere that gave it. Both precisions perform
+// kernels/float_spheres.h's operations in its order, so the output is
+// bit-identical to render_scalar.
 //
-// Left out where the scene does not need it: a sphere whose centre is farther
-// than its radius from the plane of a row's rays is not tested on that row
-// (spheres_near_row, kernels/float_scene.h); a sphere that no lane of the
-// batch can hit (every disc < 0) costs no square root or division; a
+// Left out where the scene does not need it: each row asks spheres_in_row
+// (kernels/float_scene.h) which spheres its rays can come near and in which
+// batches, and a batch tests only those (a list per batch, built per row); a
+// batch with none computes the sky alone, with no division but the sky's; a
+// sphere that no lane of the batch can hit (every disc < 0) costs no square
+// root or division; a batch where every lane hit something computes no sky; a
 // flat-shaded scene tracks no centres and computes no normals, a
-// normal-shaded one tracks no colours; a batch where no lane hit anything
-// computes no shading but the sky's.
+// normal-shaded one tracks no colours.
 #include <cfloat>
 #include <cstdint>
 #include <cstdlib>
@@ -40,30 +42,60 @@ template <int Shades>
 struct closest_hit {
   vmask hit{};                 // all false
   vfloat t = FLT_MAX;          // float_spheres.h: closest starts at FLT_MAX
+  vfloat s = 0.0f;             // the hit's s, in its sphere's unit
   vfloat fx = 0.0f, fy = 0.0f, fz = 0.0f, inv_r = 0.0f;  // normal shading
   vfloat red = 0.0f, green = 0.0f, blue = 0.0f, flat = 0.0f;  // flat shading
 };
 
-// Tests the spheres near[0 .. count) (every sphere, 0 .. count, when near is null).
+// The batch's rays: d and what every sphere reads of it.
+struct rays {
+  vfloat d[3];
+  vfloat n2;  // |d|^2 in scalar.h's order
+  // 1 / n2, computed the first time a sphere needs it (a far sphere, or a
+  // lane whose near root is behind): a division is most of a batch's cost.
+  vfloat inv_n2() {
+    if (!have_inv_) {
+      inv_ = 1.0f / n2;
+      have_inv_ = true;
+    }
+    return inv_;
+  }
+
+ private:
+  vfloat inv_;
+  bool have_inv_ = false;
+};
+
+// Tests the spheres list[0 .. count) (every sphere, 0 .. count, when list is null).
 template <int Shades>
-RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* near, size_t count, vfloat ux,
-                              vfloat uy, vfloat uz, closest_hit<Shades>& h) {
+RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, size_t count, rays& r,
+                              closest_hit<Shades>& h) {
+  const vfloat dx = r.d[0], dy = r.d[1], dz = r.d[2];
   for (size_t x = 0; x < count; ++x) {
-    const size_t k = near ? near[x] : x;
+    const size_t k = list ? list[x] : x;
     const vfloat fx = sp.fx[k], fy = sp.fy[k], fz = sp.fz[k];
-    const vfloat b = (fx * ux + fy * uy) + fz * uz;
-    const vfloat vx = fx - b * ux, vy = fy - b * uy, vz = fz - b * uz;
-    const vfloat disc = vfloat(sp.r2[k]) - ((vx * vx + vy * vy) + vz * vz);
+    const vfloat b = (fx * dx + fy * dy) + fz * dz;
+    vfloat disc;
+    if (sp.near[k]) {
+      disc = b * b - r.n2 * vfloat(sp.c[k]);
+    } else {
+      const vfloat kb = b * r.inv_n2();
+      const vfloat vx = fx - kb * dx, vy = fy - kb * dy, vz = fz - kb * dz;
+      disc = r.n2 * (vfloat(sp.r2[k]) - ((vx * vx + vy * vy) + vz * vz));
+    }
     const vmask can_hit = disc >= 0.0f;
     if (none(can_hit)) continue;  // no lane can hit it: no sqrt, no divide
-    const vfloat s = sqrt(max(disc, 0.0f));
-    const vfloat q = -(b + copysign(s, b));
-    const vfloat t0 = vfloat(sp.c[k]) / q;
-    const vfloat t = select(t0 >= 0.0f, t0, q);
-    const vmask m = can_hit & (t >= 0.0f) & (t <= h.t);
+    const vfloat q = -(b + copysign(sqrt(max(disc, 0.0f)), b));
+    vfloat s = vfloat(sp.c[k]) / q;
+    // The far root where the near one is behind (the camera inside).
+    const vmask behind = can_hit & !(s >= 0.0f);
+    if (any(behind)) s = select(behind, q * r.inv_n2(), s);
+    const vfloat t = s * vfloat(sp.scale[k]);
+    const vmask m = can_hit & (s >= 0.0f) & (t <= h.t);
     h.t = select(m, t, h.t);
     h.hit = h.hit | m;
     if constexpr ((Shades & normal_shading) != 0) {
+      h.s = select(m, s, h.s);
       h.fx = select(m, fx, h.fx);
       h.fy = select(m, fy, h.fy);
       h.fz = select(m, fz, h.fz);
@@ -79,42 +111,56 @@ RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* near, siz
   }
 }
 
-// The sky's constants in registers, loaded once per call.
+// The sky's constants in registers, loaded once per call, and the sky
+// kernel's shortcuts `channels` and `clamps` (render/plan.h), which the plan
+// decides for sphere scenes too.
 struct sky_shader {
   vfloat bottom[3], top[3], delta[3], lo[3], hi[3];
-  explicit sky_shader(const float_scene& s) {
+  bool constant[3];
+  bool lerp_exact;
+  explicit sky_shader(const kernel_args& a) : lerp_exact(a.lerp_exact) {
+    const float_scene& s = *a.scene;
     for (int k = 0; k < 3; ++k) {
       bottom[k] = s.bottom[k];
       top[k] = s.top[k];
       delta[k] = s.delta[k];
       lo[k] = s.lo[k];
       hi[k] = s.hi[k];
+      constant[k] = a.constant[k];
     }
   }
-  // scalar.h's exact sky: t = clamp((uy + 1) 0.5, 0, 1), then
-  // clamp(t == 1 ? top : bottom + t delta, lo, hi).
-  void shade(vfloat uy, vfloat out[3]) const {
-    const vfloat t = clamp((uy + 1.0f) * 0.5f, 0.0f, 1.0f);
-    const vmask at_top = t == 1.0f;
-    for (int k = 0; k < 3; ++k) out[k] = clamp(select(at_top, top[k], bottom[k] + t * delta[k]), lo[k], hi[k]);
+  // scalar.h's exact sky: uy = d.y / sqrt(max(n2, FLT_MIN)),
+  // t = clamp((uy + 1) 0.5, 0, 1), then clamp(t == 1 ? top : bottom + t delta, lo, hi).
+  // |d.y| <= sqrt(fl(n2)), so t is in [0, 1] already and its clamp is left
+  // out (as in sky_kernel.inl); so are a constant channel's lerp and, when
+  // the lerp is exact at its ends, its select and clamp.
+  void shade(const rays& r, vfloat out[3]) const {
+    const vfloat uy = r.d[1] / sqrt(max(r.n2, FLT_MIN));
+    const vfloat t = (uy + 1.0f) * 0.5f;
+    for (int k = 0; k < 3; ++k) {
+      if (constant[k]) out[k] = bottom[k];
+      else if (lerp_exact) out[k] = bottom[k] + t * delta[k];
+      else out[k] = clamp(select(t == 1.0f, top[k], bottom[k] + t * delta[k]), lo[k], hi[k]);
+    }
   }
 };
 
 // The colour of one batch (float_spheres.h): the closest hit's shading, the
 // sky where nothing was hit.
 template <int Shades>
-RAYCAST_INLINE void shade(const sky_shader& sky, const closest_hit<Shades>& h, const vfloat u[3],
+RAYCAST_INLINE void shade(const sky_shader& sky, const closest_hit<Shades>& h, const rays& r,
                           vfloat out[3]) {
   if (none(h.hit)) {
-    sky.shade(u[1], out);
+    sky.shade(r, out);
     return;
   }
+  const vfloat* d = r.d;
   vfloat hit_colour[3];
   if constexpr ((Shades & normal_shading) != 0) {
     const vfloat f[3] = {h.fx, h.fy, h.fz};
     vfloat n[3];
-    for (int k = 0; k < 3; ++k) n[k] = (f[k] + h.t * u[k]) * h.inv_r;
-    const vmask back = (n[0] * u[0] + n[1] * u[1]) + n[2] * u[2] >= 0.0f;  // face the ray
+    for (int k = 0; k < 3; ++k) n[k] = (f[k] + h.s * d[k]) * h.inv_r;
+    const vmask back = (n[0] * d[0] + n[1] * d[1]) + n[2] * d[2] >= 0.0f;  // face the ray
     for (int k = 0; k < 3; ++k) hit_colour[k] = (select(back, -n[k], n[k]) + 1.0f) * 0.5f;
   }
   if constexpr (Shades == flat_shading) {
@@ -127,70 +173,148 @@ RAYCAST_INLINE void shade(const sky_shader& sky, const closest_hit<Shades>& h, c
     hit_colour[1] = select(flat, h.green, hit_colour[1]);
     hit_colour[2] = select(flat, h.blue, hit_colour[2]);
   }
+  if (all(h.hit)) {
+    for (int k = 0; k < 3; ++k) out[k] = hit_colour[k];
+    return;
+  }
   vfloat sky_colour[3];
-  sky.shade(u[1], sky_colour);
+  sky.shade(r, sky_colour);
   for (int k = 0; k < 3; ++k) out[k] = select(h.hit, hit_colour[k], sky_colour[k]);
 }
+
+template <bool Float>
+RAYCAST_INLINE void store_batch(unsigned char* out, int64_t i0, int n, const vfloat c[3]) {
+  if constexpr (Float) {
+    float* dst = reinterpret_cast<float*>(out) + 3 * i0;
+    if (n == N) {
+      store_rgbf(dst, c[0], c[1], c[2]);
+    } else {
+      alignas(64) float tmp[3 * N];
+      store_rgbf(tmp, c[0], c[1], c[2]);
+      __builtin_memcpy(dst, tmp, sizeof(float) * 3 * size_t(n));
+    }
+  } else {
+    const rgb8_pack p = pack_rgb8<false>(to_int(clamp(c[0], 0.0f, 1.0f) * 255.999f),
+                                         to_int(clamp(c[1], 0.0f, 1.0f) * 255.999f),
+                                         to_int(clamp(c[2], 0.0f, 1.0f) * 255.999f));
+    unsigned char* dst = out + 3 * i0;
+    if (n == N) {
+      store(dst, p);
+    } else {
+#ifdef RAYCAST_HAS_MASKED_BYTE_STORE
+      store_first(dst, p, n);
+#else
+      alignas(64) unsigned char tmp[3 * N];
+      store(tmp, p);
+      __builtin_memcpy(dst, tmp, 3 * size_t(n));
+#endif
+    }
+  }
+}
+
+// Per-batch sphere lists for a run of a row's batches, built from the row's
+// spans: list[first[b] .. first[b + 1]) are the spheres of batch b0 + b, in
+// scene order. Raw memory (no standard-library template is instantiated with
+// this instruction set's flags); without memory, every batch tests every
+// sphere (list == nullptr).
+struct batch_lists {
+  static constexpr size_t budget = size_t(1) << 16;  // entries per run
+  sphere_span* spans = nullptr;
+  uint32_t* list = nullptr;
+  uint32_t* first = nullptr;
+  uint32_t* fill = nullptr;
+
+  batch_lists(size_t spheres, int64_t batches) {
+    spans = static_cast<sphere_span*>(std::malloc(spheres * sizeof(sphere_span) + 1));
+    list = static_cast<uint32_t*>(std::malloc((spheres > budget ? spheres : budget) * sizeof(uint32_t)));
+    first = static_cast<uint32_t*>(std::malloc(size_t(batches + 1) * sizeof(uint32_t)));
+    fill = static_cast<uint32_t*>(std::malloc(size_t(batches + 1) * sizeof(uint32_t)));
+    if (!spans || !list || !first || !fill) release();
+  }
+  ~batch_lists() { release(); }
+  batch_lists(const batch_lists&) = delete;
+  batch_lists& operator=(const batch_lists&) = delete;
+  void release() {
+    std::free(spans);
+    std::free(list);
+    std::free(first);
+    std::free(fill);
+    spans = nullptr;
+    list = first = fill = nullptr;
+  }
+  bool ok() const { return spans != nullptr; }
+
+  // How many batches one run may cover so that its lists fit the budget.
+  static int64_t run_length(size_t count, int64_t batches) {
+    const int64_t most = count == 0 ? batches : int64_t(budget / count);
+    return most < 1 ? 1 : (most < batches ? most : batches);
+  }
+
+  // The lists of batches [b0, b1) from the row's count spans.
+  void build(size_t count, int64_t b0, int64_t b1) {
+    const int64_t n = b1 - b0;
+    for (int64_t b = 0; b <= n; ++b) fill[b] = 0;
+    for (size_t x = 0; x < count; ++x) {
+      const int64_t lo = spans[x].lo > b0 ? spans[x].lo : b0;
+      const int64_t hi = spans[x].hi < b1 - 1 ? spans[x].hi : b1 - 1;
+      for (int64_t b = lo; b <= hi; ++b) ++fill[b - b0 + 1];
+    }
+    first[0] = 0;
+    for (int64_t b = 0; b < n; ++b) {
+      first[b + 1] = first[b] + fill[b + 1];
+      fill[b] = first[b];
+    }
+    for (size_t x = 0; x < count; ++x) {
+      const int64_t lo = spans[x].lo > b0 ? spans[x].lo : b0;
+      const int64_t hi = spans[x].hi < b1 - 1 ? spans[x].hi : b1 - 1;
+      for (int64_t b = lo; b <= hi; ++b) list[fill[b - b0]++] = spans[x].sphere;
+    }
+  }
+};
 
 template <int Shades, bool Float>
 void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
   const float_scene& s = *a.scene;
   const sphere_arrays& sp = a.spheres;
-  const sky_shader sky(s);
+  const sky_shader sky(a);
   const int64_t W = s.width;
-  // The spheres each row may hit; malloc rather than a container (no
-  // standard-library template is instantiated with this instruction set's
-  // flags). Without memory, every row tests every sphere.
-  uint32_t* const near = static_cast<uint32_t*>(std::malloc(sp.n * sizeof(uint32_t)));
+  const int64_t batches = (W + N - 1) / N;
+  batch_lists lists(sp.n, batches);
   for (int64_t r = r0; r < r1; ++r) {
     const int64_t j = s.height - 1 - r;
     const float sv = s.height == 1 ? 0.0f : (float(j) - s.mid_row) / s.last_row;  // scalar.h
-    const size_t count = near ? spheres_near_row(s, sv, near) : sp.n;  // the others cannot be hit here
+    const size_t count = lists.ok() ? spheres_in_row(s, sv, N, lists.spans) : sp.n;
+    const int64_t run = lists.ok() ? batch_lists::run_length(count, batches) : batches;
     const vfloat row_part[3] = {sv * s.vertical[0], sv * s.vertical[1], sv * s.vertical[2]};
     unsigned char* const out = band.row(r);
-    for (int64_t i0 = 0; i0 < W; i0 += N) {
-      const int n = W - i0 >= N ? N : int(W - i0);
-      // The ray batch: scalar.h's direction, then float_spheres.h's unit vector.
-      vfloat d[3];
-      for (int k = 0; k < 3; ++k) d[k] = vfloat::load(a.column_part[k] + i0) + row_part[k];
-      const vfloat n2 = (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2];
-      const vfloat len = sqrt(max(n2, FLT_MIN));
-      const vfloat u[3] = {d[0] / len, d[1] / len, d[2] / len};
-
-      closest_hit<Shades> h;
-      intersect(sp, near, count, u[0], u[1], u[2], h);
-      vfloat c[3];
-      shade(sky, h, u, c);
-
-      if constexpr (Float) {
-        float* dst = reinterpret_cast<float*>(out) + 3 * i0;
-        if (n == N) {
-          store_rgbf(dst, c[0], c[1], c[2]);
-        } else {
-          alignas(64) float tmp[3 * N];
-          store_rgbf(tmp, c[0], c[1], c[2]);
-          __builtin_memcpy(dst, tmp, sizeof(float) * 3 * size_t(n));
+    for (int64_t b0 = 0; b0 < batches; b0 += run) {
+      const int64_t b1 = b0 + run < batches ? b0 + run : batches;
+      if (lists.ok() && count > 0) lists.build(count, b0, b1);
+      for (int64_t b = b0; b < b1; ++b) {
+        const int64_t i0 = b * N;
+        const int n = W - i0 >= N ? N : int(W - i0);
+        // The ray batch: scalar.h's direction and its squared length.
+        rays ry;
+        for (int k = 0; k < 3; ++k) ry.d[k] = vfloat::load(a.column_part[k] + i0) + row_part[k];
+        ry.n2 = (ry.d[0] * ry.d[0] + ry.d[1] * ry.d[1]) + ry.d[2] * ry.d[2];
+        const uint32_t* list = nullptr;
+        size_t tests = sp.n;
+        if (lists.ok()) {
+          list = lists.list + (count > 0 ? lists.first[b - b0] : 0);
+          tests = count > 0 ? lists.first[b - b0 + 1] - lists.first[b - b0] : 0;
         }
-      } else {
-        const rgb8_pack p = pack_rgb8<false>(to_int(clamp(c[0], 0.0f, 1.0f) * 255.999f),
-                                             to_int(clamp(c[1], 0.0f, 1.0f) * 255.999f),
-                                             to_int(clamp(c[2], 0.0f, 1.0f) * 255.999f));
-        unsigned char* dst = out + 3 * i0;
-        if (n == N) {
-          store(dst, p);
+        vfloat c[3];
+        if (tests == 0) {
+          sky.shade(ry, c);  // no sphere comes near these rays
         } else {
-#ifdef RAYCAST_HAS_MASKED_BYTE_STORE
-          store_first(dst, p, n);
-#else
-          alignas(64) unsigned char tmp[3 * N];
-          store(tmp, p);
-          __builtin_memcpy(dst, tmp, 3 * size_t(n));
-#endif
+          closest_hit<Shades> h;
+          intersect(sp, list, tests, ry, h);
+          shade(sky, h, ry, c);
         }
+        store_batch<Float>(out, i0, n, c);
       }
     }
   }
-  std::free(near);
 }
 
 template <int Shades>

@@ -47,6 +47,8 @@ RAYCAST_INLINE vmask operator&(vmask a, vmask b) { return {_mm256_and_ps(a.m, b.
 RAYCAST_INLINE vmask operator|(vmask a, vmask b) { return {_mm256_or_ps(a.m, b.m)}; }
 RAYCAST_INLINE bool any(vmask m) { return _mm256_movemask_ps(m.m) != 0; }
 RAYCAST_INLINE bool none(vmask m) { return !any(m); }
+RAYCAST_INLINE bool all(vmask m) { return _mm256_movemask_ps(m.m) == 0xff; }
+RAYCAST_INLINE vmask operator!(vmask m) { return {_mm256_xor_ps(m.m, _mm256_castsi256_ps(_mm256_set1_epi32(-1)))}; }
 // |a| with the sign of b, as std::copysign.
 RAYCAST_INLINE vfloat copysign(vfloat a, vfloat b) {
   const __m256 sign = _mm256_set1_ps(-0.0f);

@@ -55,6 +55,8 @@ RAYCAST_INLINE vmask operator&(vmask a, vmask b) { return {__mmask16(a.m & b.m)}
 RAYCAST_INLINE vmask operator|(vmask a, vmask b) { return {__mmask16(a.m | b.m)}; }
 RAYCAST_INLINE bool any(vmask m) { return m.m != 0; }
 RAYCAST_INLINE bool none(vmask m) { return m.m == 0; }
+RAYCAST_INLINE bool all(vmask m) { return m.m == 0xffff; }
+RAYCAST_INLINE vmask operator!(vmask m) { return {__mmask16(~m.m)}; }
 // |a| with the sign of b, as std::copysign: one ternary-logic op (bit select
 // by the sign mask: 0xCA is "A ? B : C"), integer because the float and/or need AVX-512 DQ.
 RAYCAST_INLINE vfloat copysign(vfloat a, vfloat b) {

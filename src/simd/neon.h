@@ -72,6 +72,8 @@ RAYCAST_INLINE vmask operator&(vmask a, vmask b) { return {vandq_u32(a.lo, b.lo)
 RAYCAST_INLINE vmask operator|(vmask a, vmask b) { return {vorrq_u32(a.lo, b.lo), vorrq_u32(a.hi, b.hi)}; }
 RAYCAST_INLINE bool any(vmask m) { return vmaxvq_u32(vorrq_u32(m.lo, m.hi)) != 0; }
 RAYCAST_INLINE bool none(vmask m) { return !any(m); }
+RAYCAST_INLINE bool all(vmask m) { return vminvq_u32(vandq_u32(m.lo, m.hi)) != 0; }
+RAYCAST_INLINE vmask operator!(vmask m) { return {vmvnq_u32(m.lo), vmvnq_u32(m.hi)}; }
 // |a| with the sign of b, as std::copysign: a bit select by the sign bit.
 RAYCAST_INLINE vfloat copysign(vfloat a, vfloat b) {
   const uint32x4_t sign = vdupq_n_u32(0x80000000u);

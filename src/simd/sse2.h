@@ -57,6 +57,11 @@ RAYCAST_INLINE vmask operator&(vmask a, vmask b) { return {_mm_and_ps(a.lo, b.lo
 RAYCAST_INLINE vmask operator|(vmask a, vmask b) { return {_mm_or_ps(a.lo, b.lo), _mm_or_ps(a.hi, b.hi)}; }
 RAYCAST_INLINE bool any(vmask m) { return _mm_movemask_ps(_mm_or_ps(m.lo, m.hi)) != 0; }
 RAYCAST_INLINE bool none(vmask m) { return !any(m); }
+RAYCAST_INLINE bool all(vmask m) { return _mm_movemask_ps(_mm_and_ps(m.lo, m.hi)) == 0xf; }
+RAYCAST_INLINE vmask operator!(vmask m) {
+  const __m128 ones = _mm_castsi128_ps(_mm_set1_epi32(-1));
+  return {_mm_xor_ps(m.lo, ones), _mm_xor_ps(m.hi, ones)};
+}
 // |a| with the sign of b, as std::copysign.
 RAYCAST_INLINE vfloat copysign(vfloat a, vfloat b) {
   const __m128 sign = _mm_set1_ps(-0.0f);

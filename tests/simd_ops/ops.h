@@ -28,10 +28,10 @@ struct simd_ops {
   // The first n pixels of a pack with store_first; null where the instruction
   // set has none (RAYCAST_HAS_MASKED_BYTE_STORE).
   void (*store_first)(const float* r, const float* g, const float* b, int n, unsigned char* out);
-  // 1 or 0 per lane for a >= b, a <= b, both (&) and either (|); any and none
-  // of a >= b; and vmask{} (all false) as 1 or 0.
+  // 1 or 0 per lane for a >= b, a <= b, both (&) and either (|); any, none
+  // and all of a >= b; !(a >= b) as 1 or 0; and vmask{} (all false) as 1 or 0.
   void (*compare)(const float* a, const float* b, float* ge, float* le, float* both, float* either,
-                  bool* any_ge, bool* none_ge, float* empty);
+                  bool* any_ge, bool* none_ge, bool* all_ge, float* not_ge, float* empty);
   // copysign(mag, sign).
   void (*copy_sign)(const float* mag, const float* sign, float* out);
 };

@@ -47,7 +47,7 @@ void store_first_pixels(const float* r, const float* g, const float* b, int n, u
 #endif
 
 void compare(const float* a, const float* b, float* ge, float* le, float* both, float* either,
-             bool* any_ge, bool* none_ge, float* empty) {
+             bool* any_ge, bool* none_ge, bool* all_ge, float* not_ge, float* empty) {
   const vfloat x = vfloat::load(a), y = vfloat::load(b);
   const vmask g = x >= y, l = x <= y;
   store(ge, select(g, 1.0f, 0.0f));
@@ -56,6 +56,8 @@ void compare(const float* a, const float* b, float* ge, float* le, float* both, 
   store(either, select(g | l, 1.0f, 0.0f));
   *any_ge = any(g);
   *none_ge = none(g);
+  *all_ge = all(g);
+  store(not_ge, select(!g, 1.0f, 0.0f));
   store(empty, select(vmask{}, 1.0f, 0.0f));
 }
 void copy_sign(const float* mag, const float* sign, float* out) {
