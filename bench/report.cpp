@@ -454,6 +454,34 @@ void print_stiff(std::ostream& os, const std::vector<path>& paths,
         [](const error_stats& e) { return strf("%lld", static_cast<long long>(e.nan_count)); });
 }
 
+void print_sphere_stiff(std::ostream& os, const std::vector<sphere_stiff_result>& results) {
+  using raycast_test::sphere_metrics;
+  // A count away from silhouettes, with the total in parentheses when it differs.
+  auto count = [](int64_t away, int64_t all) {
+    return away == all ? strf("%lld", static_cast<long long>(all))
+                       : strf("%lld (%lld)", static_cast<long long>(away), static_cast<long long>(all));
+  };
+  auto cell = [](const sphere_stiff_result& r, auto text) {
+    return text(r.ours) + " / " + text(r.naive) + " / " + (r.embree_error.empty() ? text(r.embree) : "-");
+  };
+  os << "\nStiff sphere cases (not timed): ours / naive (the book's ch. 6 hit_sphere in float) / Embree\n"
+        "(rtcIntersect1) against the double reference; counts are pixels away from silhouettes, (all)\n"
+        "where they differ; distance error relative, where both hit the same sphere away from\n"
+        "silhouettes; LSB: 8-bit error of the pixels the reference shades from a sphere.\n\n";
+  os << "| case | size | wrong object | false hits | false misses | max distance error | max LSB |\n"
+        "|---|---|---|---|---|---|---|\n";
+  for (const sphere_stiff_result& r : results) {
+    os << "| " << r.name << " | " << size_text(r.width, r.height) << " | "
+       << cell(r, [&](const sphere_metrics& m) { return count(m.wrong_object_away, m.wrong_object); }) << " | "
+       << cell(r, [&](const sphere_metrics& m) { return count(m.false_hits_away, m.false_hits); }) << " | "
+       << cell(r, [&](const sphere_metrics& m) { return count(m.false_misses_away, m.false_misses); }) << " | "
+       << cell(r, [](const sphere_metrics& m) { return error_text(m.max_rel_distance_err); }) << " | "
+       << cell(r, [&](const sphere_metrics& m) { return count(m.max_lsb_away, m.max_lsb); }) << " |\n";
+  }
+  for (const sphere_stiff_result& r : results)
+    if (!r.embree_error.empty()) os << "Embree, " << r.name << ": " << r.embree_error << "\n";
+}
+
 std::string cpu_model() {
   std::ifstream in("/proc/cpuinfo");
   for (std::string line; std::getline(in, line);) {

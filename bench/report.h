@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "errors.h"
+#include "sphere_numerics.h"
 
 namespace raycast::bench {
 
@@ -112,6 +113,18 @@ void print_shortcuts(std::ostream& os, const run_table& table, const std::vector
 
 void print_stiff(std::ostream& os, const std::vector<path>& paths,
                  const std::vector<stiff_result>& results);
+
+// One stiff sphere case (tests/support/sphere_numerics.h) against the double
+// reference: ours (the scalar renderer, exact mode: every backend's bits), the
+// book's ch. 6 formula in float, and Embree (rtcIntersect1).
+struct sphere_stiff_result {
+  std::string name;
+  int64_t width = 0, height = 0;
+  raycast_test::sphere_metrics ours, naive, embree;
+  std::string embree_error;  // Embree's message when it could not build the scene
+};
+// A Markdown table (README "Numerics"), each cell "ours / naive / Embree".
+void print_sphere_stiff(std::ostream& os, const std::vector<sphere_stiff_result>& results);
 
 std::string cpu_model();
 std::string today();
