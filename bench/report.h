@@ -84,7 +84,8 @@ struct summary_options {
 };
 
 struct summary_row {
-  std::string label;  // backend/precision
+  std::string label;  // backend/precision, or backend/precision/scene
+  std::string scene;  // empty for the sky
   double ns_per_px = 0;
   std::optional<double> speedup;
   double max_abs_err = 0, lsb_mismatch = 0;
@@ -92,9 +93,10 @@ struct summary_row {
   bool pareto = false;
 };
 
-// The rows at the summary's size, threads and output, sorted by time, with
-// the Pareto-optimal ones (no other row both faster and at most as wrong in
-// max_abs_err) marked.
+// The rows at the summary's size, threads and output (the sky's, then each
+// sphere scene's), sorted by time within each, with the Pareto-optimal ones
+// (no other row of the same scene both faster and at most as wrong in
+// max_abs_err) marked. max_abs_err is NaN for a row without float output.
 std::vector<summary_row> summary_rows(const run_table& table, const summary_options& opt);
 void print_summary(std::ostream& os, const std::vector<summary_row>& rows,
                    const summary_options& opt, const std::vector<skipped_backend>& skipped);
