@@ -8,7 +8,9 @@
 //    8-bit error of sphere pixels) worse than the book's ch. 6 formula in float.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <set>
 #include <ostream>
 #include <string>
 
@@ -131,21 +133,34 @@ TEST(SphereStiffCases, ScaledWorldsAreOnePicture) {
 }
 
 // tangent_rays makes the rays through 36 pixel centres tangent to its front
-// sphere: the reference's decision there is a rounding, and every one of them
-// is at a silhouette.
+// sphere (the silhouette's radius on the viewport is 65 pixel steps; 36
+// lattice points lie on that circle): the reference's decision there is a
+// rounding, and every one of them must be a silhouette pixel, so that the
+// "away from silhouettes" counts above never see a coin flip.
 TEST(SphereStiffCases, TangentRaysAreAtSilhouettes) {
-  for (const sphere_stiff_case& c : sphere_stiff_cases()) {
-    if (c.name != "tangent_rays") continue;
-    const scene s = raycast_test::scene_of(c);
-    const int64_t mid = s.cam.image_width / 2;
-    ASSERT_EQ(mid, 80);
-    const double step = s.cam.viewport_height / double(s.cam.image_height - 1);
-    const ray axis = s.cam.get_ray(0.5, 0.5);
-    const vec3 to_centre = c.spheres[0].center - axis.origin();
-    // The silhouette's radius on the viewport is 65 steps: |c|^2 = r^2 (1 + 1/rho^2).
-    const double rho = c.spheres[0].radius / std::sqrt(glm::dot(to_centre, to_centre) - c.spheres[0].radius * c.spheres[0].radius);
-    EXPECT_NEAR(rho / step, 65.0, 1e-12);
-  }
+  const auto it = std::find_if(sphere_stiff_cases().begin(), sphere_stiff_cases().end(),
+                               [](const sphere_stiff_case& c) { return c.name == "tangent_rays"; });
+  ASSERT_NE(it, sphere_stiff_cases().end());
+  const scene s = raycast_test::scene_of(*it);
+  ASSERT_EQ(s.cam.image_width, 161);
+  ASSERT_EQ(s.cam.image_height, 161);
+  const sphere& front = it->spheres[0];
+  const double dist = glm::length(front.center - s.cam.origin);
+  const double rho = front.radius / std::sqrt(dist * dist - front.radius * front.radius);
+  EXPECT_NEAR(rho * 80.0, 65.0, 1e-12);  // tan of the half-angle, in steps of 1/80
+  const raycast_test::traced_image ref = raycast_test::trace_reference(s);
+  int tangent = 0;
+  for (int64_t x = -65; x <= 65; ++x)
+    for (int64_t y = -65; y <= 65; ++y) {
+      if (x * x + y * y != 65 * 65) continue;
+      ++tangent;
+      const int64_t row = 80 - y, col = 80 + x;
+      std::set<int64_t> seen;
+      for (int64_t dr = -1; dr <= 1; ++dr)
+        for (int64_t dc = -1; dc <= 1; ++dc) seen.insert(ref.sphere[ref.at(row + dr, col + dc)]);
+      EXPECT_EQ(seen.size(), 2u) << "pixel centre (" << x << ", " << y << ") steps from the centre";
+    }
+  EXPECT_EQ(tangent, 36);
 }
 
 }  // namespace
