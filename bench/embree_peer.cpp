@@ -174,35 +174,49 @@ struct embree_peer::impl {
     }
   }
 
-  void render1(const image_band& band) const {
-    const camera& cam = s.cam;
-    const int64_t W = cam.image_width, H = cam.image_height;
+  // One ray from the camera origin along d, rtcIntersect1.
+  RTCRayHit intersect1(const float3& d) const {
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     RTCRayHit rh;
+    rh.ray.org_x = origin.x;
+    rh.ray.org_y = origin.y;
+    rh.ray.org_z = origin.z;
+    rh.ray.dir_x = d.x;
+    rh.ray.dir_y = d.y;
+    rh.ray.dir_z = d.z;
+    rh.ray.tnear = 0.0f;
+    rh.ray.tfar = std::numeric_limits<float>::infinity();
+    rh.ray.time = 0.0f;
+    rh.ray.mask = ~0u;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(rtc_scene, &ctx, &rh);
+    return rh;
+  }
+
+  void render1(const image_band& band) const {
+    const camera& cam = s.cam;
+    const int64_t W = cam.image_width, H = cam.image_height;
     for (int64_t r = band.row_begin; r < band.row_end; ++r) {
       const vec3 base = cam.corner_dir + cam.v_of(H - 1 - r) * cam.vertical;
       unsigned char* row = band.row(r);
       for (int64_t i = 0; i < W; ++i) {
         const float3 d = direction(base, i);
-        rh.ray.org_x = origin.x;
-        rh.ray.org_y = origin.y;
-        rh.ray.org_z = origin.z;
-        rh.ray.dir_x = d.x;
-        rh.ray.dir_y = d.y;
-        rh.ray.dir_z = d.z;
-        rh.ray.tnear = 0.0f;
-        rh.ray.tfar = std::numeric_limits<float>::infinity();
-        rh.ray.time = 0.0f;
-        rh.ray.mask = ~0u;
-        rh.ray.id = 0;
-        rh.ray.flags = 0;
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(rtc_scene, &ctx, &rh);
+        const RTCRayHit rh = intersect1(d);
         store(band, row, i, shade(d, rh.hit.geomID, rh.hit.primID, {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z}));
       }
     }
+  }
+
+  hit trace(int64_t i, int64_t j) const {
+    const float3 d = direction(s.cam.corner_dir + s.cam.v_of(j) * s.cam.vertical, i);
+    const RTCRayHit rh = intersect1(d);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
+    const double len = std::sqrt(double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z);
+    return {int64_t(rh.hit.primID), double(rh.ray.tfar) * len};
   }
 };
 
@@ -215,6 +229,12 @@ void embree_peer::render(const image_band& band, mode m) const {
   const ftz_daz guard;
   if (m == mode::packet16) impl_->render16(band);
   else impl_->render1(band);
+}
+
+embree_peer::hit embree_peer::trace(int64_t i, int64_t j) const {
+  if (!impl_->error.empty()) return {};
+  const ftz_daz guard;
+  return impl_->trace(i, j);
 }
 
 }  // namespace raycast::bench

@@ -7,6 +7,7 @@
 // nothing is hit; 8-bit int(clamp(c, 0, 1) * 255.999f). Single-threaded. Only
 // the bench links Embree; the product does not.
 #pragma once
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -31,6 +32,16 @@ class embree_peer {
 
   // Renders rows [band.row_begin, band.row_end), rgb8 or rgb_f32, on this thread.
   void render(const image_band& band, mode m) const;
+
+  // What the ray of pixel column i, row j (0 at the bottom) hits, traced with
+  // rtcIntersect1 as render(single) traces it: the sphere's index (-1 for
+  // none) and the distance tfar |d| from the camera, in world units (the
+  // bench's stiff-sphere metrics, tests/support/sphere_numerics.h).
+  struct hit {
+    int64_t sphere = -1;
+    double distance = 0.0;
+  };
+  hit trace(int64_t i, int64_t j) const;
 
  private:
   struct impl;

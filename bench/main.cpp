@@ -12,11 +12,13 @@
 #include <string>
 #include <vector>
 
+#include "embree_peer.h"
 #include "embree_rows.h"
 #include "errors.h"
 #include "gbench_flags.h"
 #include "report.h"
 #include "spheres.h"
+#include "sphere_numerics.h"
 
 namespace raycast::bench {
 namespace {
@@ -215,6 +217,43 @@ std::vector<stiff_result> run_stiff_cases() {
   return results;
 }
 
+// Embree's view of a scene as the metrics want it: rtcIntersect1's hits and
+// the 8-bit image of the same single-ray path.
+raycast_test::traced_image trace_embree(const scene& s, const embree_peer& peer) {
+  raycast_test::traced_image t;
+  t.width = s.cam.image_width;
+  t.height = s.cam.image_height;
+  t.rgb8.assign(size_t(t.width * t.height) * 3, 0);
+  peer.render(image_band{t.rgb8.data(), size_t(t.width) * 3, pixel_format::rgb8, 0, t.height},
+              embree_peer::mode::single);
+  for (int64_t row = 0; row < t.height; ++row)
+    for (int64_t i = 0; i < t.width; ++i) {
+      const embree_peer::hit h = peer.trace(i, t.height - 1 - row);
+      t.sphere.push_back(h.sphere);
+      t.distance.push_back(h.distance);
+    }
+  return t;
+}
+
+std::vector<sphere_stiff_result> run_sphere_stiff_cases() {
+  std::vector<sphere_stiff_result> results;
+  for (const raycast_test::sphere_stiff_case& c : raycast_test::sphere_stiff_cases()) {
+    const scene s = raycast_test::scene_of(c);
+    const raycast_test::traced_image ref = raycast_test::trace_reference(s);
+    sphere_stiff_result r;
+    r.name = c.name;
+    r.width = s.cam.image_width;
+    r.height = s.cam.image_height;
+    r.ours = raycast_test::measure(ref, raycast_test::trace_ours(s));
+    r.naive = raycast_test::measure(ref, raycast_test::trace_naive(s));
+    const embree_peer peer(s);
+    r.embree_error = peer.error();
+    if (r.embree_error.empty()) r.embree = raycast_test::measure(ref, trace_embree(s, peer));
+    results.push_back(std::move(r));
+  }
+  return results;
+}
+
 // Google Benchmark's flags, with a short default min time: it keeps the full
 // run within two minutes, and a row whose single iteration takes longer (the
 // reference and scalar rows at 15360x8640) runs exactly once, by the
@@ -285,6 +324,7 @@ int run(int argc, char** argv) {
   print_shortcuts(os, table, names);
   print_embree_summary(os, table, so.width, so.height, opt.quick);
   print_stiff(os, paths(), run_stiff_cases());
+  print_sphere_stiff(os, run_sphere_stiff_cases());
   os.flush();
   return 0;
 }

@@ -180,7 +180,7 @@ void run_table::fill(std::vector<Run>& runs) {
     if (auto t = seconds(bound + key)) r.counters["vs_memset"] = sec / *t;
   }
 
-  if (name->kind != "render") return;
+  if (name->kind != "render" && name->kind != "scene") return;
   measured_row row;
   row.name = *name;
   for (const Run& r : runs) {
@@ -213,32 +213,44 @@ void counter_filler::Finalize() { inner_->Finalize(); }
 
 std::vector<summary_row> summary_rows(const run_table& table, const summary_options& opt) {
   std::vector<summary_row> rows;
-  const std::string ref_name =
-      render_row_name("reference", "exact", opt.width, opt.height, opt.threads, opt.out);
-  const auto ref = table.rows().find(ref_name);
   for (const auto& [fn, m] : table.rows()) {
     const row_name& n = m.name;
     if (n.width != opt.width || n.height != opt.height || n.threads != opt.threads ||
         n.out != opt.out)
       continue;
+    // Rows whose error was not measured (the random-sphere scaling rows) have
+    // no place in an error-vs-time summary.
+    if (!m.counters.count("max_abs_err") && !m.counters.count("max_lsb")) continue;
     summary_row s;
-    s.label = n.backend + "/" + n.precision;
+    s.scene = n.scene;
+    s.label = n.backend + "/" + n.precision + (n.scene.empty() ? "" : "/" + n.scene);
     s.ns_per_px = m.seconds * 1e9 / (double(n.width) * double(n.height));
+    // Speedup against the reference of the same scene (the sky's for sky rows).
+    const std::string ref_name =
+        n.scene.empty() ? render_row_name("reference", "exact", opt.width, opt.height, opt.threads, opt.out)
+                        : scene_row_name("reference", "exact", n.scene, opt.width, opt.height, opt.threads,
+                                         opt.out);
+    const auto ref = table.rows().find(ref_name);
     if (ref != table.rows().end()) s.speedup = ref->second.seconds / m.seconds;
     auto counter = [&](const char* k) {
       const auto it = m.counters.find(k);
       return it == m.counters.end() ? 0.0 : it->second;
     };
-    s.max_abs_err = counter("max_abs_err");
+    // A row without float output (the book's program: 8-bit only) has no
+    // max_abs_err: unknown, not 0.
+    s.max_abs_err = m.counters.count("max_abs_err") ? counter("max_abs_err") : NAN;
     s.max_lsb = int(counter("max_lsb"));
     s.lsb_mismatch = counter("lsb_mismatch");
     rows.push_back(s);
   }
-  std::sort(rows.begin(), rows.end(),
-            [](const summary_row& a, const summary_row& b) { return a.ns_per_px < b.ns_per_px; });
+  // The sky first, then each scene; fastest first within each.
+  std::sort(rows.begin(), rows.end(), [](const summary_row& a, const summary_row& b) {
+    return a.scene != b.scene ? a.scene < b.scene : a.ns_per_px < b.ns_per_px;
+  });
+  // Pareto within a scene: times of different scenes do not compare.
   for (summary_row& r : rows) {
-    r.pareto = std::none_of(rows.begin(), rows.end(), [&](const summary_row& o) {
-      return o.ns_per_px < r.ns_per_px && o.max_abs_err <= r.max_abs_err;
+    r.pareto = !std::isnan(r.max_abs_err) && std::none_of(rows.begin(), rows.end(), [&](const summary_row& o) {
+      return o.scene == r.scene && o.ns_per_px < r.ns_per_px && o.max_abs_err <= r.max_abs_err;
     });
   }
   return rows;
@@ -267,17 +279,20 @@ void print_summary(std::ostream& os, const std::vector<summary_row>& rows,
      << "  ns/px: the median of a row's repetitions (--benchmark_repetitions=N; one by default)\n"
      << "  errors vs the double reference over the whole image: max_abs_err in linear colour\n"
      << "  (from the f32 rendering), max_lsb and lsb_mismatch from the 8-bit bytes;\n"
-     << "  * = Pareto-optimal: no other row is both faster and at most as wrong (max_abs_err)\n";
+     << "  * = Pareto-optimal: no other row of the same scene is both faster and at most as\n"
+     << "  wrong (max_abs_err; - where a row has no float output); the sky, then each sphere scene\n";
   if (rows.empty()) {
     os << "  (no rows measured at this size, thread count and output; see --benchmark_filter)\n";
   } else {
-    os << strf("    %-20s %9s %9s %12s %8s %13s\n", "backend/precision", "ns/px", "speedup",
+    os << strf("    %-36s %9s %9s %12s %8s %13s\n", "backend/precision[/scene]", "ns/px", "speedup",
                "max_abs_err", "max_lsb", "lsb_mismatch");
-    for (const summary_row& r : rows) {
+    for (size_t k = 0; k < rows.size(); ++k) {
+      const summary_row& r = rows[k];
+      if (k > 0 && rows[k - 1].scene != r.scene) os << "\n";
       const std::string speedup = r.speedup ? strf("%.1fx", *r.speedup) : "-";
-      os << strf("  %c %-20s %9.3f %9s %12s %8d %12.4f%%\n", r.pareto ? '*' : ' ', r.label.c_str(),
-                 r.ns_per_px, speedup.c_str(), error_text(r.max_abs_err).c_str(), r.max_lsb,
-                 100.0 * r.lsb_mismatch);
+      const std::string err = std::isnan(r.max_abs_err) ? "-" : error_text(r.max_abs_err);
+      os << strf("  %c %-36s %9.3f %9s %12s %8d %12.4f%%\n", r.pareto ? '*' : ' ', r.label.c_str(),
+                 r.ns_per_px, speedup.c_str(), err.c_str(), r.max_lsb, 100.0 * r.lsb_mismatch);
     }
   }
   os << "Skipped backends: ";
@@ -320,7 +335,7 @@ bool write_svg(const std::string& file, const std::vector<summary_row>& rows,
   for (const summary_row& r : rows) {
     xlo = std::min(xlo, r.ns_per_px);
     xhi = std::max(xhi, r.ns_per_px);
-    if (std::isfinite(r.max_abs_err)) yhi = std::max(yhi, r.max_abs_err);
+    if (std::isfinite(r.max_abs_err)) yhi = std::max(yhi, r.max_abs_err);  // NaN: not plotted
   }
   if (rows.empty()) xlo = xhi = 1;
   const int x0 = int(std::floor(std::log10(xlo))),
@@ -370,16 +385,18 @@ bool write_svg(const std::string& file, const std::vector<summary_row>& rows,
       "<text transform=\"translate(24 %.1f) rotate(-90)\" text-anchor=\"middle\">"
       "max abs error, linear colour (log; 0 at the bottom)</text>\n",
       top + ph / 2);
-  // The Pareto front as a dashed staircase (the edge of what it dominates).
-  std::string front, front_y;
+  // Each scene's Pareto front as a dashed staircase (the edge of what it
+  // dominates); rows are sorted by scene, then time.
+  std::map<std::string, std::pair<std::string, std::string>> fronts;  // scene -> points, last y
   for (const summary_row& r : rows) {
     if (!r.pareto) continue;
+    auto& [front, front_y] = fronts[r.scene];
     if (!front.empty()) front += strf("%.1f,%s ", px(r.ns_per_px), front_y.c_str());
     front_y = strf("%.1f", py(r.max_abs_err));
     front += strf("%.1f,%s ", px(r.ns_per_px), front_y.c_str());
   }
-  if (!front.empty())
-    out << "<polyline points=\"" << front
+  for (const auto& [scene, front] : fronts)
+    out << "<polyline points=\"" << front.first
         << "\" fill=\"none\" stroke=\"#1f4e9c\" stroke-dasharray=\"4 4\" opacity=\"0.6\"/>\n";
   struct box {
     double x0, y0, x1, y1;
@@ -387,6 +404,7 @@ bool write_svg(const std::string& file, const std::vector<summary_row>& rows,
   };
   std::vector<box> taken;
   for (const summary_row& r : rows) {
+    if (std::isnan(r.max_abs_err)) continue;
     const double x = px(r.ns_per_px), y = py(r.max_abs_err);
     taken.push_back({x - 6, y - 6, x + 6, y + 6});
     out << strf(
@@ -397,6 +415,7 @@ bool write_svg(const std::string& file, const std::vector<summary_row>& rows,
   // Each label beside its point, at the first place that covers no point and
   // no earlier label: right, left, below, above, then further out.
   for (const summary_row& r : rows) {
+    if (std::isnan(r.max_abs_err)) continue;
     const double x = px(r.ns_per_px), y = py(r.max_abs_err);
     const double w = 6.8 * double(r.label.size());
     const char* anchor = "start";
@@ -452,6 +471,34 @@ void print_stiff(std::ostream& os, const std::vector<path>& paths,
   table("max_lsb (rgb8 output):", [](const error_stats& e) { return strf("%d", e.max_lsb); });
   table("NaN count (f32 output; should be 0):",
         [](const error_stats& e) { return strf("%lld", static_cast<long long>(e.nan_count)); });
+}
+
+void print_sphere_stiff(std::ostream& os, const std::vector<sphere_stiff_result>& results) {
+  using raycast_test::sphere_metrics;
+  // A count away from silhouettes, with the total in parentheses when it differs.
+  auto count = [](int64_t away, int64_t all) {
+    return away == all ? strf("%lld", static_cast<long long>(all))
+                       : strf("%lld (%lld)", static_cast<long long>(away), static_cast<long long>(all));
+  };
+  auto cell = [](const sphere_stiff_result& r, auto text) {
+    return text(r.ours) + " / " + text(r.naive) + " / " + (r.embree_error.empty() ? text(r.embree) : "-");
+  };
+  os << "\nStiff sphere cases (not timed): ours / naive (the book's ch. 6 hit_sphere in float) / Embree\n"
+        "(rtcIntersect1) against the double reference; counts are pixels away from silhouettes, (all)\n"
+        "where they differ; distance error relative, where both hit the same sphere away from\n"
+        "silhouettes; LSB: 8-bit error of the pixels the reference shades from a sphere.\n\n";
+  os << "| case | size | wrong object | false hits | false misses | max distance error | max LSB |\n"
+        "|---|---|---|---|---|---|---|\n";
+  for (const sphere_stiff_result& r : results) {
+    os << "| " << r.name << " | " << size_text(r.width, r.height) << " | "
+       << cell(r, [&](const sphere_metrics& m) { return count(m.wrong_object_away, m.wrong_object); }) << " | "
+       << cell(r, [&](const sphere_metrics& m) { return count(m.false_hits_away, m.false_hits); }) << " | "
+       << cell(r, [&](const sphere_metrics& m) { return count(m.false_misses_away, m.false_misses); }) << " | "
+       << cell(r, [](const sphere_metrics& m) { return error_text(m.max_rel_distance_err); }) << " | "
+       << cell(r, [&](const sphere_metrics& m) { return count(m.max_lsb_away, m.max_lsb); }) << " |\n";
+  }
+  for (const sphere_stiff_result& r : results)
+    if (!r.embree_error.empty()) os << "Embree, " << r.name << ": " << r.embree_error << "\n";
 }
 
 std::string cpu_model() {

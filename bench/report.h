@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "errors.h"
+#include "sphere_numerics.h"
 
 namespace raycast::bench {
 
@@ -83,7 +84,8 @@ struct summary_options {
 };
 
 struct summary_row {
-  std::string label;  // backend/precision
+  std::string label;  // backend/precision, or backend/precision/scene
+  std::string scene;  // empty for the sky
   double ns_per_px = 0;
   std::optional<double> speedup;
   double max_abs_err = 0, lsb_mismatch = 0;
@@ -91,9 +93,10 @@ struct summary_row {
   bool pareto = false;
 };
 
-// The rows at the summary's size, threads and output, sorted by time, with
-// the Pareto-optimal ones (no other row both faster and at most as wrong in
-// max_abs_err) marked.
+// The rows at the summary's size, threads and output (the sky's, then each
+// sphere scene's), sorted by time within each, with the Pareto-optimal ones
+// (no other row of the same scene both faster and at most as wrong in
+// max_abs_err) marked. max_abs_err is NaN for a row without float output.
 std::vector<summary_row> summary_rows(const run_table& table, const summary_options& opt);
 void print_summary(std::ostream& os, const std::vector<summary_row>& rows,
                    const summary_options& opt, const std::vector<skipped_backend>& skipped);
@@ -112,6 +115,18 @@ void print_shortcuts(std::ostream& os, const run_table& table, const std::vector
 
 void print_stiff(std::ostream& os, const std::vector<path>& paths,
                  const std::vector<stiff_result>& results);
+
+// One stiff sphere case (tests/support/sphere_numerics.h) against the double
+// reference: ours (the scalar renderer, exact mode: every backend's bits), the
+// book's ch. 6 formula in float, and Embree (rtcIntersect1).
+struct sphere_stiff_result {
+  std::string name;
+  int64_t width = 0, height = 0;
+  raycast_test::sphere_metrics ours, naive, embree;
+  std::string embree_error;  // Embree's message when it could not build the scene
+};
+// A Markdown table (README "Numerics"), each cell "ours / naive / Embree".
+void print_sphere_stiff(std::ostream& os, const std::vector<sphere_stiff_result>& results);
 
 std::string cpu_model();
 std::string today();
