@@ -23,7 +23,7 @@
 //           v = (f.x - k d.x, f.y - k d.y, f.z - k d.z)  the chord's midpoint - C
 //           disc = n2 (r2 - ((v.x v.x + v.y v.y) + v.z v.z))     Hearn & Baker
 //   q    = -(b + copysign(sqrt(max(disc, 0)), b))      Press et al.: no cancellation
-//   s0   = c / q,  s1 = q inv_n2                       the two roots, s0 s1 = c / n2
+//   s0   = c / q,  s1 = q / n2                         the two roots, s0 s1 = c / n2
 //   s    = s0 >= 0 ? s0 : s1                           the nearest root not behind
 //   t    = s scale                                     exact: a power of two
 //   hit  when disc >= 0 and s >= 0 and t <= closest; then closest = t

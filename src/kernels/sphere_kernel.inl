@@ -51,8 +51,8 @@ struct closest_hit {
 struct rays {
   vfloat d[3];
   vfloat n2;  // |d|^2 in scalar.h's order
-  // 1 / n2, computed the first time a sphere needs it (a far sphere, or a
-  // lane whose near root is behind): a division is most of a batch's cost.
+  // 1 / n2, computed the first time a far sphere needs it: a division is a
+  // large part of a batch's cost.
   vfloat inv_n2() {
     if (!have_inv_) {
       inv_ = 1.0f / n2;
@@ -89,7 +89,7 @@ RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, siz
     vfloat s = vfloat(sp.c[k]) / q;
     // The far root where the near one is behind (the camera inside).
     const vmask behind = can_hit & !(s >= 0.0f);
-    if (any(behind)) s = select(behind, q * r.inv_n2(), s);
+    if (any(behind)) s = select(behind, q / r.n2, s);
     const vfloat t = s * vfloat(sp.scale[k]);
     const vmask m = can_hit & (s >= 0.0f) & (t <= h.t);
     h.t = select(m, t, h.t);
