@@ -103,10 +103,15 @@ TEST_P(SphereStiffNumerics, ExactAwayFromSilhouettesAndNoWorseThanTheBookInFloat
   EXPECT_LE(ours.false_hits, naive.false_hits);
   EXPECT_LE(ours.false_misses, naive.false_misses);
   EXPECT_LE(ours.wrong_object, naive.wrong_object);
-  // Where both are at float's own rounding (a few units in the last place of
-  // the distance, as inside a sphere), which of two maxima of rounding noise
-  // is larger says nothing: there, ours need only stay within 4 ulp (2^-22).
-  EXPECT_LE(ours.max_rel_distance_err, std::max(naive.max_rel_distance_err, 0x1p-22));
+  // README "Numerics": within 7e-7 relative everywhere. Where both are at
+  // float's own rounding (a few units in the last place of the distance, as
+  // inside a sphere), which of two maxima of rounding noise is larger says
+  // nothing: there, ours need only stay within 4 ulp (2^-22). Where the
+  // naive formula hit nothing right (overflow: its maximum is over no pixel,
+  // and how it fails differs between x86 and AArch64), it is no yardstick.
+  EXPECT_LE(ours.max_rel_distance_err, 7e-7);
+  if (naive.false_hits_away + naive.false_misses_away + naive.wrong_object_away == 0)
+    EXPECT_LE(ours.max_rel_distance_err, std::max(naive.max_rel_distance_err, 0x1p-22));
   EXPECT_LE(ours.max_lsb_away, naive.max_lsb_away);
   EXPECT_LE(ours.max_lsb, naive.max_lsb);
   RecordProperty("ours", describe(ours));
