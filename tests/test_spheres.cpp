@@ -230,7 +230,9 @@ class SphereEquivalence : public ::testing::TestWithParam<param> {
 };
 
 // Exact (and fast, which is exact for spheres): the SIMD bytes and floats are
-// the scalar renderer's, at every size.
+// the scalar renderer's, at every size (odd widths put a row's middle inside
+// a batch, which the `mirror` shortcut must not mirror), with and without the
+// shortcuts.
 TEST_P(SphereEquivalence, BitIdenticalToScalar) {
   const param& prm = GetParam();
   const sphere_case& sc = sphere_cases()[prm.scene];
@@ -242,11 +244,14 @@ TEST_P(SphereEquivalence, BitIdenticalToScalar) {
     cp.image_width = w;
     cp.image_height = h;
     const scene s = raycast_test::make_scene(cp, {}, sc.spheres);
-    const renderer r(s, {prm.which, prm.prec, 1});
+    // Every set of the sky's shortcuts the sphere kernel takes (render/plan.h).
     for (pixel_format f : {pixel_format::rgb8, pixel_format::rgb_f32}) {
-      const image got = raycast_test::render_with(r, f);
       const image want = raycast_test::render_with_scalar(s, precision::exact, f);
-      ASSERT_EQ(got.bytes, want.bytes) << raycast_test::compare(got, want).where();
+      for (unsigned cuts : {shortcut::all, shortcut::none, shortcut::mirror, shortcut::channels | shortcut::clamps}) {
+        SCOPED_TRACE("shortcuts " + std::to_string(cuts));
+        const image got = raycast_test::render_with(renderer(s, {prm.which, prm.prec, 1, cuts}), f);
+        ASSERT_EQ(got.bytes, want.bytes) << raycast_test::compare(got, want).where();
+      }
     }
   }
 }

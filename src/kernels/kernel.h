@@ -23,7 +23,9 @@ struct kernel_args {
   bool lanes = false;
   const float* column_x2 = nullptr;
   // Shortcut `mirror` (with `lanes`): mirrored columns (and, with `paired`,
-  // rows) share one |d|.
+  // rows) share one |d|. For the sphere kernel (axis-aligned camera, no
+  // `lanes`): the sky-only batches at both ends of a row are shaded once for
+  // both ends.
   bool mirror = false;
   // Shortcut `channels`: channel k's two sky colours are equal, so it never
   // varies and is written as a constant.
@@ -53,8 +55,9 @@ namespace avx512 { void render_rows(const kernel_args&, const image_band&, int64
 namespace neon { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
 
 // Scenes with spheres (kernels/sphere_kernel.inl), the same signature: the
-// plan takes no shortcuts for them (`paired` is ignored) and builds the three
-// per-column direction tables; both precisions give float_spheres.h's bits.
+// plan builds the three per-column direction tables and takes the shortcuts
+// that apply to the sky (`channels`, `clamps`, `mirror`; `paired` is
+// ignored); both precisions give float_spheres.h's bits.
 namespace sse2 { void render_sphere_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
 namespace avx2 { void render_sphere_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
 namespace avx512 { void render_sphere_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }

@@ -182,11 +182,15 @@ RAYCAST_INLINE void shade(const sky_shader& sky, const closest_hit<Shades>& h, c
   for (int k = 0; k < 3; ++k) out[k] = select(h.hit, hit_colour[k], sky_colour[k]);
 }
 
-template <bool Float>
+// Stores n pixels of a batch at column i0; Reversed, all N with their lanes
+// in the opposite order (the mirrored batch).
+template <bool Float, bool Reversed = false>
 RAYCAST_INLINE void store_batch(unsigned char* out, int64_t i0, int n, const vfloat c[3]) {
   if constexpr (Float) {
     float* dst = reinterpret_cast<float*>(out) + 3 * i0;
-    if (n == N) {
+    if constexpr (Reversed) {
+      store_rgbf(dst, reverse(c[0]), reverse(c[1]), reverse(c[2]));
+    } else if (n == N) {
       store_rgbf(dst, c[0], c[1], c[2]);
     } else {
       alignas(64) float tmp[3 * N];
@@ -194,11 +198,11 @@ RAYCAST_INLINE void store_batch(unsigned char* out, int64_t i0, int n, const vfl
       __builtin_memcpy(dst, tmp, sizeof(float) * 3 * size_t(n));
     }
   } else {
-    const rgb8_pack p = pack_rgb8<false>(to_int(clamp(c[0], 0.0f, 1.0f) * 255.999f),
-                                         to_int(clamp(c[1], 0.0f, 1.0f) * 255.999f),
-                                         to_int(clamp(c[2], 0.0f, 1.0f) * 255.999f));
+    const rgb8_pack p = pack_rgb8<Reversed>(to_int(clamp(c[0], 0.0f, 1.0f) * 255.999f),
+                                            to_int(clamp(c[1], 0.0f, 1.0f) * 255.999f),
+                                            to_int(clamp(c[2], 0.0f, 1.0f) * 255.999f));
     unsigned char* dst = out + 3 * i0;
-    if (n == N) {
+    if (Reversed || n == N) {
       store(dst, p);
     } else {
 #ifdef RAYCAST_HAS_MASKED_BYTE_STORE
@@ -280,6 +284,7 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
   const int64_t W = s.width;
   const int64_t batches = (W + N - 1) / N;
   batch_lists lists(sp.n, batches);
+  const bool mirror = a.mirror && lists.ok();
   for (int64_t r = r0; r < r1; ++r) {
     const int64_t j = s.height - 1 - r;
     const float sv = s.height == 1 ? 0.0f : (float(j) - s.mid_row) / s.last_row;  // scalar.h
@@ -287,26 +292,55 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
     const int64_t run = lists.ok() ? batch_lists::run_length(count, batches) : batches;
     const vfloat row_part[3] = {sv * s.vertical[0], sv * s.vertical[1], sv * s.vertical[2]};
     unsigned char* const out = band.row(r);
-    for (int64_t b0 = 0; b0 < batches; b0 += run) {
+    const auto tests_of = [&](int64_t b, int64_t b0) -> size_t {
+      if (!lists.ok()) return sp.n;
+      return count > 0 ? lists.first[b - b0 + 1] - lists.first[b - b0] : 0;
+    };
+    const auto rays_at = [&](int64_t i0) {
+      rays ry;
+      for (int k = 0; k < 3; ++k) ry.d[k] = vfloat::load(a.column_part[k] + i0) + row_part[k];
+      ry.n2 = (ry.d[0] * ry.d[0] + ry.d[1] * ry.d[1]) + ry.d[2] * ry.d[2];
+      return ry;
+    };
+    // Shortcut `mirror` (the lesson camera: the sky is symmetric about the
+    // row's middle, bit for bit): the first `ends` batches are sky only, and
+    // so are the columns they mirror to; each is shaded once and stored at
+    // both ends. It needs the whole row's lists at once (one run).
+    int64_t ends = 0;
+    if (mirror && run == batches) {
+      if (count > 0) lists.build(count, 0, batches);
+      int64_t lead = 0, trail = 0;
+      while (lead < batches && tests_of(lead, 0) == 0) ++lead;
+      while (trail < batches - lead && tests_of(batches - 1 - trail, 0) == 0) ++trail;
+      const int64_t sky_from = lead == batches ? 0 : (batches - trail) * N;  // sky to the row's end
+      const int64_t by_right = (W - N - sky_from) / N + 1, by_middle = (W - 2 * N) / (2 * N) + 1;
+      ends = W < 2 * N ? 0 : (lead < by_right ? lead : by_right);
+      ends = ends < by_middle ? ends : by_middle;
+      if (ends < 0) ends = 0;
+      for (int64_t b = 0; b < ends; ++b) {
+        vfloat c[3];
+        sky.shade(rays_at(b * N), c);
+        store_batch<Float>(out, b * N, N, c);
+        store_batch<Float, true>(out, W - b * N - N, N, c);
+      }
+    }
+    for (int64_t b0 = ends; b0 < batches; b0 += run) {
       const int64_t b1 = b0 + run < batches ? b0 + run : batches;
-      if (lists.ok() && count > 0) lists.build(count, b0, b1);
+      const bool built = mirror && run == batches;  // above, from batch 0
+      const int64_t base = built ? 0 : b0;
+      if (!built && lists.ok() && count > 0) lists.build(count, b0, b1);
       for (int64_t b = b0; b < b1; ++b) {
         const int64_t i0 = b * N;
+        if (i0 >= W - ends * N) break;  // the mirrored end, already stored
         const int n = W - i0 >= N ? N : int(W - i0);
         // The ray batch: scalar.h's direction and its squared length.
-        rays ry;
-        for (int k = 0; k < 3; ++k) ry.d[k] = vfloat::load(a.column_part[k] + i0) + row_part[k];
-        ry.n2 = (ry.d[0] * ry.d[0] + ry.d[1] * ry.d[1]) + ry.d[2] * ry.d[2];
-        const uint32_t* list = nullptr;
-        size_t tests = sp.n;
-        if (lists.ok()) {
-          list = lists.list + (count > 0 ? lists.first[b - b0] : 0);
-          tests = count > 0 ? lists.first[b - b0 + 1] - lists.first[b - b0] : 0;
-        }
+        rays ry = rays_at(i0);
+        const size_t tests = tests_of(b, base);
         vfloat c[3];
         if (tests == 0) {
           sky.shade(ry, c);  // no sphere comes near these rays
         } else {
+          const uint32_t* list = lists.ok() ? lists.list + (count > 0 ? lists.first[b - base] : 0) : nullptr;
           closest_hit<Shades> h;
           intersect(sp, list, tests, ry, h);
           shade(sky, h, ry, c);

@@ -20,8 +20,11 @@ plan::plan(const float_scene& f, precision p, unsigned allowed) {
     std::fill(t, t + padded, 0.0f);
     return aligned_floats(t);
   };
-  args_.lanes = (allowed & shortcut::lanes) && f.axis_aligned_camera;
-  args_.mirror = args_.lanes && (allowed & shortcut::mirror);
+  // The sphere kernel reads every component of d (no `lanes`); its `mirror`
+  // covers the sky-only batches at both ends of a row (kernel.h).
+  const bool spheres = !f.spheres.empty();
+  args_.lanes = !spheres && (allowed & shortcut::lanes) && f.axis_aligned_camera;
+  args_.mirror = (spheres ? f.axis_aligned_camera : args_.lanes) && (allowed & shortcut::mirror);
   for (int k = 0; k < 3; ++k) {
     if (args_.lanes && k > 0) break;  // the axis-aligned camera reads x only
     column_part_[k] = table();

@@ -95,11 +95,10 @@ renderer::renderer(const scene& s, const render_options& opts)
       threads_(opts.threads > 0 ? opts.threads : available_cores()) {
   if (auto why = backend_unavailable(which_)) throw unsupported_backend(*why);
   // A scene without spheres runs the sky kernel, untouched; one with spheres
-  // the sphere kernel, which takes no shortcuts (they are the sky's).
+  // the sphere kernel, which takes the shortcuts that apply to its sky.
   const bool spheres = !fscene_.spheres.empty();
   kernel_ = spheres ? sphere_kernel_for(which_) : kernel_for(which_);
-  if (kernel_)  // reference and scalar need no plan
-    plan_.emplace(fscene_, prec_, spheres ? shortcut::none : opts.shortcuts);
+  if (kernel_) plan_.emplace(fscene_, prec_, opts.shortcuts);  // reference and scalar need no plan
 }
 
 void renderer::render_rows(const image_band& band, int64_t r0, int64_t r1, bool paired) const {
@@ -121,7 +120,7 @@ void renderer::render(const image_band& band) const {
   // The lesson camera's image is symmetric top to bottom: when the band holds
   // both rows of each mirrored pair, the kernel renders them together
   // (kernels/kernel.h), and the work is split over the top rows of the pairs.
-  const bool paired = kernel_ && plan_->args().mirror &&
+  const bool paired = kernel_ && plan_->args().mirror && fscene_.spheres.empty() &&
                       band.row_begin + band.row_end == scene_.cam.image_height;
   const int64_t units = paired ? (rows + 1) / 2 : rows;
   // Bands of consecutive rows, a few per thread so uneven cores even out. A
