@@ -247,7 +247,8 @@ TEST_P(SphereEquivalence, BitIdenticalToScalar) {
     // Every set of the sky's shortcuts the sphere kernel takes (render/plan.h).
     for (pixel_format f : {pixel_format::rgb8, pixel_format::rgb_f32}) {
       const image want = raycast_test::render_with_scalar(s, precision::exact, f);
-      for (unsigned cuts : {shortcut::all, shortcut::none, shortcut::mirror, shortcut::channels | shortcut::clamps}) {
+      for (unsigned cuts : {shortcut::all, shortcut::none, shortcut::lanes, shortcut::lanes | shortcut::mirror,
+                            shortcut::channels | shortcut::clamps}) {
         SCOPED_TRACE("shortcuts " + std::to_string(cuts));
         const image got = raycast_test::render_with(renderer(s, {prm.which, prm.prec, 1, cuts}), f);
         ASSERT_EQ(got.bytes, want.bytes) << raycast_test::compare(got, want).where();

@@ -67,6 +67,8 @@ float_scene prepare_float_scene(const scene& s) {
     sp.inv_r.push_back(float(1.0 / r));
     sp.scale.push_back(float(std::ldexp(1.0, e)));
     sp.near.push_back(f2 < 2.0 * r * r ? 1 : 0);
+    sp.inside.push_back(f2 - r * r <= 0.0 ? 1 : 0);
+    sp.any_inside = sp.any_inside || sp.inside.back();
     const bool flat = b.shade == shading::flat;
     sp.red.push_back(flat ? flush(b.flat_color.r) + 0.0f : 0.0f);
     sp.green.push_back(flat ? flush(b.flat_color.g) + 0.0f : 0.0f);

@@ -11,7 +11,8 @@
 // sphere, in that scaled unit:
 //   f = (O - C) 2^-e,  c = |f|^2 - r^2 (double),  r2 = r^2,  inv_r = 1 / r,
 //   scale = 2^e,  near = |f|^2 < 2 r^2  (the camera inside, or less than
-//   0.42 r from the surface)
+//   0.42 r from the surface),  inside = c <= 0 (in double: the camera inside
+//   the sphere or on its surface)
 //
 // Per pixel, the camera direction d of kernels/scalar.h (not normalized: the
 // plan scales the camera so its largest component is in [0.5, 1)), and
@@ -32,8 +33,12 @@
 // Shading of the closest hit (its s, f, inv_r), per channel k:
 //   flat:   the sphere's colour
 //   normal: n_k = (f_k + s d_k) inv_r                    the outward normal
-//           n = -n where (n_0 d_0 + n_1 d_1) + n_2 d_2 >= 0  the book's set_face_normal:
-//                                                       it faces the ray (inside a sphere too)
+//           n = -n where inside and (n_0 d_0 + n_1 d_1) + n_2 d_2 >= 0
+//                the book's set_face_normal: the normal faces the ray. From
+//                outside a sphere (c > 0) the outward normal always does, so
+//                it is not tested there: at a grazing hit the float dot
+//                product's sign is rounding, and flipping on it would paint
+//                the far side's colour.
 //           colour_k = (n_k + 1) 0.5
 // Where nothing is hit: kernels/scalar.h's exact sky, uy = d.y / sqrt(max(n2,
 // FLT_MIN)), bit for bit. 8-bit: int(clamp(colour, 0, 1) * 255.999f), as the sky.
@@ -75,9 +80,10 @@ struct float_spheres {
   std::vector<float> inv_r;       // 1 / r (scaled)
   std::vector<float> scale;       // 2^e
   std::vector<uint8_t> near;      // 1: the textbook discriminant; 0: Hearn & Baker
+  std::vector<uint8_t> inside;    // 1: the camera is inside the sphere or on it
   std::vector<float> red, green, blue;  // flat colour (0 for normal-shaded spheres)
   std::vector<float> flat;        // 1 for flat-shaded spheres, 0 for normal-shaded
-  bool any_flat = false, any_normal = false;
+  bool any_flat = false, any_normal = false, any_inside = false;
 
   size_t size() const { return fx.size(); }
   bool empty() const { return fx.empty(); }
@@ -90,15 +96,15 @@ struct float_spheres {
 struct sphere_arrays {
   const float *fx = nullptr, *fy = nullptr, *fz = nullptr, *c = nullptr, *r2 = nullptr,
               *inv_r = nullptr, *scale = nullptr;
-  const uint8_t* near = nullptr;
+  const uint8_t *near = nullptr, *inside = nullptr;
   const float *red = nullptr, *green = nullptr, *blue = nullptr, *flat = nullptr;
   size_t n = 0;
-  bool any_flat = false, any_normal = false;
+  bool any_flat = false, any_normal = false, any_inside = false;
 };
 
 inline sphere_arrays arrays_of(const float_spheres& s) {
   return {s.fx.data(), s.fy.data(), s.fz.data(), s.c.data(), s.r2.data(), s.inv_r.data(),
-          s.scale.data(), s.near.data(), s.red.data(), s.green.data(), s.blue.data(), s.flat.data(), s.size(), s.any_flat, s.any_normal};
+          s.scale.data(), s.near.data(), s.inside.data(), s.red.data(), s.green.data(), s.blue.data(), s.flat.data(), s.size(), s.any_flat, s.any_normal, s.any_inside};
 }
 
 }  // namespace raycast

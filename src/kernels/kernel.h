@@ -22,10 +22,11 @@ struct kernel_args {
   // lanes; direction y and z are per row, column_x2[i] = column_part[0][i]^2.
   bool lanes = false;
   const float* column_x2 = nullptr;
+  // For the sphere kernel, `lanes` means d.y and d.z per row (from the
+  // tables' first column: the same bits in every column) and no x2 table.
   // Shortcut `mirror` (with `lanes`): mirrored columns (and, with `paired`,
-  // rows) share one |d|. For the sphere kernel (axis-aligned camera, no
-  // `lanes`): the sky-only batches at both ends of a row are shaded once for
-  // both ends.
+  // rows) share one |d|. For the sphere kernel: the sky-only batches at both
+  // ends of a row are shaded once for both ends.
   bool mirror = false;
   // Shortcut `channels`: channel k's two sky colours are equal, so it never
   // varies and is written as a constant.

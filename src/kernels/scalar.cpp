@@ -121,7 +121,7 @@ void sphere_pixel(const float_scene& f, int64_t i, int64_t j, float out[3]) {
     const float fo[3] = {sp.fx[hit], sp.fy[hit], sp.fz[hit]};
     float n[3];
     for (int k = 0; k < 3; ++k) n[k] = (fo[k] + tr.s * d[k]) * sp.inv_r[hit];
-    const bool back = (n[0] * d[0] + n[1] * d[1]) + n[2] * d[2] >= 0.0f;  // face the ray
+    const bool back = sp.inside[hit] && (n[0] * d[0] + n[1] * d[1]) + n[2] * d[2] >= 0.0f;  // face the ray
     for (int k = 0; k < 3; ++k) out[k] = ((back ? -n[k] : n[k]) + 1.0f) * 0.5f;
   }
 }

@@ -44,6 +44,7 @@ struct closest_hit {
   vfloat t = FLT_MAX;          // float_spheres.h: closest starts at FLT_MAX
   vfloat s = 0.0f;             // the hit's s, in its sphere's unit
   vfloat fx = 0.0f, fy = 0.0f, fz = 0.0f, inv_r = 0.0f;  // normal shading
+  vfloat inside = 0.0f;  // 1 where the camera is inside the hit sphere (scenes with such a sphere)
   vfloat red = 0.0f, green = 0.0f, blue = 0.0f, flat = 0.0f;  // flat shading
 };
 
@@ -93,6 +94,24 @@ RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, siz
     const vfloat t = s * vfloat(sp.scale[k]);
     const vmask m = can_hit & (s >= 0.0f) & (t <= h.t);
     h.t = select(m, t, h.t);
+    if (none(h.hit)) {  // the first sphere hit: lanes it misses never read these
+      h.hit = m;
+      if constexpr ((Shades & normal_shading) != 0) {
+        h.s = s;
+        h.fx = fx;
+        h.fy = fy;
+        h.fz = fz;
+        h.inv_r = sp.inv_r[k];
+        if (sp.any_inside) h.inside = sp.inside[k] ? 1.0f : 0.0f;
+      }
+      if constexpr ((Shades & flat_shading) != 0) {
+        h.red = sp.red[k];
+        h.green = sp.green[k];
+        h.blue = sp.blue[k];
+        if constexpr (Shades == (normal_shading | flat_shading)) h.flat = sp.flat[k];
+      }
+      continue;
+    }
     h.hit = h.hit | m;
     if constexpr ((Shades & normal_shading) != 0) {
       h.s = select(m, s, h.s);
@@ -100,6 +119,7 @@ RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, siz
       h.fy = select(m, fy, h.fy);
       h.fz = select(m, fz, h.fz);
       h.inv_r = select(m, vfloat(sp.inv_r[k]), h.inv_r);
+      if (sp.any_inside) h.inside = select(m, vfloat(sp.inside[k] ? 1.0f : 0.0f), h.inside);
     }
     if constexpr ((Shades & flat_shading) != 0) {
       h.red = select(m, vfloat(sp.red[k]), h.red);
@@ -148,8 +168,8 @@ struct sky_shader {
 // The colour of one batch (float_spheres.h): the closest hit's shading, the
 // sky where nothing was hit.
 template <int Shades>
-RAYCAST_INLINE void shade(const sky_shader& sky, const closest_hit<Shades>& h, const rays& r,
-                          vfloat out[3]) {
+RAYCAST_INLINE void shade(const sky_shader& sky, const sphere_arrays& sp, const closest_hit<Shades>& h,
+                          const rays& r, vfloat out[3]) {
   if (none(h.hit)) {
     sky.shade(r, out);
     return;
@@ -160,8 +180,11 @@ RAYCAST_INLINE void shade(const sky_shader& sky, const closest_hit<Shades>& h, c
     const vfloat f[3] = {h.fx, h.fy, h.fz};
     vfloat n[3];
     for (int k = 0; k < 3; ++k) n[k] = (f[k] + h.s * d[k]) * h.inv_r;
-    const vmask back = (n[0] * d[0] + n[1] * d[1]) + n[2] * d[2] >= 0.0f;  // face the ray
-    for (int k = 0; k < 3; ++k) hit_colour[k] = (select(back, -n[k], n[k]) + 1.0f) * 0.5f;
+    if (sp.any_inside) {  // face the ray, inside a sphere
+      const vmask back = (h.inside == 1.0f) & ((n[0] * d[0] + n[1] * d[1]) + n[2] * d[2] >= 0.0f);
+      for (int k = 0; k < 3; ++k) n[k] = select(back, -n[k], n[k]);
+    }
+    for (int k = 0; k < 3; ++k) hit_colour[k] = (n[k] + 1.0f) * 0.5f;
   }
   if constexpr (Shades == flat_shading) {
     hit_colour[0] = h.red;
@@ -276,7 +299,7 @@ struct batch_lists {
   }
 };
 
-template <int Shades, bool Float>
+template <int Shades, bool Float, bool Lanes>
 void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
   const float_scene& s = *a.scene;
   const sphere_arrays& sp = a.spheres;
@@ -296,10 +319,22 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
       if (!lists.ok()) return sp.n;
       return count > 0 ? lists.first[b - b0 + 1] - lists.first[b - b0] : 0;
     };
+    // Shortcut `lanes` (the axis-aligned camera): every column's d.y and d.z
+    // are the first column's, bit for bit (scalar.h: centre + su * 0), so
+    // they and their squares are per row.
+    const float dy = a.column_part[1][0] + sv * s.vertical[1], dz = a.column_part[2][0] + sv * s.vertical[2];
+    const vfloat row_y = dy, row_z = dz, row_y2 = dy * dy, row_z2 = dz * dz;
     const auto rays_at = [&](int64_t i0) {
       rays ry;
-      for (int k = 0; k < 3; ++k) ry.d[k] = vfloat::load(a.column_part[k] + i0) + row_part[k];
-      ry.n2 = (ry.d[0] * ry.d[0] + ry.d[1] * ry.d[1]) + ry.d[2] * ry.d[2];
+      if constexpr (Lanes) {
+        ry.d[0] = vfloat::load(a.column_part[0] + i0) + row_part[0];
+        ry.d[1] = row_y;
+        ry.d[2] = row_z;
+        ry.n2 = (ry.d[0] * ry.d[0] + row_y2) + row_z2;
+      } else {
+        for (int k = 0; k < 3; ++k) ry.d[k] = vfloat::load(a.column_part[k] + i0) + row_part[k];
+        ry.n2 = (ry.d[0] * ry.d[0] + ry.d[1] * ry.d[1]) + ry.d[2] * ry.d[2];
+      }
       return ry;
     };
     // Shortcut `mirror` (the lesson camera: the sky is symmetric about the
@@ -343,7 +378,7 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
           const uint32_t* list = lists.ok() ? lists.list + (count > 0 ? lists.first[b - base] : 0) : nullptr;
           closest_hit<Shades> h;
           intersect(sp, list, tests, ry, h);
-          shade(sky, h, ry, c);
+          shade(sky, sp, h, ry, c);
         }
         store_batch<Float>(out, i0, n, c);
       }
@@ -353,8 +388,13 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
 
 template <int Shades>
 void render_shades(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
-  if (band.format == pixel_format::rgb_f32) render<Shades, true>(a, band, r0, r1);
-  else render<Shades, false>(a, band, r0, r1);
+  if (band.format == pixel_format::rgb_f32) {
+    if (a.lanes) render<Shades, true, true>(a, band, r0, r1);
+    else render<Shades, true, false>(a, band, r0, r1);
+  } else {
+    if (a.lanes) render<Shades, false, true>(a, band, r0, r1);
+    else render<Shades, false, false>(a, band, r0, r1);
+  }
 }
 
 }  // namespace

@@ -20,19 +20,18 @@ plan::plan(const float_scene& f, precision p, unsigned allowed) {
     std::fill(t, t + padded, 0.0f);
     return aligned_floats(t);
   };
-  // The sphere kernel reads every component of d (no `lanes`); its `mirror`
-  // covers the sky-only batches at both ends of a row (kernel.h).
+  // The sphere kernel's `lanes` and `mirror` (kernel.h) need the three tables.
   const bool spheres = !f.spheres.empty();
-  args_.lanes = !spheres && (allowed & shortcut::lanes) && f.axis_aligned_camera;
-  args_.mirror = (spheres ? f.axis_aligned_camera : args_.lanes) && (allowed & shortcut::mirror);
+  args_.lanes = (allowed & shortcut::lanes) && f.axis_aligned_camera;
+  args_.mirror = args_.lanes && (allowed & shortcut::mirror);
   for (int k = 0; k < 3; ++k) {
-    if (args_.lanes && k > 0) break;  // the axis-aligned camera reads x only
+    if (args_.lanes && !spheres && k > 0) break;  // the sky kernel reads x only
     column_part_[k] = table();
     for (int64_t i = 0; i < f.width; ++i)
       column_part_[k][size_t(i)] = f.centre[k] + pixel_su(f, i) * f.horizontal[k];
     args_.column_part[k] = column_part_[k].get();
   }
-  if (args_.lanes) {
+  if (args_.lanes && !spheres) {
     column_x2_ = table();
     for (size_t i = 0; i < padded; ++i) column_x2_[i] = column_part_[0][i] * column_part_[0][i];
     args_.column_x2 = column_x2_.get();
