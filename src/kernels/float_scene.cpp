@@ -68,6 +68,11 @@ float_scene prepare_float_scene(const scene& s) {
     sp.scale.push_back(float(std::ldexp(1.0, e)));
     sp.near.push_back(f2 < 2.0 * r * r ? 1 : 0);
     sp.inside.push_back(f2 - r * r <= 0.0 ? 1 : 0);
+    {  // from the float constants, as the renderers see the sphere
+      const double ff[3] = {sp.fx.back(), sp.fy.back(), sp.fz.back()};
+      const double rf = std::sqrt(double(sp.r2.back()));
+      sp.cull_radius.push_back(rf + 1e-4 * (std::sqrt(ff[0] * ff[0] + ff[1] * ff[1] + ff[2] * ff[2]) + rf));
+    }
     sp.any_inside = sp.any_inside || sp.inside.back();
     const bool flat = b.shade == shading::flat;
     sp.red.push_back(flat ? flush(b.flat_color.r) + 0.0f : 0.0f);
@@ -154,16 +159,16 @@ size_t spheres_in_row(const float_scene& f, float sv, int batch, sphere_span* ou
   cross(rr.a, rr.h, n);
   const double len = std::sqrt(dot(n, n));
   const bool plane = len > 0.0 && std::isfinite(len);  // else a degenerate row: no plane test
+  const double d_len = std::sqrt(dot(rr.a, rr.a)) + std::sqrt(dot(rr.h, rr.h));  // >= |d| in the row
   for (uint32_t k = 0; k < uint32_t(sp.size()); ++k) {
     const double fk[3] = {sp.fx[k], sp.fy[k], sp.fz[k]};
-    const double r = std::sqrt(double(sp.r2[k]));
-    // The margin: 1e-4 of |f| + r, hundreds of times the float intersection's
-    // rounding (and the direction's, about 1e-7 of |f|), so that leaving a
-    // sphere out never changes a pixel.
-    const double wide = r + 1e-4 * (std::sqrt(dot(fk, fk)) + r);
-    if (plane && std::abs(dot(fk, n)) / len > wide) continue;  // NaN: kept
+    // The margin (in cull_radius): 1e-4 of |f| + r, hundreds of times the
+    // float intersection's rounding (and the direction's, about 1e-7 of |f|),
+    // so that leaving a sphere out never changes a pixel.
+    const double wide = sp.cull_radius[k];
+    if (plane && std::abs(dot(fk, n)) > wide * len) continue;  // NaN: kept
     int64_t lo = 0, hi = f.width - 1;
-    const double ahead_slack = 1e-4 * (std::sqrt(dot(fk, fk)) + r) * (std::sqrt(dot(rr.a, rr.a)) + std::sqrt(dot(rr.h, rr.h)));
+    const double ahead_slack = (wide - std::sqrt(double(sp.r2[k]))) * d_len;
     if (!columns_near(f, rr, fk, wide, ahead_slack, lo, hi)) continue;
     out[count++] = {k, int32_t(std::min(lo / batch, last_batch)), int32_t(std::min(hi / batch, last_batch))};
   }

@@ -84,6 +84,9 @@ struct float_spheres {
   std::vector<float> red, green, blue;  // flat colour (0 for normal-shaded spheres)
   std::vector<float> flat;        // 1 for flat-shaded spheres, 0 for normal-shaded
   bool any_flat = false, any_normal = false, any_inside = false;
+  // For culling (float_scene.h's spheres_in_row), in the sphere's unit: the
+  // radius widened by a margin far above float's rounding, 1e-4 (|f| + r).
+  std::vector<double> cull_radius;
 
   size_t size() const { return fx.size(); }
   bool empty() const { return fx.empty(); }
