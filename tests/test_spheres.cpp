@@ -16,6 +16,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "kernels/float_scene.h"
+#include "kernels/scalar.h"
 #include "reference/hittable.h"
 #include "render_support.h"
 #include "scene/builtin.h"
@@ -282,6 +284,39 @@ TEST_P(SphereEquivalence, ThreadsAndBandsGiveTheSameBytes) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Spheres, SphereEquivalence, ::testing::ValuesIn(all_params()), param_name);
+
+// The per-band row lists (sphere_rows) leave out only spheres that a row's
+// own test (spheres_in_row over every sphere) leaves out too: the same spans
+// for every row, in every scene and camera here, at two heights.
+TEST(SphereCulling, RowListsLoseNoSphere) {
+  for (const sphere_case& sc : sphere_cases())
+    for (int64_t h : {1, 2, 37, 300}) {
+      camera_params cp = sc.cam;
+      cp.image_width = 64;
+      cp.image_height = h;
+      const float_scene f = prepare_float_scene(raycast_test::make_scene(cp, {}, sc.spheres));
+      const size_t n = f.spheres.size();
+      std::vector<std::vector<uint32_t>> near_rows(size_t(f.height));
+      for (uint32_t k = 0; k < n; ++k) {
+        int64_t lo = 0, hi = 0;
+        if (sphere_rows(f, k, lo, hi))
+          for (int64_t j = lo; j <= hi; ++j) near_rows[size_t(j)].push_back(k);
+      }
+      std::vector<sphere_span> all(n + 1), listed(n + 1);
+      for (int64_t j = 0; j < f.height; ++j) {
+        const float sv = pixel_sv(f, j);
+        const size_t a = spheres_in_row(f, sv, 16, all.data());
+        const std::vector<uint32_t>& c = near_rows[size_t(j)];
+        const size_t b = spheres_in_row(f, sv, 16, listed.data(), c.data(), c.size());
+        ASSERT_EQ(a, b) << sc.name << " height " << h << " row " << j;
+        for (size_t x = 0; x < a; ++x) {
+          EXPECT_EQ(all[x].sphere, listed[x].sphere) << sc.name << " row " << j;
+          EXPECT_EQ(all[x].lo, listed[x].lo);
+          EXPECT_EQ(all[x].hi, listed[x].hi);
+        }
+      }
+    }
+}
 
 TEST(SphereScalar, FastIsExactForSpheres) {
   for (const sphere_case& sc : sphere_cases()) {

@@ -100,6 +100,22 @@ void cross(const double* x, const double* y, double* out) {
   out[2] = x[0] * y[1] - x[1] * y[0];
 }
 
+// Where alpha x^2 + 2 beta x + gamma <= 0, as an interval [s0, s1]: left
+// unbounded (as given) where that set is not one bounded interval (alpha <= 0,
+// or NaN), false where it is empty.
+bool below_zero(double alpha, double beta, double gamma, double& s0, double& s1) {
+  if (!(alpha > 0.0)) return true;
+  const double disc = beta * beta - alpha * gamma;
+  if (disc < 0.0) return false;
+  if (!(disc >= 0.0)) return true;
+  // The roots, without cancellation.
+  const double q = -(beta + std::copysign(std::sqrt(disc), beta));
+  s0 = q / alpha;
+  s1 = q != 0.0 ? gamma / q : s0;
+  if (s0 > s1) std::swap(s0, s1);
+  return true;
+}
+
 // The columns [lo, hi] of the row whose rays come within r of the sphere's
 // centre (f = O - C, both in the sphere's unit). Their lines do where
 // |f x d|^2 <= r^2 |d|^2, a quadratic in su; and unless the camera is within
@@ -114,18 +130,8 @@ bool columns_near(const float_scene& fs, const row_rays& rr, const double* f, do
   const double alpha = dot(B, B) - r2 * dot(rr.h, rr.h);
   const double beta = dot(A, B) - r2 * dot(rr.a, rr.h);
   const double gamma = dot(A, A) - r2 * dot(rr.a, rr.a);
-  double s0 = -INFINITY, s1 = INFINITY;  // the su interval; unbounded unless shown otherwise
-  if (alpha > 0.0) {
-    const double disc = beta * beta - alpha * gamma;
-    if (disc < 0.0) return false;  // no line comes near
-    if (disc >= 0.0) {             // (NaN: keep the row)
-      // The roots, without cancellation.
-      const double q = -(beta + std::copysign(std::sqrt(disc), beta));
-      s0 = q / alpha;
-      s1 = q != 0.0 ? gamma / q : s0;
-      if (s0 > s1) std::swap(s0, s1);
-    }
-  }
+  double s0 = -INFINITY, s1 = INFINITY;  // the su interval
+  if (!below_zero(alpha, beta, gamma, s0, s1)) return false;  // no line comes near
   if (dot(f, f) > r2) {  // the camera outside: the centre must be ahead
     const double g0 = dot(f, rr.a), g1 = dot(f, rr.h);
     if (g1 > 0.0) s1 = std::min(s1, (m - g0) / g1);
@@ -144,7 +150,38 @@ bool columns_near(const float_scene& fs, const row_rays& rr, const double* f, do
 
 }  // namespace
 
-size_t spheres_in_row(const float_scene& f, float sv, int batch, sphere_span* out) {
+bool sphere_rows(const float_scene& f, uint32_t k, int64_t& j_lo, int64_t& j_hi) {
+  const float_spheres& sp = f.spheres;
+  j_lo = 0;
+  j_hi = f.height - 1;
+  // Row sv's plane has the normal (centre + sv vertical) x horizontal = N0 +
+  // sv N1; the sphere is near where (f.n)^2 <= w^2 |n|^2, a quadratic in sv.
+  double c[3], v[3], h[3], N0[3], N1[3];
+  for (int i = 0; i < 3; ++i) {
+    c[i] = f.centre[i];
+    v[i] = f.vertical[i];
+    h[i] = f.horizontal[i];
+  }
+  cross(c, h, N0);
+  cross(v, h, N1);
+  const double fk[3] = {sp.fx[k], sp.fy[k], sp.fz[k]};
+  const double w2 = sp.cull_radius[k] * sp.cull_radius[k];
+  const double p0 = dot(fk, N0), p1 = dot(fk, N1);
+  double s0 = -INFINITY, s1 = INFINITY;
+  if (!below_zero(p1 * p1 - w2 * dot(N1, N1), p0 * p1 - w2 * dot(N0, N1), p0 * p0 - w2 * dot(N0, N0), s0, s1))
+    return false;
+  if (f.height == 1) return true;  // one row: the plane test decides
+  // sv = (j - mid_row) / last_row; two rows of slack each way.
+  const double last = double(f.last_row), mid = double(f.mid_row);
+  const double r0 = std::floor(s0 * last + mid) - 2.0, r1 = std::ceil(s1 * last + mid) + 2.0;
+  if (r1 < 0.0 || r0 > double(f.height - 1) || r0 > r1) return false;
+  j_lo = r0 > 0.0 ? int64_t(r0) : 0;  // (NaN: 0)
+  j_hi = r1 < double(f.height - 1) ? int64_t(r1) : f.height - 1;
+  return true;
+}
+
+size_t spheres_in_row(const float_scene& f, float sv, int batch, sphere_span* out,
+                      const uint32_t* candidates, size_t n_candidates) {
   const float_spheres& sp = f.spheres;
   const int64_t last_batch = (f.width - 1) / batch;
   size_t count = 0;
@@ -160,7 +197,9 @@ size_t spheres_in_row(const float_scene& f, float sv, int batch, sphere_span* ou
   const double len = std::sqrt(dot(n, n));
   const bool plane = len > 0.0 && std::isfinite(len);  // else a degenerate row: no plane test
   const double d_len = std::sqrt(dot(rr.a, rr.a)) + std::sqrt(dot(rr.h, rr.h));  // >= |d| in the row
-  for (uint32_t k = 0; k < uint32_t(sp.size()); ++k) {
+  const size_t considered = candidates ? n_candidates : sp.size();
+  for (size_t x = 0; x < considered; ++x) {
+    const uint32_t k = candidates ? candidates[x] : uint32_t(x);
     const double fk[3] = {sp.fx[k], sp.fy[k], sp.fz[k]};
     // The margin (in cull_radius): 1e-4 of |f| + r, hundreds of times the
     // float intersection's rounding (and the direction's, about 1e-7 of |f|),

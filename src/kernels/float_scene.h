@@ -57,6 +57,15 @@ struct sphere_span {
 // rounding, so leaving a sphere out never changes a pixel. Writes to out
 // (room for every sphere) and returns how many. (Raw memory: the kernels,
 // compiled per instruction set, instantiate no standard-library templates.)
-size_t spheres_in_row(const float_scene& f, float sv, int batch, sphere_span* out);
+// With candidates, only those spheres (scene order) are considered: the
+// others are known not to come near this row (sphere_rows).
+size_t spheres_in_row(const float_scene& f, float sv, int batch, sphere_span* out,
+                      const uint32_t* candidates = nullptr, size_t n_candidates = 0);
+
+// The rows j (j = 0 at the bottom, kernels/scalar.h) whose plane may come
+// near sphere k -- every row where spheres_in_row's plane test could keep
+// it, and a little more; false when none does. So each row need not look at
+// every sphere of the scene.
+bool sphere_rows(const float_scene& f, uint32_t k, int64_t& j_lo, int64_t& j_hi);
 
 }  // namespace raycast

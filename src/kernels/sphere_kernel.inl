@@ -13,7 +13,8 @@
 // kernels/float_spheres.h's operations in its order, so the output is
 // bit-identical to render_scalar.
 //
-// Left out where the scene does not need it: each row asks spheres_in_row
+// Left out where the scene does not need it: each band lists, per row, the
+// spheres whose rows' planes may come near (sphere_rows); each row asks spheres_in_row
 // (kernels/float_scene.h) which spheres its rays can come near and in which
 // batches, and a batch tests only those (a list per batch, built per row); a
 // batch with none computes the sky alone, with no division but the sky's; a
@@ -299,6 +300,74 @@ struct batch_lists {
   }
 };
 
+// The spheres each row of rows [r0, r1) may come near (sphere_rows), a list
+// per row in scene order, so a row looks only at those rather than at every
+// sphere of the scene. Raw memory, as batch_lists; without memory, or past the
+// budget (spheres spanning many rows each), every row looks at every sphere.
+struct row_lists {
+  static constexpr size_t budget = size_t(1) << 24;  // entries
+  uint32_t* first = nullptr;  // list[first[r - r0] .. first[r - r0 + 1]) for row r
+  uint32_t* list = nullptr;
+  int64_t r0 = 0;
+
+  row_lists(const float_scene& s, int64_t row0, int64_t row1) : r0(row0) {
+    const size_t n = s.spheres.size(), rows = size_t(row1 - row0);
+    int64_t* range = static_cast<int64_t*>(std::malloc(2 * n * sizeof(int64_t) + 1));
+    first = static_cast<uint32_t*>(std::malloc((rows + 1) * sizeof(uint32_t)));
+    if (!range || !first) {
+      std::free(range);
+      release();
+      return;
+    }
+    // Each sphere's rows [range[2k], range[2k+1]] within the band (empty: lo > hi).
+    size_t total = 0;
+    for (size_t k = 0; k < n; ++k) {
+      int64_t j_lo = 0, j_hi = 0;
+      int64_t lo = 1, hi = 0;
+      if (sphere_rows(s, uint32_t(k), j_lo, j_hi)) {
+        lo = s.height - 1 - j_hi > row0 ? s.height - 1 - j_hi : row0;
+        hi = s.height - 1 - j_lo < row1 - 1 ? s.height - 1 - j_lo : row1 - 1;
+      }
+      range[2 * k] = lo;
+      range[2 * k + 1] = hi;
+      if (lo <= hi) total += size_t(hi - lo + 1);
+    }
+    if (total > budget || !(list = static_cast<uint32_t*>(std::malloc(total * sizeof(uint32_t) + 1)))) {
+      std::free(range);
+      release();
+      return;
+    }
+    for (size_t r = 0; r <= rows; ++r) first[r] = 0;
+    for (size_t k = 0; k < n; ++k)
+      for (int64_t r = range[2 * k]; r <= range[2 * k + 1]; ++r) ++first[r - row0 + 1];
+    for (size_t r = 0; r < rows; ++r) first[r + 1] += first[r];
+    // Fill in scene order, each row's cursor starting at its first entry.
+    uint32_t* cursor = static_cast<uint32_t*>(std::malloc(rows * sizeof(uint32_t) + 1));
+    if (!cursor) {
+      std::free(range);
+      release();
+      return;
+    }
+    for (size_t r = 0; r < rows; ++r) cursor[r] = first[r];
+    for (size_t k = 0; k < n; ++k)
+      for (int64_t r = range[2 * k]; r <= range[2 * k + 1]; ++r) list[cursor[r - row0]++] = uint32_t(k);
+    std::free(cursor);
+    std::free(range);
+  }
+  ~row_lists() { release(); }
+  row_lists(const row_lists&) = delete;
+  row_lists& operator=(const row_lists&) = delete;
+  void release() {
+    std::free(first);
+    std::free(list);
+    first = nullptr;
+    list = nullptr;
+  }
+  bool ok() const { return list != nullptr; }
+  const uint32_t* of(int64_t r) const { return list + first[r - r0]; }
+  size_t count(int64_t r) const { return first[r - r0 + 1] - first[r - r0]; }
+};
+
 template <int Shades, bool Float, bool Lanes>
 void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
   const float_scene& s = *a.scene;
@@ -307,11 +376,15 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
   const int64_t W = s.width;
   const int64_t batches = (W + N - 1) / N;
   batch_lists lists(sp.n, batches);
+  const row_lists rows(s, r0, r1);
   const bool mirror = a.mirror && lists.ok();
   for (int64_t r = r0; r < r1; ++r) {
     const int64_t j = s.height - 1 - r;
     const float sv = s.height == 1 ? 0.0f : (float(j) - s.mid_row) / s.last_row;  // scalar.h
-    const size_t count = lists.ok() ? spheres_in_row(s, sv, N, lists.spans) : sp.n;
+    size_t count = sp.n;
+    if (lists.ok())
+      count = rows.ok() ? spheres_in_row(s, sv, N, lists.spans, rows.of(r), rows.count(r))
+                        : spheres_in_row(s, sv, N, lists.spans);
     const int64_t run = lists.ok() ? batch_lists::run_length(count, batches) : batches;
     const vfloat row_part[3] = {sv * s.vertical[0], sv * s.vertical[1], sv * s.vertical[2]};
     unsigned char* const out = band.row(r);
