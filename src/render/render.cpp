@@ -123,7 +123,8 @@ void renderer::render(const image_band& band) const {
   const bool paired = kernel_ && plan_->args().mirror && fscene_.spheres.empty() &&
                       band.row_begin + band.row_end == scene_.cam.image_height;
   const int64_t units = paired ? (rows + 1) / 2 : rows;
-  // Bands of consecutive rows, a few per thread so uneven cores even out. A
+  // Bands of consecutive rows, sixteen per thread so uneven cores and uneven
+  // rows (a sphere scene's sky rows cost a fraction of its ground rows) even out. A
   // thread costs tens of microseconds to start, about what 2^17 pixels take
   // to render: smaller jobs (the default 400x225 sky) stay on one thread.
   const int64_t pixels = rows * scene_.cam.image_width;
@@ -133,7 +134,7 @@ void renderer::render(const image_band& band) const {
     render_rows(band, band.row_begin, band.row_begin + units, paired);
     return;
   }
-  const int64_t chunks = std::min<int64_t>(units, nthreads * 4);
+  const int64_t chunks = std::min<int64_t>(units, nthreads * 16);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(int(nthreads))
   for (int64_t c = 0; c < chunks; ++c) {
     const int64_t r0 = band.row_begin + units * c / chunks;
