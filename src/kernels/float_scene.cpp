@@ -53,21 +53,22 @@ float_scene prepare_float_scene(const scene& s) {
     // double for every finite scene; the float constants then neither
     // overflow nor underflow but for radii below 2^-126 of the distance).
     const double size = std::max({std::abs(fo.x), std::abs(fo.y), std::abs(fo.z), b.radius});
-    int e = 0;
-    std::frexp(size, &e);
-    const double down = std::ldexp(1.0, -e);
-    const vec3 f = fo * down;
+    int unit = 0;
+    std::frexp(size, &unit);
+    const double down = std::ldexp(1.0, -unit);
+    const vec3 fs = fo * down;
     const double r = b.radius * down;
-    const double f2 = f.x * f.x + f.y * f.y + f.z * f.z;
-    sp.fx.push_back(float(f.x));
-    sp.fy.push_back(float(f.y));
-    sp.fz.push_back(float(f.z));
-    sp.c.push_back(float(f2 - r * r));
+    const double f2 = fs.x * fs.x + fs.y * fs.y + fs.z * fs.z;
+    const double cc = f2 - r * r;
+    sp.fx.push_back(float(fs.x));
+    sp.fy.push_back(float(fs.y));
+    sp.fz.push_back(float(fs.z));
+    sp.c.push_back(float(cc));
     sp.r2.push_back(float(r * r));
     sp.inv_r.push_back(float(1.0 / r));
-    sp.scale.push_back(float(std::ldexp(1.0, e)));
+    sp.scale.push_back(float(std::ldexp(1.0, unit)));
     sp.near.push_back(f2 < 2.0 * r * r ? 1 : 0);
-    sp.inside.push_back(f2 - r * r <= 0.0 ? 1 : 0);
+    sp.inside.push_back(cc <= 0.0 ? 1 : 0);
     {  // from the float constants, as the renderers see the sphere
       const double ff[3] = {sp.fx.back(), sp.fy.back(), sp.fz.back()};
       const double rf = std::sqrt(double(sp.r2.back()));
@@ -116,6 +117,19 @@ bool below_zero(double alpha, double beta, double gamma, double& s0, double& s1)
   return true;
 }
 
+// The indices i in [0, count) with (i - mid) / last in [s0, s1] (a column
+// from su, a row from sv: kernels/scalar.h), widened by slack each way, as
+// [lo, hi]; false when there is none.
+bool index_range(double s0, double s1, float last, float mid, double slack, int64_t count, int64_t& lo,
+                 int64_t& hi) {
+  const double i0 = std::floor(s0 * double(last) + double(mid)) - slack;
+  const double i1 = std::ceil(s1 * double(last) + double(mid)) + slack;
+  if (i1 < 0.0 || i0 > double(count - 1) || i0 > i1) return false;
+  lo = i0 > 0.0 ? int64_t(i0) : 0;  // (NaN: 0)
+  hi = i1 < double(count - 1) ? int64_t(i1) : count - 1;
+  return true;
+}
+
 // The columns [lo, hi] of the row whose rays come within r of the sphere's
 // centre (f = O - C, both in the sphere's unit). Their lines do where
 // |f x d|^2 <= r^2 |d|^2, a quadratic in su; and unless the camera is within
@@ -140,12 +154,7 @@ bool columns_near(const float_scene& fs, const row_rays& rr, const double* f, do
   }
   if (fs.width == 1) return !(s0 > 0.0 || s1 < 0.0);
   // su = (i - mid_col) / last_col; one column of slack each way.
-  const double last = double(fs.last_col), mid = double(fs.mid_col);
-  const double c0 = std::floor(s0 * last + mid) - 1.0, c1 = std::ceil(s1 * last + mid) + 1.0;
-  if (c1 < 0.0 || c0 > double(fs.width - 1) || c0 > c1) return false;
-  lo = c0 > 0.0 ? int64_t(c0) : 0;  // (NaN: 0)
-  hi = c1 < double(fs.width - 1) ? int64_t(c1) : fs.width - 1;
-  return true;
+  return index_range(s0, s1, fs.last_col, fs.mid_col, 1.0, fs.width, lo, hi);
 }
 
 }  // namespace
@@ -172,12 +181,7 @@ bool sphere_rows(const float_scene& f, uint32_t k, int64_t& j_lo, int64_t& j_hi)
     return false;
   if (f.height == 1) return true;  // one row: the plane test decides
   // sv = (j - mid_row) / last_row; two rows of slack each way.
-  const double last = double(f.last_row), mid = double(f.mid_row);
-  const double r0 = std::floor(s0 * last + mid) - 2.0, r1 = std::ceil(s1 * last + mid) + 2.0;
-  if (r1 < 0.0 || r0 > double(f.height - 1) || r0 > r1) return false;
-  j_lo = r0 > 0.0 ? int64_t(r0) : 0;  // (NaN: 0)
-  j_hi = r1 < double(f.height - 1) ? int64_t(r1) : f.height - 1;
-  return true;
+  return index_range(s0, s1, f.last_row, f.mid_row, 2.0, f.height, j_lo, j_hi);
 }
 
 size_t spheres_in_row(const float_scene& f, float sv, int batch, sphere_span* out,
