@@ -56,10 +56,16 @@ class progress {
 
 int run(const cli::job& j) {
   const renderer r(j.sc, j.render);
-  const int64_t W = j.sc.cam.image_width, H = j.sc.cam.image_height;
+  // The output is the region (the whole image unless --region): its rows and
+  // columns of the image, rendered in bands of whole region rows.
+  const cli::pixel_region& reg = j.region;
+  const int64_t W = reg.width(), H = reg.height();
   const pixel_format fmt = io::pixel_format_for(j.format);
   const size_t stride = size_t(W) * bytes_per_pixel(fmt);
-  const int64_t band_rows = std::clamp<int64_t>(band_pixels / W, 1, H);
+  // Many samples per pixel: fewer pixels per band, so that a band's work
+  // (and the progress between two updates) stays about the same.
+  const int64_t pixels = std::max<int64_t>(1, std::min<int64_t>(band_pixels, (band_pixels << 2) / r.samples()));
+  const int64_t band_rows = std::clamp<int64_t>(pixels / W, 1, H);
 
   std::unique_ptr<unsigned char, aligned_free> buffer(
       static_cast<unsigned char*>(std::aligned_alloc(64, (stride * size_t(band_rows) + 63) / 64 * 64)));
@@ -72,7 +78,7 @@ int run(const cli::job& j) {
   for (int64_t y0 = 0; y0 < H; y0 += band_rows) {
     const int64_t y1 = std::min(H, y0 + band_rows);
     bar.show(y0, "rendering");
-    r.render(image_band{buffer.get(), stride, fmt, y0, y1});
+    r.render(image_band{buffer.get(), stride, fmt, reg.y0 + y0, reg.y0 + y1, reg.x0, reg.x1});
     bar.show(y0, "writing");
     sink->write_rows(y0, y1, buffer.get(), stride);
   }

@@ -9,6 +9,7 @@
 #include <array>
 #include <cerrno>
 #include <charconv>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -135,6 +136,40 @@ std::optional<std::string> parse_aspect(std::string_view text, double& value) {
   return std::nullopt;
 }
 
+std::optional<std::string> parse_seed(std::string_view text, uint64_t& value) {
+  const std::string t(text);
+  if (t.empty() || t.size() > 20 || t.find_first_not_of("0123456789") != std::string::npos)
+    return in_quotes(text) + " is not a whole number from 0 to 18446744073709551615";
+  errno = 0;
+  char* end = nullptr;
+  const unsigned long long v = std::strtoull(t.c_str(), &end, 10);
+  if (errno == ERANGE || end != t.c_str() + t.size())
+    return in_quotes(text) + " is larger than 18446744073709551615";
+  value = v;
+  return std::nullopt;
+}
+
+std::optional<std::string> parse_region(std::string_view text, int64_t width, int64_t height, pixel_region& value) {
+  int64_t v[4] = {};
+  size_t n = 0, start = 0;
+  for (size_t k = 0; k <= text.size(); ++k) {
+    if (k == text.size() || text[k] == ',') {
+      if (n == 4) return in_quotes(text) + " has more than 4 numbers (want x0,y0,x1,y1)";
+      if (auto e = parse_int(text.substr(start, k - start), v[n]))
+        return "number " + std::to_string(n + 1) + ": " + *e;
+      ++n;
+      start = k + 1;
+    }
+  }
+  if (n != 4) return in_quotes(text) + " has " + std::to_string(n) + " number(s), want 4 (x0,y0,x1,y1)";
+  if (!(0 <= v[0] && v[0] < v[2] && v[2] <= width))
+    return "want 0 <= x0 < x1 <= " + std::to_string(width) + " (the image width), got " + std::string(text);
+  if (!(0 <= v[1] && v[1] < v[3] && v[3] <= height))
+    return "want 0 <= y0 < y1 <= " + std::to_string(height) + " (the image height), got " + std::string(text);
+  value = {v[0], v[1], v[2], v[3]};
+  return std::nullopt;
+}
+
 parse_result parse_args(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
   CLI::App app{
       "raycast: renders Ray Tracing in One Weekend's sky and spheres (chapters 4-6), on the\n"
@@ -144,6 +179,7 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
 
   std::string output, width_s, height_s, aspect_s, vh_s, focal_s, origin_s, bottom_s, top_s, format_s;
   std::string backend_s, precision_s, threads_s, lookfrom_s, lookat_s, vup_s, vfov_s, scene_s;
+  std::string samples_s, sampler_s, seed_s, region_s;
   bool quiet = false, version = false;
 
   app.add_option("-o,--output", output, "Output file; '-' writes binary PPM to standard output")
@@ -179,6 +215,18 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
                  std::string("exact|fast [") + std::string(to_string(default_precision)) + "]")
       ->type_name("MODE");
   app.add_option("--threads", threads_s, "Render threads [all cores]")->type_name("N");
+  app.add_option("--samples", samples_s,
+                 "Samples per pixel, averaged (antialiasing); 1 is the pixel's own point [1]")
+      ->type_name("N");
+  app.add_option("--sampler", sampler_s,
+                 std::string("Where a pixel's samples fall: random|stratified|sobol [") +
+                     std::string(to_string(default_sampler)) + "]")
+      ->type_name("NAME");
+  app.add_option("--seed", seed_s, "Seed of the samples' random numbers, 0 to 2^64-1 [0]")->type_name("N");
+  app.add_option("--region", region_s,
+                 "Render and write only the pixels x0 <= x < x1, y0 <= y < y1 of the image (y0 = 0 is "
+                 "the top row), the same bytes as those of the whole image [the whole image]")
+      ->type_name("X0,Y0,X1,Y1");
   app.add_flag("-q,--quiet", quiet, "No progress on standard error");
   app.add_flag("--version", version, "Print the version and the backend auto picks here");
 
@@ -334,11 +382,34 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
     if (t < 1 || t > 1024) return usage("--threads", "must be between 1 and 1024, got " + threads_s);
     j.render.threads = int(t);
   }
+  if (given("--samples")) {
+    int64_t n = 0;
+    if (auto e = parse_int(samples_s, n)) return usage("--samples", *e);
+    if (n < 1 || n > int64_t(max_samples))
+      return usage("--samples", "must be between 1 and " + std::to_string(max_samples) + ", got " + samples_s);
+    j.render.samples = uint32_t(n);
+  }
+  if (given("--sampler")) {
+    auto k = parse_sampler(sampler_s);
+    if (!k) return usage("--sampler", in_quotes(sampler_s) + " is not one of random, stratified, sobol");
+    j.render.sampler = *k;
+  }
+  if (given("--seed"))
+    if (auto e = parse_seed(seed_s, j.render.seed)) return usage("--seed", *e);
   j.quiet = quiet;
   j.sc = make_scene(sp);
+  if (given("--region")) {
+    if (auto e = parse_region(region_s, j.sc.cam.image_width, j.sc.cam.image_height, j.region))
+      return usage("--region", *e);
+  } else {
+    j.region = {0, 0, j.sc.cam.image_width, j.sc.cam.image_height};
+  }
   if (const int64_t side = io::max_side(j.format); side > 0) {
     const std::string limit = std::string(io::display_name(j.format)) + " supports at most " +
                               std::to_string(side) + " pixels per side, got ";
+    if (given("--region") && (j.region.width() > side || j.region.height() > side))
+      return usage("--region", limit + std::to_string(std::max(j.region.width(), j.region.height())));
+    if (given("--region")) return {std::move(j), 0};
     if (j.sc.cam.image_width > side) return usage("--width", limit + std::to_string(j.sc.cam.image_width));
     if (j.sc.cam.image_height > side)
       return usage(cp.image_height ? "--height" : "--aspect",

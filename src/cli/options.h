@@ -15,11 +15,19 @@ using io::file_format;
 using io::is_float_format;
 using io::to_string;
 
+// A window of the image: columns [x0, x1), rows [y0, y1), row 0 at the top.
+struct pixel_region {
+  int64_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  int64_t width() const { return x1 - x0; }
+  int64_t height() const { return y1 - y0; }
+};
+
 struct job {
   std::string output;  // "-": binary PPM on standard output
   file_format format = file_format::png;
   scene sc;
   render_options render;
+  pixel_region region;  // the whole image unless --region
   bool quiet = false;
 };
 
@@ -42,5 +50,7 @@ std::optional<std::string> parse_int(std::string_view text, int64_t& value);
 std::optional<std::string> parse_real(std::string_view text, double& value);
 std::optional<std::string> parse_triple(std::string_view text, vec3& value);
 std::optional<std::string> parse_aspect(std::string_view text, double& value);
+std::optional<std::string> parse_seed(std::string_view text, uint64_t& value);
+std::optional<std::string> parse_region(std::string_view text, int64_t width, int64_t height, pixel_region& value);
 
 }  // namespace raycast::cli

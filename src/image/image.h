@@ -13,17 +13,30 @@ enum class pixel_format : uint8_t {
 
 constexpr size_t bytes_per_pixel(pixel_format f) { return f == pixel_format::rgb8 ? 3 : 12; }
 
-// Rows [row_begin, row_end) of the image; row 0 is the top row. `data` points
-// at the first byte of row_begin, and row r starts at data + (r - row_begin) * stride.
+// Rows [row_begin, row_end) of the image, and of each its columns
+// [col_begin, col_end) (col_end < 0: to the image's last column); row 0 is the
+// top row. `data` points at the first byte of row_begin, row r starts at
+// data + (r - row_begin) * stride, and its first pixel is column col_begin (a
+// region of the image: --region).
 struct image_band {
   void* data = nullptr;
   size_t stride = 0;
   pixel_format format = pixel_format::rgb8;
   int64_t row_begin = 0;
   int64_t row_end = 0;
+  int64_t col_begin = 0;
+  int64_t col_end = -1;
 
   unsigned char* row(int64_t r) const {
     return static_cast<unsigned char*>(data) + size_t(r - row_begin) * stride;
+  }
+  // The end of the column window in an image `width` pixels wide.
+  int64_t cols_end(int64_t width) const { return col_end < 0 ? width : col_end; }
+  // Whether the band holds whole rows of an image `width` pixels wide.
+  bool whole_rows(int64_t width) const { return col_begin == 0 && cols_end(width) == width; }
+  // Pixel column i of row r.
+  unsigned char* pixel(int64_t r, int64_t i) const {
+    return row(r) + size_t(i - col_begin) * bytes_per_pixel(format);
   }
 };
 

@@ -16,6 +16,8 @@ float_scene prepare_float_scene(const scene& s) {
   f.mid_col = float(double(c.image_width - 1) / 2.0);
   f.mid_row = float(double(c.image_height - 1) / 2.0);
   const vec3 centre = -c.focal_length * c.axis_w;
+  f.du = c.image_width == 1 ? 0.0f : 1.0f / f.last_col;
+  f.dv = c.image_height == 1 ? 0.0f : 1.0f / f.last_row;
 
   double m = 0.0;
   for (const vec3& v : {centre, c.horizontal, c.vertical})
@@ -40,6 +42,13 @@ float_scene prepare_float_scene(const scene& s) {
     f.fast_qb[k] = float(255.999 * (double(f.bottom[k]) + half));
     f.lo[k] = std::min(f.bottom[k], f.top[k]);
     f.hi[k] = std::max(f.bottom[k], f.top[k]);
+  }
+  {  // the viewport's plane is at distance |centre| (horizontal and vertical
+     // are orthogonal to it), so every direction is at least that long
+    const auto len = [](const float* v) {
+      return std::sqrt(double(v[0]) * v[0] + double(v[1]) * v[1] + double(v[2]) * v[2]);
+    };
+    f.pixel_spread = 1.01 * (len(f.horizontal) * f.du + len(f.vertical) * f.dv) / len(f.centre);
   }
   f.axis_aligned_camera = f.horizontal[1] == 0 && f.horizontal[2] == 0 && f.vertical[0] == 0 &&
                    f.vertical[2] == 0;
@@ -157,9 +166,16 @@ bool columns_near(const float_scene& fs, const row_rays& rr, const double* f, do
   return index_range(s0, s1, fs.last_col, fs.mid_col, 1.0, fs.width, lo, hi);
 }
 
+// The sphere's culling radius for rays that may stray by spread (float_scene.h).
+double widened(const float_spheres& sp, uint32_t k, double spread) {
+  if (spread == 0.0) return sp.cull_radius[k];
+  const double f2 = double(sp.fx[k]) * sp.fx[k] + double(sp.fy[k]) * sp.fy[k] + double(sp.fz[k]) * sp.fz[k];
+  return sp.cull_radius[k] + spread * std::sqrt(f2);
+}
+
 }  // namespace
 
-bool sphere_rows(const float_scene& f, uint32_t k, int64_t& j_lo, int64_t& j_hi) {
+bool sphere_rows(const float_scene& f, uint32_t k, int64_t& j_lo, int64_t& j_hi, double spread) {
   const float_spheres& sp = f.spheres;
   j_lo = 0;
   j_hi = f.height - 1;
@@ -174,7 +190,7 @@ bool sphere_rows(const float_scene& f, uint32_t k, int64_t& j_lo, int64_t& j_hi)
   cross(c, h, N0);
   cross(v, h, N1);
   const double fk[3] = {sp.fx[k], sp.fy[k], sp.fz[k]};
-  const double w2 = sp.cull_radius[k] * sp.cull_radius[k];
+  const double w = widened(sp, k, spread), w2 = w * w;
   const double p0 = dot(fk, N0), p1 = dot(fk, N1);
   double s0 = -INFINITY, s1 = INFINITY;
   if (!below_zero(p1 * p1 - w2 * dot(N1, N1), p0 * p1 - w2 * dot(N0, N1), p0 * p0 - w2 * dot(N0, N0), s0, s1))
@@ -185,7 +201,7 @@ bool sphere_rows(const float_scene& f, uint32_t k, int64_t& j_lo, int64_t& j_hi)
 }
 
 size_t spheres_in_row(const float_scene& f, float sv, int batch, sphere_span* out,
-                      const uint32_t* candidates, size_t n_candidates) {
+                      const uint32_t* candidates, size_t n_candidates, double spread) {
   const float_spheres& sp = f.spheres;
   const int64_t last_batch = (f.width - 1) / batch;
   size_t count = 0;
@@ -208,7 +224,7 @@ size_t spheres_in_row(const float_scene& f, float sv, int batch, sphere_span* ou
     // The margin (in cull_radius): 1e-4 of |f| + r, hundreds of times the
     // float intersection's rounding (and the direction's, about 1e-7 of |f|),
     // so that leaving a sphere out never changes a pixel.
-    const double wide = sp.cull_radius[k];
+    const double wide = widened(sp, k, spread);
     if (plane && std::abs(dot(fk, n)) > wide * len) continue;  // NaN: kept
     int64_t lo = 0, hi = f.width - 1;
     const double ahead_slack = (wide - std::sqrt(double(sp.r2[k]))) * d_len;

@@ -19,6 +19,13 @@ struct float_scene {
   int64_t width = 0, height = 0;
   float last_col = 0, last_row = 0;  // W - 1 and H - 1
   float mid_col = 0, mid_row = 0;    // (W - 1) / 2 and (H - 1) / 2, exact in float
+  // One pixel in su and sv: 1 / (W - 1) and 1 / (H - 1) in float, 0 for a
+  // single column or row (a sample's offset, scene/sampler.h).
+  float du = 0, dv = 0;
+  // How far (as a fraction of the distance) a sample's ray may pass from the
+  // pixel's one-sample ray: one pixel across in each direction over the
+  // viewport's distance, and 1 % more. Culling widens each radius by it.
+  double pixel_spread = 0;
   float centre[3] = {};      // viewport centre - origin = -focal_length * w, scaled
   float horizontal[3] = {};  // scaled
   float vertical[3] = {};    // scaled
@@ -59,13 +66,18 @@ struct sphere_span {
 // compiled per instruction set, instantiate no standard-library templates.)
 // With candidates, only those spheres (scene order) are considered: the
 // others are known not to come near this row (sphere_rows).
+// With spread (a float_scene's pixel_spread, for renders with many samples),
+// the spheres a ray of the pixels' whole square of samples may hit: each
+// radius widened by spread |f| (a ray within angle spread of another passes
+// within spread |f| of where that one does, up to the sphere's distance).
 size_t spheres_in_row(const float_scene& f, float sv, int batch, sphere_span* out,
-                      const uint32_t* candidates = nullptr, size_t n_candidates = 0);
+                      const uint32_t* candidates = nullptr, size_t n_candidates = 0,
+                      double spread = 0.0);
 
 // The rows j (j = 0 at the bottom, kernels/scalar.h) whose plane may come
 // near sphere k -- every row where spheres_in_row's plane test could keep
 // it, and a little more; false when none does. So each row need not look at
 // every sphere of the scene.
-bool sphere_rows(const float_scene& f, uint32_t k, int64_t& j_lo, int64_t& j_hi);
+bool sphere_rows(const float_scene& f, uint32_t k, int64_t& j_lo, int64_t& j_hi, double spread = 0.0);
 
 }  // namespace raycast

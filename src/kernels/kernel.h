@@ -5,6 +5,7 @@
 #include "image/image.h"
 #include "kernels/float_scene.h"
 #include "kernels/precision.h"
+#include "scene/sampler.h"
 
 namespace raycast::kernels {
 
@@ -42,9 +43,13 @@ struct kernel_args {
   bool colours_in_unit_range = false;
   // The sphere kernel's spheres (kernels/float_spheres.h); n = 0 for the sky.
   sphere_arrays spheres;
+  // Many samples per pixel (scene/sampler.h): the sphere kernel's sampled
+  // path, for every scene, the sky alone included; null for one sample.
+  const sampling::sample_plan* samples = nullptr;
 };
 
-// Fills rows [r0, r1) of the band; single-threaded. One per instruction set.
+// Fills rows [r0, r1) of the band (its column window: image_band);
+// single-threaded. One per instruction set.
 // With `paired` (shortcut `mirror` only; the band must hold both), each row r
 // also fills its mirror row H-1-r, which shares every |d| (sky_kernel.inl).
 using render_rows_fn = void (*)(const kernel_args& args, const image_band& band, int64_t r0,

@@ -68,8 +68,7 @@ struct traced {
   size_t hit;        // sp.size(): none
 };
 
-traced trace(const float_scene& f, int64_t i, int64_t j) {
-  const float su = pixel_su(f, i), sv = pixel_sv(f, j);
+traced trace(const float_scene& f, float su, float sv) {
   traced tr;
   float* d = tr.d;
   for (int k = 0; k < 3; ++k) d[k] = (f.centre[k] + su * f.horizontal[k]) + sv * f.vertical[k];
@@ -105,8 +104,9 @@ traced trace(const float_scene& f, int64_t i, int64_t j) {
   return tr;
 }
 
-void sphere_pixel(const float_scene& f, int64_t i, int64_t j, float out[3]) {
-  const traced tr = trace(f, i, j);
+// The colour of the ray at (su, sv), exact: the closest sphere's shading, else the sky.
+void sample_colour(const float_scene& f, float su, float sv, float out[3]) {
+  const traced tr = trace(f, su, sv);
   const float_spheres& sp = f.spheres;
   const size_t hit = tr.hit;
   const float* d = tr.d;
@@ -138,7 +138,7 @@ float pixel_sv(const float_scene& f, int64_t j) {
 
 void scalar_pixel(const float_scene& f, precision p, int64_t i, int64_t j, float out[3]) {
   if (!f.spheres.empty()) {
-    sphere_pixel(f, i, j, out);
+    sample_colour(f, pixel_su(f, i), pixel_sv(f, j), out);
     return;
   }
   const pixel_dir d = direction(f, i, j);
@@ -148,7 +148,7 @@ void scalar_pixel(const float_scene& f, precision p, int64_t i, int64_t j, float
 
 scalar_hit scalar_trace(const float_scene& f, int64_t i, int64_t j) {
   if (f.spheres.empty()) return {};
-  const traced tr = trace(f, i, j);
+  const traced tr = trace(f, pixel_su(f, i), pixel_sv(f, j));
   if (tr.hit == f.spheres.size()) return {};
   // P = O + t d in world units, so the distance is t |d|.
   const double d_len = std::sqrt(double(tr.d[0]) * tr.d[0] + double(tr.d[1]) * tr.d[1] +
@@ -156,41 +156,42 @@ scalar_hit scalar_trace(const float_scene& f, int64_t i, int64_t j) {
   return {int64_t(tr.hit), double(tr.closest) * d_len};
 }
 
-void render_scalar(const float_scene& f, precision p, const image_band& band) {
-  if (!f.spheres.empty()) {
-    for (int64_t r = band.row_begin; r < band.row_end; ++r) {
-      const int64_t j = f.height - 1 - r;
-      unsigned char* row = band.row(r);
-      for (int64_t i = 0; i < f.width; ++i) {
-        float c[3];
-        sphere_pixel(f, i, j, c);
-        if (band.format == pixel_format::rgb_f32) std::memcpy(row + 12 * i, c, sizeof c);
-        else
-          for (int k = 0; k < 3; ++k)
-            row[3 * i + k] = static_cast<unsigned char>(int(clampf(c[k], 0.0f, 1.0f) * 255.999f));
-      }
-    }
-    return;
+void scalar_pixel_samples(const float_scene& f, const sampling::sample_plan& sp, int64_t i, int64_t j,
+                          float out[3]) {
+  const float su = pixel_su(f, i), sv = pixel_sv(f, j);
+  float acc[3] = {0.0f, 0.0f, 0.0f};
+  for (uint32_t s = 0; s < sp.count; ++s) {
+    float xi, eta, c[3];
+    sampling::sample_offsets(sp, uint32_t(i), uint32_t(j), s, xi, eta);
+    sample_colour(f, su + xi * f.du, sv + eta * f.dv, c);
+    for (int k = 0; k < 3; ++k) acc[k] = acc[k] + c[k];
   }
+  const float n = float(sp.count);
+  for (int k = 0; k < 3; ++k) out[k] = acc[k] / n;
+}
+
+void render_scalar(const float_scene& f, precision p, const image_band& band,
+                   const sampling::sample_plan* samples) {
+  const int64_t c0 = band.col_begin, c1 = band.cols_end(f.width);
+  const bool f32 = band.format == pixel_format::rgb_f32;
   for (int64_t r = band.row_begin; r < band.row_end; ++r) {
     const int64_t j = f.height - 1 - r;
-    unsigned char* row = band.row(r);
-    for (int64_t i = 0; i < f.width; ++i) {
-      if (band.format == pixel_format::rgb_f32) {
-        float c[3];
-        scalar_pixel(f, p, i, j, c);
-        std::memcpy(row + 12 * i, c, sizeof c);
-      } else if (p == precision::exact) {
-        float c[3];
-        scalar_pixel(f, p, i, j, c);
-        for (int k = 0; k < 3; ++k)
-          row[3 * i + k] = static_cast<unsigned char>(int(clampf(c[k], 0.0f, 1.0f) * 255.999f));
-      } else {
+    for (int64_t i = c0; i < c1; ++i) {
+      unsigned char* px = band.pixel(r, i);
+      float c[3];
+      if (samples) {
+        scalar_pixel_samples(f, *samples, i, j, c);
+      } else if (!f32 && p == precision::fast && f.spheres.empty()) {
         const float uy = fast_uy(direction(f, i, j));
         for (int k = 0; k < 3; ++k)
-          row[3 * i + k] = static_cast<unsigned char>(
-              int(clampf(uy * f.fast_qa[k] + f.fast_qb[k], 0.0f, 255.999f)));
+          px[k] = static_cast<unsigned char>(int(clampf(uy * f.fast_qa[k] + f.fast_qb[k], 0.0f, 255.999f)));
+        continue;
+      } else {
+        scalar_pixel(f, p, i, j, c);
       }
+      if (f32) std::memcpy(px, c, sizeof c);
+      else
+        for (int k = 0; k < 3; ++k) px[k] = static_cast<unsigned char>(int(clampf(c[k], 0.0f, 1.0f) * 255.999f));
     }
   }
 }

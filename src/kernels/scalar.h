@@ -43,6 +43,7 @@
 #include "image/image.h"
 #include "kernels/float_scene.h"
 #include "kernels/precision.h"
+#include "scene/sampler.h"
 
 namespace raycast {
 
@@ -65,7 +66,17 @@ struct scalar_hit {
 };
 scalar_hit scalar_trace(const float_scene& f, int64_t i, int64_t j);
 
-// Fills the band's rows; single-threaded.
-void render_scalar(const float_scene& f, precision p, const image_band& band);
+// Many samples per pixel (scene/sampler.h gives where they fall): sample s
+// of pixel (i, j) is the ray at su = su_i + xi * du, sv = sv_j + eta * dv
+// (f.du, f.dv), its colour as above in exact mode (both precisions: fast mode
+// has no sampled path of its own), summed in sample order from 0 and divided
+// by the count: acc = ((0 + c_0) + c_1) + ..., pixel = acc / float(N).
+void scalar_pixel_samples(const float_scene& f, const sampling::sample_plan& sp, int64_t i, int64_t j,
+                          float out[3]);
+
+// Fills the band's pixels (its rows, and its columns: image_band); with
+// samples, each pixel the average of its samples. Single-threaded.
+void render_scalar(const float_scene& f, precision p, const image_band& band,
+                   const sampling::sample_plan* samples = nullptr);
 
 }  // namespace raycast

@@ -214,9 +214,10 @@ template <bool Lanes, bool Fast, bool Float, bool NoClamps, int Computed>
 void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1, bool paired) {
   const float_scene& s = *a.scene;
   const shader<NoClamps, Computed> sh(a);
-  const int64_t W = s.width;
+  const int64_t W = s.width, c0 = band.col_begin, c1 = band.cols_end(W);
+  const bool whole_rows = band.whole_rows(W);
   // Pixels at each end of a row computed once for both ends (whole batches).
-  const int64_t mirrored = Lanes && a.mirror ? W / (2 * N) * N : 0;
+  const int64_t mirrored = Lanes && a.mirror && whole_rows ? W / (2 * N) * N : 0;
   for (int64_t r = r0; r < r1; ++r) {
     const int64_t j = s.height - 1 - r;
     const float sv = s.height == 1 ? 0.0f : (float(j) - s.mid_row) / s.last_row;  // scalar.h
@@ -240,6 +241,20 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
     // The mirrored row's y is -y (and so its uy is -uy, sign for sign).
     const auto row_uy = [](vfloat uy, int k) { return k == 0 ? uy : -uy; };
 
+    if (!whole_rows) {  // a region (image_band's column window): batches on the row's grid
+      constexpr size_t bpp = Float ? 12 : 3;
+      for (int64_t i0 = c0 / N * N; i0 < c1; i0 += N) {
+        const vfloat uy = uy_at(i0);
+        const int64_t lo = i0 > c0 ? i0 : c0, hi = i0 + N < c1 ? i0 + N : c1;
+        const bool whole = lo == i0 && hi == i0 + N;
+        alignas(64) unsigned char tmp[bpp * N];
+        unsigned char* const dst = whole ? rows[0] + bpp * size_t(i0 - c0) : tmp;
+        if constexpr (Float) shade_store_f32(sh, uy, dst, 0, N, false);
+        else shade_store_rgb8<Fast>(sh, uy, dst, 0, N, false);
+        if (!whole) __builtin_memcpy(rows[0] + bpp * size_t(lo - c0), tmp + bpp * size_t(lo - i0), bpp * size_t(hi - lo));
+      }
+      continue;
+    }
     int64_t i0 = 0;
     if constexpr (!Float) {
       for (; i0 + 4 * N <= mirrored; i0 += 4 * N) {

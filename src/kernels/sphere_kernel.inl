@@ -64,7 +64,7 @@ struct rays {
   }
 
  private:
-  vfloat inv_;
+  vfloat inv_ = 0.0f;
   bool have_inv_ = false;
 };
 
@@ -240,6 +240,21 @@ RAYCAST_INLINE void store_batch(unsigned char* out, int64_t i0, int n, const vfl
   }
 }
 
+// Stores the lanes of a batch at column i0 that lie in the band's column
+// window [c0, c1) (image_band); row points at column c0.
+template <bool Float>
+RAYCAST_INLINE void store_window(unsigned char* row, int64_t i0, int64_t c0, int64_t c1, const vfloat c[3]) {
+  const int64_t lo = i0 > c0 ? i0 : c0, hi = i0 + N < c1 ? i0 + N : c1;
+  if (lo == i0) {
+    store_batch<Float>(row, i0 - c0, int(hi - lo), c);
+    return;
+  }
+  constexpr size_t bpp = Float ? 12 : 3;
+  alignas(64) unsigned char tmp[bpp * N];
+  store_batch<Float>(tmp, 0, N, c);
+  __builtin_memcpy(row + bpp * size_t(lo - c0), tmp + bpp * size_t(lo - i0), bpp * size_t(hi - lo));
+}
+
 // Per-batch sphere lists for a run of a row's batches, built from the row's
 // spans: list[first[b] .. first[b + 1]) are the spheres of batch b0 + b, in
 // scene order. Raw memory (no standard-library template is instantiated with
@@ -310,7 +325,7 @@ struct row_lists {
   uint32_t* list = nullptr;
   int64_t r0 = 0;
 
-  row_lists(const float_scene& s, int64_t row0, int64_t row1) : r0(row0) {
+  row_lists(const float_scene& s, int64_t row0, int64_t row1, double spread) : r0(row0) {
     const size_t n = s.spheres.size(), rows = size_t(row1 - row0);
     int64_t* range = static_cast<int64_t*>(std::malloc(2 * n * sizeof(int64_t) + 1));
     first = static_cast<uint32_t*>(std::malloc((rows + 1) * sizeof(uint32_t)));
@@ -324,7 +339,7 @@ struct row_lists {
     for (size_t k = 0; k < n; ++k) {
       int64_t j_lo = 0, j_hi = 0;
       int64_t lo = 1, hi = 0;
-      if (sphere_rows(s, uint32_t(k), j_lo, j_hi)) {
+      if (sphere_rows(s, uint32_t(k), j_lo, j_hi, spread)) {
         lo = s.height - 1 - j_hi > row0 ? s.height - 1 - j_hi : row0;
         hi = s.height - 1 - j_lo < row1 - 1 ? s.height - 1 - j_lo : row1 - 1;
       }
@@ -373,11 +388,13 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
   const float_scene& s = *a.scene;
   const sphere_arrays& sp = a.spheres;
   const sky_shader sky(a);
-  const int64_t W = s.width;
+  const int64_t W = s.width, c0 = band.col_begin, c1 = band.cols_end(W);
   const int64_t batches = (W + N - 1) / N;
+  // The batches that hold the band's columns.
+  const int64_t first_batch = c0 / N, end_batch = (c1 + N - 1) / N;
   batch_lists lists(sp.n, batches);
-  const row_lists rows(s, r0, r1);
-  const bool mirror = a.mirror && lists.ok();
+  const row_lists rows(s, r0, r1, 0.0);
+  const bool mirror = a.mirror && lists.ok() && band.whole_rows(W);
   for (int64_t r = r0; r < r1; ++r) {
     const int64_t j = s.height - 1 - r;
     const float sv = s.height == 1 ? 0.0f : (float(j) - s.mid_row) / s.last_row;  // scalar.h
@@ -432,15 +449,14 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
         store_batch<Float, true>(out, W - b * N - N, N, c);
       }
     }
-    for (int64_t b0 = ends; b0 < batches; b0 += run) {
-      const int64_t b1 = b0 + run < batches ? b0 + run : batches;
+    for (int64_t b0 = ends > first_batch ? ends : first_batch; b0 < end_batch; b0 += run) {
+      const int64_t b1 = b0 + run < end_batch ? b0 + run : end_batch;
       const bool built = mirror && run == batches;  // above, from batch 0
       const int64_t base = built ? 0 : b0;
       if (!built && lists.ok() && count > 0) lists.build(count, b0, b1);
       for (int64_t b = b0; b < b1; ++b) {
         const int64_t i0 = b * N;
         if (i0 >= W - ends * N) break;  // the mirrored end, already stored
-        const int n = W - i0 >= N ? N : int(W - i0);
         // The ray batch: scalar.h's direction and its squared length.
         rays ry = rays_at(i0);
         const size_t tests = tests_of(b, base);
@@ -453,15 +469,98 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
           intersect(sp, list, tests, ry, h);
           shade(sky, sp, h, ry, c);
         }
-        store_batch<Float>(out, i0, n, c);
+        store_window<Float>(out, i0, c0, c1, c);
+      }
+    }
+  }
+}
+
+// Many samples per pixel (scene/sampler.h; the order is kernels/scalar.h's
+// scalar_pixel_samples). A batch is still N pixels of a row, each lane one
+// pixel: the batch's sphere list holds the spheres any ray of its pixels'
+// squares may come near (the culling radii widened by the scene's
+// pixel_spread), and each sample is one pass of the one-sample batch --
+// offsets, direction, intersection, shading -- added to a per-lane sum in
+// sample order. The random numbers are drawn per lane with the vector
+// layer's integer operations.
+template <int Shades, sampler_kind K>
+void render_samples(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
+  const float_scene& s = *a.scene;
+  const sphere_arrays& sp = a.spheres;
+  const sampling::sample_plan& plan = *a.samples;
+  const sky_shader sky(a);
+  const bool f32 = band.format == pixel_format::rgb_f32;
+  const int64_t W = s.width, c0 = band.col_begin, c1 = band.cols_end(W);
+  const int64_t batches = (W + N - 1) / N;
+  const int64_t first_batch = c0 / N, end_batch = (c1 + N - 1) / N;
+  batch_lists lists(sp.n, batches);
+  const row_lists rows(s, r0, r1, s.pixel_spread);
+  const vfloat centre[3] = {s.centre[0], s.centre[1], s.centre[2]};
+  const vfloat horizontal[3] = {s.horizontal[0], s.horizontal[1], s.horizontal[2]};
+  const vfloat vertical[3] = {s.vertical[0], s.vertical[1], s.vertical[2]};
+  const vfloat count = float(plan.count);
+  for (int64_t r = r0; r < r1; ++r) {
+    const int64_t j = s.height - 1 - r;
+    const float sv_j = s.height == 1 ? 0.0f : (float(j) - s.mid_row) / s.last_row;  // scalar.h
+    size_t listed = sp.n;
+    if (lists.ok())
+      listed = rows.ok() ? spheres_in_row(s, sv_j, N, lists.spans, rows.of(r), rows.count(r), s.pixel_spread)
+                         : spheres_in_row(s, sv_j, N, lists.spans, nullptr, 0, s.pixel_spread);
+    const int64_t run = lists.ok() ? batch_lists::run_length(listed, batches) : batches;
+    unsigned char* const out = band.row(r);
+    for (int64_t b0 = first_batch; b0 < end_batch; b0 += run) {
+      const int64_t b1 = b0 + run < end_batch ? b0 + run : end_batch;
+      if (lists.ok() && listed > 0) lists.build(listed, b0, b1);
+      for (int64_t b = b0; b < b1; ++b) {
+        const int64_t i0 = b * N;
+        size_t tests = sp.n;
+        const uint32_t* list = nullptr;
+        if (lists.ok()) {
+          tests = listed > 0 ? lists.first[b - b0 + 1] - lists.first[b - b0] : 0;
+          list = listed > 0 ? lists.list + lists.first[b - b0] : lists.list;
+        }
+        const vuint column = vuint::iota(uint32_t(i0));
+        const vfloat su_i = W == 1 ? vfloat(0.0f) : (to_float(column) - s.mid_col) / s.last_col;  // scalar.h
+        const sampling::pixel_seeds<vuint> seeds = sampling::seeds_for<K>(plan, column, uint32_t(j));
+        vfloat acc[3] = {0.0f, 0.0f, 0.0f};
+        for (uint32_t t = 0; t < plan.count; ++t) {
+          vfloat xi, eta;
+          sampling::offsets<K>(plan, seeds, t, xi, eta);
+          const vfloat su = su_i + xi * s.du, sv = vfloat(sv_j) + eta * s.dv;
+          rays ry;
+          for (int k = 0; k < 3; ++k) ry.d[k] = (centre[k] + su * horizontal[k]) + sv * vertical[k];
+          ry.n2 = (ry.d[0] * ry.d[0] + ry.d[1] * ry.d[1]) + ry.d[2] * ry.d[2];
+          vfloat c[3];
+          if (tests == 0) {
+            sky.shade(ry, c);
+          } else {
+            closest_hit<Shades> h;
+            intersect(sp, list, tests, ry, h);
+            shade(sky, sp, h, ry, c);
+          }
+          for (int k = 0; k < 3; ++k) acc[k] = acc[k] + c[k];
+        }
+        for (int k = 0; k < 3; ++k) acc[k] = acc[k] / count;
+        if (f32) store_window<true>(out, i0, c0, c1, acc);
+        else store_window<false>(out, i0, c0, c1, acc);
       }
     }
   }
 }
 
 template <int Shades>
+void render_sampled(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
+  switch (a.samples->kind) {
+    case sampler_kind::random: render_samples<Shades, sampler_kind::random>(a, band, r0, r1); break;
+    case sampler_kind::stratified: render_samples<Shades, sampler_kind::stratified>(a, band, r0, r1); break;
+    case sampler_kind::sobol: render_samples<Shades, sampler_kind::sobol>(a, band, r0, r1); break;
+  }
+}
+
+template <int Shades>
 void render_shades(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
-  if (band.format == pixel_format::rgb_f32) {
+  if (a.samples) render_sampled<Shades>(a, band, r0, r1);
+  else if (band.format == pixel_format::rgb_f32) {
     if (a.lanes) render<Shades, true, true>(a, band, r0, r1);
     else render<Shades, true, false>(a, band, r0, r1);
   } else {

@@ -15,9 +15,9 @@ float to_float(double c) { return std::abs(c) < double(FLT_MIN) ? 0.0f : float(c
 
 }  // namespace
 
-color reference_pixel(const scene& s, int64_t i, int64_t j) {
-  const camera& cam = s.cam;
-  const ray r = cam.get_ray(cam.u_of(i), cam.v_of(j));
+namespace {
+
+color trace(const scene& s, const ray& r) {
   if (s.spheres.empty()) return ray_color(r, s.sky);
   // The book's ch. 6 ray_color: the closest hit for t in [0, infinity).
   hit_record rec;
@@ -26,20 +26,40 @@ color reference_pixel(const scene& s, int64_t i, int64_t j) {
   return 0.5 * (rec.normal + color(1.0, 1.0, 1.0));
 }
 
-void render_reference(const scene& s, const image_band& band) {
+}  // namespace
+
+color reference_pixel(const scene& s, int64_t i, int64_t j) {
+  const camera& cam = s.cam;
+  return trace(s, cam.get_ray(cam.u_of(i), cam.v_of(j)));
+}
+
+color reference_pixel_samples(const scene& s, const sampling::sample_plan& plan, int64_t i, int64_t j) {
+  const camera& cam = s.cam;
+  color sum(0.0);
+  for (uint32_t k = 0; k < plan.count; ++k) {
+    float xi = 0.0f, eta = 0.0f;
+    sampling::sample_offsets(plan, uint32_t(i), uint32_t(j), k, xi, eta);
+    const double u = cam.image_width == 1 ? 0.5 : (double(i) + xi) / double(cam.image_width - 1);
+    const double v = cam.image_height == 1 ? 0.5 : (double(j) + eta) / double(cam.image_height - 1);
+    sum += trace(s, cam.get_ray(u, v));
+  }
+  return sum / double(plan.count);
+}
+
+void render_reference(const scene& s, const image_band& band, const sampling::sample_plan* samples) {
   const int64_t W = s.cam.image_width, H = s.cam.image_height;
   for (int64_t r = band.row_begin; r < band.row_end; ++r) {
     const int64_t j = H - 1 - r;
-    unsigned char* row = band.row(r);
-    for (int64_t i = 0; i < W; ++i) {
-      const color c = reference_pixel(s, i, j);
+    for (int64_t i = band.col_begin; i < band.cols_end(W); ++i) {
+      const color c = samples ? reference_pixel_samples(s, *samples, i, j) : reference_pixel(s, i, j);
+      unsigned char* px = band.pixel(r, i);
       if (band.format == pixel_format::rgb8) {
-        row[3 * i + 0] = to_byte(c.r);
-        row[3 * i + 1] = to_byte(c.g);
-        row[3 * i + 2] = to_byte(c.b);
+        px[0] = to_byte(c.r);
+        px[1] = to_byte(c.g);
+        px[2] = to_byte(c.b);
       } else {
         const float f[3] = {to_float(c.r), to_float(c.g), to_float(c.b)};
-        std::memcpy(row + 12 * i, f, sizeof f);
+        std::memcpy(px, f, sizeof f);
       }
     }
   }

@@ -33,6 +33,8 @@ class plan {
   plan& operator=(const plan&) = delete;
 
   const kernels::kernel_args& args() const { return args_; }
+  // Many samples per pixel: the kernels' sampled path (kernels/kernel.h).
+  void set_samples(const sampling::sample_plan* p) { args_.samples = p; }
 
  private:
   struct free_deleter {

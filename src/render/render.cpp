@@ -6,6 +6,8 @@
 #include <cctype>
 #include <cstdlib>
 #include <mutex>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <omp.h>
@@ -94,11 +96,18 @@ renderer::renderer(const scene& s, const render_options& opts)
       prec_(opts.prec),
       threads_(opts.threads > 0 ? opts.threads : available_cores()) {
   if (auto why = backend_unavailable(which_)) throw unsupported_backend(*why);
+  if (opts.samples < 1 || opts.samples > max_samples)
+    throw std::invalid_argument("samples per pixel must be 1 to " + std::to_string(max_samples));
+  if (opts.samples > 1) samples_.emplace(opts.sampler, opts.samples, opts.seed);
   // A scene without spheres runs the sky kernel, untouched; one with spheres
-  // the sphere kernel, which takes the shortcuts that apply to its sky.
+  // the sphere kernel, which takes the shortcuts that apply to its sky. Many
+  // samples per pixel run the sphere kernel's sampled path, sky or not.
   const bool spheres = !fscene_.spheres.empty();
-  kernel_ = spheres ? sphere_kernel_for(which_) : kernel_for(which_);
-  if (kernel_) plan_.emplace(fscene_, prec_, opts.shortcuts);  // reference and scalar need no plan
+  kernel_ = spheres || samples_ ? sphere_kernel_for(which_) : kernel_for(which_);
+  if (kernel_) {  // reference and scalar need no plan
+    plan_.emplace(fscene_, prec_, opts.shortcuts);
+    if (samples_) plan_->set_samples(&samples_->plan());
+  }
 }
 
 void renderer::render_rows(const image_band& band, int64_t r0, int64_t r1, bool paired) const {
@@ -110,8 +119,9 @@ void renderer::render_rows(const image_band& band, int64_t r0, int64_t r1, bool 
   part.data = band.row(r0);
   part.row_begin = r0;
   part.row_end = r1;
-  if (which_ == backend::reference) render_reference(scene_, part);
-  else render_scalar(fscene_, prec_, part);
+  const sampling::sample_plan* samples = samples_ ? &samples_->plan() : nullptr;
+  if (which_ == backend::reference) render_reference(scene_, part, samples);
+  else render_scalar(fscene_, prec_, part, samples);
 }
 
 void renderer::render(const image_band& band) const {
@@ -120,15 +130,17 @@ void renderer::render(const image_band& band) const {
   // The lesson camera's image is symmetric top to bottom: when the band holds
   // both rows of each mirrored pair, the kernel renders them together
   // (kernels/kernel.h), and the work is split over the top rows of the pairs.
-  const bool paired = kernel_ && plan_->args().mirror && fscene_.spheres.empty() &&
-                      band.row_begin + band.row_end == scene_.cam.image_height;
+  const bool paired = kernel_ && plan_->args().mirror && fscene_.spheres.empty() && !samples_ &&
+                      band.row_begin + band.row_end == scene_.cam.image_height &&
+                      band.whole_rows(scene_.cam.image_width);
   const int64_t units = paired ? (rows + 1) / 2 : rows;
   // Bands of consecutive rows, sixteen per thread so uneven cores and uneven
   // rows (a sphere scene's sky rows cost a fraction of its ground rows) even out. A
-  // thread costs tens of microseconds to start, about what 2^17 pixels take
+  // thread costs tens of microseconds to start, about what 2^17 rays take
   // to render: smaller jobs (the default 400x225 sky) stay on one thread.
-  const int64_t pixels = rows * scene_.cam.image_width;
-  int64_t nthreads = std::min<int64_t>({threads_, units, std::max<int64_t>(1, pixels >> 17)});
+  const int64_t W = scene_.cam.image_width;
+  const int64_t work = rows * (band.cols_end(W) - band.col_begin) * int64_t(samples());  // rays
+  int64_t nthreads = std::min<int64_t>({threads_, units, std::max<int64_t>(1, work >> 17)});
   if (nthreads > 1) nthreads = threads_that_start(int(nthreads));
   if (nthreads <= 1) {
     render_rows(band, band.row_begin, band.row_begin + units, paired);

@@ -8,6 +8,7 @@
 #include "kernels/precision.h"
 #include "render/backend.h"
 #include "render/plan.h"
+#include "scene/sampler.h"
 #include "scene/scene.h"
 
 namespace raycast {
@@ -20,7 +21,16 @@ struct render_options {
   // (render/plan.h); shortcut::none runs the general path, for tests and the
   // benchmark. Every set is bit-identical in exact mode.
   unsigned shortcuts = shortcut::all;
+  // Antialiasing (scene/sampler.h): samples per pixel; 1 is the one-sample
+  // point, no random numbers at all. The sampler and seed matter only above 1.
+  uint32_t samples = 1;
+  sampler_kind sampler = default_sampler;
+  uint64_t seed = 0;
 };
+
+// The most samples per pixel a render takes (the per-sample table is 16
+// bytes a sample).
+inline constexpr uint32_t max_samples = uint32_t(1) << 20;
 
 class renderer {
  public:
@@ -32,10 +42,11 @@ class renderer {
   backend selected() const { return which_; }
   precision prec() const { return prec_; }
   int threads() const { return threads_; }
+  uint32_t samples() const { return samples_ ? samples_->plan().count : 1; }
   const scene& scene_ref() const { return scene_; }
 
-  // Fills the band's rows (any subset of the image), the same bytes whatever
-  // the thread count.
+  // Fills the band's pixels (any rows of the image, and any column window:
+  // image_band), the same bytes whatever the thread count, band or window.
   void render(const image_band& band) const;
 
  private:
@@ -48,6 +59,7 @@ class renderer {
   int threads_;
   kernels::render_rows_fn kernel_ = nullptr;
   std::optional<plan> plan_;  // SIMD backends only
+  std::optional<sampling::sample_table> samples_;  // more than one sample
 };
 
 // Number of threads "all cores" means here.

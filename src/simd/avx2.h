@@ -110,4 +110,26 @@ RAYCAST_INLINE void store_rgbf(float* dst, vfloat r, vfloat g, vfloat b) {
   _mm256_storeu_ps(dst + 16, _mm256_permute2f128_ps(o1, o2, 0x31));
 }
 
+// Unsigned 32-bit lanes for the samplers' counter-based hashes
+// (scene/sampler.h): wrap-around + and *, xor, logical shifts.
+struct vuint {
+  __m256i v;
+  vuint() = default;
+  RAYCAST_INLINE vuint(__m256i x) : v(x) {}
+  RAYCAST_INLINE vuint(uint32_t s) : v(_mm256_set1_epi32(int32_t(s))) {}
+  // start, start + 1, ... in lane order.
+  static RAYCAST_INLINE vuint iota(uint32_t start) {
+    return _mm256_add_epi32(_mm256_set1_epi32(int32_t(start)), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+  }
+};
+RAYCAST_INLINE vuint operator+(vuint a, vuint b) { return _mm256_add_epi32(a.v, b.v); }
+RAYCAST_INLINE vuint operator*(vuint a, vuint b) { return _mm256_mullo_epi32(a.v, b.v); }
+RAYCAST_INLINE vuint operator^(vuint a, vuint b) { return _mm256_xor_si256(a.v, b.v); }
+RAYCAST_INLINE vuint operator&(vuint a, vuint b) { return _mm256_and_si256(a.v, b.v); }
+RAYCAST_INLINE vuint operator|(vuint a, vuint b) { return _mm256_or_si256(a.v, b.v); }
+RAYCAST_INLINE vuint operator>>(vuint a, int n) { return _mm256_srli_epi32(a.v, n); }
+RAYCAST_INLINE vuint operator<<(vuint a, int n) { return _mm256_slli_epi32(a.v, n); }
+// Lanes below 2^31, as floats (exact below 2^24).
+RAYCAST_INLINE vfloat to_float(vuint a) { return _mm256_cvtepi32_ps(a.v); }
+
 }  // namespace raycast::simd::avx2

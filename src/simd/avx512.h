@@ -155,4 +155,27 @@ RAYCAST_INLINE void store_rgbf(float* dst, vfloat r, vfloat g, vfloat b) {
   _mm512_storeu_ps(dst + 32, out2);
 }
 
+// Unsigned 32-bit lanes for the samplers' counter-based hashes
+// (scene/sampler.h): wrap-around + and *, xor, logical shifts.
+struct vuint {
+  __m512i v;
+  vuint() = default;
+  RAYCAST_INLINE vuint(__m512i x) : v(x) {}
+  RAYCAST_INLINE vuint(uint32_t s) : v(_mm512_set1_epi32(int32_t(s))) {}
+  // start, start + 1, ... in lane order.
+  static RAYCAST_INLINE vuint iota(uint32_t start) {
+    return _mm512_add_epi32(_mm512_set1_epi32(int32_t(start)),
+                            _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15));
+  }
+};
+RAYCAST_INLINE vuint operator+(vuint a, vuint b) { return _mm512_add_epi32(a.v, b.v); }
+RAYCAST_INLINE vuint operator*(vuint a, vuint b) { return _mm512_mullo_epi32(a.v, b.v); }
+RAYCAST_INLINE vuint operator^(vuint a, vuint b) { return _mm512_xor_si512(a.v, b.v); }
+RAYCAST_INLINE vuint operator&(vuint a, vuint b) { return _mm512_and_si512(a.v, b.v); }
+RAYCAST_INLINE vuint operator|(vuint a, vuint b) { return _mm512_or_si512(a.v, b.v); }
+RAYCAST_INLINE vuint operator>>(vuint a, int n) { return _mm512_srli_epi32(a.v, unsigned(n)); }
+RAYCAST_INLINE vuint operator<<(vuint a, int n) { return _mm512_slli_epi32(a.v, unsigned(n)); }
+// Lanes below 2^31, as floats (exact below 2^24).
+RAYCAST_INLINE vfloat to_float(vuint a) { return _mm512_cvtepi32_ps(a.v); }
+
 }  // namespace raycast::simd::avx512

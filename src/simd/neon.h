@@ -149,4 +149,38 @@ RAYCAST_INLINE void store_rgbf(float* dst, vfloat r, vfloat g, vfloat b) {
   vst3q_f32(dst + 12, (float32x4x3_t{{r.hi, g.hi, b.hi}}));
 }
 
+// Unsigned 32-bit lanes for the samplers' counter-based hashes
+// (scene/sampler.h): wrap-around + and *, xor, logical shifts (by a
+// register count: vshrq_n needs an immediate even where not inlined).
+struct vuint {
+  uint32x4_t lo, hi;
+  vuint() = default;
+  RAYCAST_INLINE vuint(uint32x4_t l, uint32x4_t h) : lo(l), hi(h) {}
+  RAYCAST_INLINE vuint(uint32_t s) : lo(vdupq_n_u32(s)), hi(lo) {}
+  // start, start + 1, ... in lane order.
+  static RAYCAST_INLINE vuint iota(uint32_t start) {
+    static constexpr uint32_t k[8] = {0, 1, 2, 3, 4, 5, 6, 7};
+    const uint32x4_t s = vdupq_n_u32(start);
+    return {vaddq_u32(s, vld1q_u32(k)), vaddq_u32(s, vld1q_u32(k + 4))};
+  }
+};
+#define RAYCAST_NEON_UINT(name, op) \
+  RAYCAST_INLINE vuint name(vuint a, vuint b) { return {op(a.lo, b.lo), op(a.hi, b.hi)}; }
+RAYCAST_NEON_UINT(operator+, vaddq_u32)
+RAYCAST_NEON_UINT(operator*, vmulq_u32)
+RAYCAST_NEON_UINT(operator^, veorq_u32)
+RAYCAST_NEON_UINT(operator&, vandq_u32)
+RAYCAST_NEON_UINT(operator|, vorrq_u32)
+#undef RAYCAST_NEON_UINT
+RAYCAST_INLINE vuint operator>>(vuint a, int n) {
+  const int32x4_t c = vdupq_n_s32(-n);
+  return {vshlq_u32(a.lo, c), vshlq_u32(a.hi, c)};
+}
+RAYCAST_INLINE vuint operator<<(vuint a, int n) {
+  const int32x4_t c = vdupq_n_s32(n);
+  return {vshlq_u32(a.lo, c), vshlq_u32(a.hi, c)};
+}
+// Lanes below 2^31, as floats (exact below 2^24).
+RAYCAST_INLINE vfloat to_float(vuint a) { return {vcvtq_f32_u32(a.lo), vcvtq_f32_u32(a.hi)}; }
+
 }  // namespace raycast::simd::neon

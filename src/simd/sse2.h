@@ -142,4 +142,38 @@ RAYCAST_INLINE void store_rgbf(float* dst, vfloat r, vfloat g, vfloat b) {
   store_rgbf_half(dst + 12, r.hi, g.hi, b.hi);
 }
 
+// Unsigned 32-bit lanes for the samplers' counter-based hashes
+// (scene/sampler.h): wrap-around + and *, xor, logical shifts.
+struct vuint {
+  __m128i lo, hi;
+  vuint() = default;
+  RAYCAST_INLINE vuint(__m128i l, __m128i h) : lo(l), hi(h) {}
+  RAYCAST_INLINE vuint(uint32_t s) : lo(_mm_set1_epi32(int32_t(s))), hi(lo) {}
+  // start, start + 1, ... in lane order.
+  static RAYCAST_INLINE vuint iota(uint32_t start) {
+    const __m128i s = _mm_set1_epi32(int32_t(start));
+    return {_mm_add_epi32(s, _mm_setr_epi32(0, 1, 2, 3)), _mm_add_epi32(s, _mm_setr_epi32(4, 5, 6, 7))};
+  }
+};
+// SSE2 has no 32-bit low multiply (SSE4.1's pmulld): two 32x32->64 multiplies
+// of the even and odd lanes, their low halves interleaved.
+RAYCAST_INLINE __m128i mullo32(__m128i a, __m128i b) {
+  const __m128i even = _mm_mul_epu32(a, b);
+  const __m128i odd = _mm_mul_epu32(_mm_srli_epi64(a, 32), _mm_srli_epi64(b, 32));
+  return _mm_unpacklo_epi32(_mm_shuffle_epi32(even, _MM_SHUFFLE(0, 0, 2, 0)),
+                            _mm_shuffle_epi32(odd, _MM_SHUFFLE(0, 0, 2, 0)));
+}
+#define RAYCAST_SSE2_UINT(name, op) \
+  RAYCAST_INLINE vuint name(vuint a, vuint b) { return {op(a.lo, b.lo), op(a.hi, b.hi)}; }
+RAYCAST_SSE2_UINT(operator+, _mm_add_epi32)
+RAYCAST_SSE2_UINT(operator*, mullo32)
+RAYCAST_SSE2_UINT(operator^, _mm_xor_si128)
+RAYCAST_SSE2_UINT(operator&, _mm_and_si128)
+RAYCAST_SSE2_UINT(operator|, _mm_or_si128)
+#undef RAYCAST_SSE2_UINT
+RAYCAST_INLINE vuint operator>>(vuint a, int n) { return {_mm_srli_epi32(a.lo, n), _mm_srli_epi32(a.hi, n)}; }
+RAYCAST_INLINE vuint operator<<(vuint a, int n) { return {_mm_slli_epi32(a.lo, n), _mm_slli_epi32(a.hi, n)}; }
+// Lanes below 2^31, as floats (exact below 2^24).
+RAYCAST_INLINE vfloat to_float(vuint a) { return {_mm_cvtepi32_ps(a.lo), _mm_cvtepi32_ps(a.hi)}; }
+
 }  // namespace raycast::simd::sse2

@@ -1,0 +1,78 @@
+#include "scene/sampler.h"
+
+#include <cmath>
+
+namespace raycast {
+
+std::string_view to_string(sampler_kind k) {
+  switch (k) {
+    case sampler_kind::random: return "random";
+    case sampler_kind::stratified: return "stratified";
+    case sampler_kind::sobol: return "sobol";
+  }
+  return "?";
+}
+
+std::optional<sampler_kind> parse_sampler(std::string_view text) {
+  for (sampler_kind k : {sampler_kind::random, sampler_kind::stratified, sampler_kind::sobol})
+    if (text == to_string(k)) return k;
+  return std::nullopt;
+}
+
+namespace sampling {
+namespace {
+
+// Dimension 1 of the Sobol sequence (its generator matrix is Pascal's
+// triangle mod 2; Burley 2020, listing 1).
+uint32_t sobol_dimension1(uint32_t index) {
+  uint32_t v = 1u << 31, x = 0;
+  for (; index != 0; index >>= 1, v ^= v >> 1)
+    if (index & 1u) x ^= v;
+  return x;
+}
+
+}  // namespace
+
+sample_table::sample_table(sampler_kind kind, uint32_t count, uint64_t seed) {
+  plan_.kind = kind;
+  plan_.count = count;
+  plan_.seed_key = mix(uint32_t(seed) ^ mix(uint32_t(seed >> 32) + golden));
+  uint32_t nx = 1;
+  for (uint32_t d = 1; uint64_t(d) * d <= count; ++d)
+    if (count % d == 0) nx = d;
+  plan_.nx = nx;
+  plan_.ny = count / nx;
+  plan_.inv_nx = 1.0f / float(plan_.nx);
+  plan_.inv_ny = 1.0f / float(plan_.ny);
+  slots_.resize(count);
+  for (uint32_t s = 0; s < count; ++s) {
+    sample_slot& sl = slots_[s];
+    if (kind == sampler_kind::sobol) {
+      sl.k0 = s;
+      sl.k1 = reverse_bits(sobol_dimension1(s));
+    } else {
+      sl.k0 = (2 * s + 1) * golden;
+      sl.k1 = (2 * s + 2) * golden;
+    }
+    sl.sx = float(s % nx);
+    sl.sy = float(s / nx);
+  }
+  plan_.slots = slots_.data();
+}
+
+void sample_offsets(const sample_plan& p, uint32_t i, uint32_t j, uint32_t s, float& xi, float& eta) {
+  switch (p.kind) {
+    case sampler_kind::random:
+      offsets<sampler_kind::random>(p, seeds_for<sampler_kind::random>(p, i, j), s, xi, eta);
+      break;
+    case sampler_kind::stratified:
+      offsets<sampler_kind::stratified>(p, seeds_for<sampler_kind::stratified>(p, i, j), s, xi, eta);
+      break;
+    case sampler_kind::sobol:
+      offsets<sampler_kind::sobol>(p, seeds_for<sampler_kind::sobol>(p, i, j), s, xi, eta);
+      break;
+  }
+}
+
+}  // namespace sampling
+}  // namespace raycast

@@ -1,0 +1,157 @@
+// Where a pixel's samples fall (antialiasing, the book's ch. 7): the
+// samplers, written once for a lane type -- uint32_t and float for the scalar
+// renderer, a vector layer's vuint and vfloat for the kernels -- so that every
+// backend draws the same bits.
+//
+// Sample s of pixel (i, j) (j = 0 at the bottom) lies at (i + xi, j + eta),
+// xi and eta in [0, 1) on a 2^-24 grid: up and to the right of the one-sample
+// point, as the book's u = (i + random_double()) / (W - 1). The float renderer
+// turns that into su = su_i + xi * du, sv = sv_j + eta * dv (kernels/scalar.h;
+// du = 1 / (W - 1) in float, 0 when W = 1), so xi = eta = 0 is the one-sample
+// pixel's direction bit for bit.
+//
+// Randomness is counter-based, not a stream: every number is a hash of
+// (seed, pixel, sample index, dimension), so a pixel's samples are the same
+// whichever thread, band, region or backend renders it, and in whatever order.
+// The hash is Wellons' "lowbias32" (two multiplies, three xor-shifts; a
+// bijection of 32-bit integers with low bias), applied as
+//   key(i, j)   = mix(mix(i ^ seed_key) + j * golden)          per pixel
+//   random(k)   = mix(key + k * golden)                        k = 2s + 1 + dimension
+// (golden = 2^32 / phi, so key + k * golden is a Weyl sequence per pixel).
+//
+// The samplers (--sampler):
+// - random: xi, eta = random(2s + 1), random(2s + 2) -- the book's choice.
+// - stratified: an nx x ny grid of strata, nx the largest divisor of N not
+//   above sqrt(N) (10 x 10 for 100, 1 x N for a prime N), sample s in stratum
+//   (s mod nx, s div nx), jittered within it by random(...) as above.
+// - sobol: the first N points of the 2-D Sobol sequence, Owen-scrambled per
+//   pixel with Burley's hash-based nested uniform scramble ("Practical
+//   Hash-based Owen Scrambling", JCGT 2020): each dimension's value bit
+//   reversed, put through the Laine-Karras permutation keyed by a per-pixel,
+//   per-dimension seed, and reversed back. Every power of two N is a (0, m, 2)
+//   net: one sample in each of N elementary rectangles of every shape.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+namespace raycast {
+
+enum class sampler_kind : uint8_t { random, stratified, sobol };
+// The sampler with the lowest error for its run time on the bench's scenes
+// (raycast-bench's antialiasing rows; README "Antialiasing").
+inline constexpr sampler_kind default_sampler = sampler_kind::sobol;
+std::string_view to_string(sampler_kind k);
+std::optional<sampler_kind> parse_sampler(std::string_view text);
+
+namespace sampling {
+
+inline constexpr uint32_t golden = 0x9e3779b9u;
+inline constexpr float one_below = 0x1.fffffep-1f;  // the largest float below 1
+
+// The scalar lane type's operations, as the vector layers spell them.
+inline float to_float(uint32_t x) { return float(x); }
+inline float min(float a, float b) { return a < b ? a : b; }
+
+// lowbias32 (Chris Wellons, "Prospecting for hash functions").
+template <class U>
+inline U mix(U x) {
+  x = x ^ (x >> 16);
+  x = x * U(0x7feb352du);
+  x = x ^ (x >> 15);
+  x = x * U(0x846ca68bu);
+  return x ^ (x >> 16);
+}
+
+template <class U>
+inline U reverse_bits(U x) {
+  x = ((x >> 1) & U(0x55555555u)) | ((x & U(0x55555555u)) << 1);
+  x = ((x >> 2) & U(0x33333333u)) | ((x & U(0x33333333u)) << 2);
+  x = ((x >> 4) & U(0x0f0f0f0fu)) | ((x & U(0x0f0f0f0fu)) << 4);
+  x = ((x >> 8) & U(0x00ff00ffu)) | ((x & U(0x00ff00ffu)) << 8);
+  return (x >> 16) | (x << 16);
+}
+
+// Laine and Karras's permutation: a bit of x flips depending only on the
+// bits below it (on reversed values: the bits above it, as Owen scrambling).
+template <class U>
+inline U laine_karras(U x, U seed) {
+  x = x + seed;
+  x = x ^ (x * U(0x6c50b47cu));
+  x = x ^ (x * U(0xb82f1e52u));
+  x = x ^ (x * U(0xc7afe638u));
+  return x ^ (x * U(0x8d22f6e6u));
+}
+
+// The top 24 bits as a float in [0, 1).
+template <class F, class U>
+inline F unit(U bits) {
+  return F(to_float(bits >> 8)) * F(0x1p-24f);
+}
+
+// Sample s's per-sample constants, the same for every pixel (the kernels
+// broadcast them): random and stratified add k0, k1 to the pixel's key;
+// stratified's stratum is (sx, sy); sobol's k0, k1 are the bit-reversed
+// Sobol values of dimensions 0 and 1 (dimension 0 reversed is s itself).
+struct sample_slot {
+  uint32_t k0, k1;
+  float sx, sy;
+};
+
+// Everything a render's samples depend on but the pixel.
+struct sample_plan {
+  sampler_kind kind = sampler_kind::random;
+  uint32_t count = 1;
+  uint32_t seed_key = 0;
+  uint32_t nx = 1, ny = 1;           // stratified: the grid
+  float inv_nx = 1.0f, inv_ny = 1.0f;  // 1 / nx, 1 / ny in float
+  const sample_slot* slots = nullptr;  // count entries
+};
+
+// The per-pixel state: the key, or sobol's two scramble seeds.
+template <class U>
+struct pixel_seeds {
+  U a, b;
+};
+
+template <sampler_kind K, class U>
+inline pixel_seeds<U> seeds_for(const sample_plan& p, U i, uint32_t j) {
+  const U key = mix(mix(i ^ U(p.seed_key)) + U(j * golden));
+  if constexpr (K == sampler_kind::sobol) return {mix(key ^ U(0x68bc21ebu)), mix(key ^ U(0x02e5be93u))};
+  else return {key, key};
+}
+
+// Sample s's offsets (xi, eta) within the pixel, in [0, 1).
+template <sampler_kind K, class F, class U>
+inline void offsets(const sample_plan& p, const pixel_seeds<U>& px, uint32_t s, F& xi, F& eta) {
+  const sample_slot& sl = p.slots[s];
+  if constexpr (K == sampler_kind::random) {
+    xi = unit<F>(mix(px.a + U(sl.k0)));
+    eta = unit<F>(mix(px.a + U(sl.k1)));
+  } else if constexpr (K == sampler_kind::stratified) {
+    // (stratum + jitter) / strata, kept below 1 where it rounds up to it.
+    xi = min((F(sl.sx) + unit<F>(mix(px.a + U(sl.k0)))) * F(p.inv_nx), F(one_below));
+    eta = min((F(sl.sy) + unit<F>(mix(px.a + U(sl.k1)))) * F(p.inv_ny), F(one_below));
+  } else {
+    xi = unit<F>(reverse_bits(laine_karras(U(sl.k0), px.a)));
+    eta = unit<F>(reverse_bits(laine_karras(U(sl.k1), px.b)));
+  }
+}
+
+// The plan and its per-sample table, owned.
+class sample_table {
+ public:
+  sample_table(sampler_kind kind, uint32_t count, uint64_t seed);
+  const sample_plan& plan() const { return plan_; }
+
+ private:
+  std::vector<sample_slot> slots_;
+  sample_plan plan_;
+};
+
+// (xi, eta) of sample s of pixel (i, j), for the scalar renderers and tests.
+void sample_offsets(const sample_plan& p, uint32_t i, uint32_t j, uint32_t s, float& xi, float& eta);
+
+}  // namespace sampling
+}  // namespace raycast
