@@ -71,8 +71,9 @@ book_ch7_image render_book_ch7(int w, int h, int samples_per_pixel, unsigned see
     for (int i = 0; i < w; ++i) {
       const color c = scale * book::sample_pixel(cam, world, i, j, w, h, samples_per_pixel);
       for (int k = 0; k < 3; ++k) {
-        img.rgb[row + 3 * size_t(i) + size_t(k)] = static_cast<float>(c[k]);
-        if (bytes) img.rgb8[row + 3 * size_t(i) + size_t(k)] = static_cast<unsigned char>(book::to_byte(c[k]));
+        const size_t at = row + 3 * size_t(i) + size_t(k);
+        img.rgb[at] = static_cast<float>(c[k]);
+        if (bytes) img.rgb8[at] = static_cast<unsigned char>(book::to_byte(c[k]));
       }
     }
   }

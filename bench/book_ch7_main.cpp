@@ -29,7 +29,8 @@ int main() {
   for (int j = image_height - 1; j >= 0; --j) {
     std::cerr << "\rScanlines remaining: " << j << ' ' << std::flush;
     for (int i = 0; i < image_width; ++i) {
-      const color pixel_color = sample_pixel(cam, world, i, j, image_width, image_height, samples_per_pixel);
+      const color pixel_color =
+          sample_pixel(cam, world, i, j, image_width, image_height, samples_per_pixel);
       write_color(std::cout, pixel_color, samples_per_pixel);
     }
   }

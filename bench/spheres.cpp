@@ -118,8 +118,8 @@ void bench_book7(benchmark::State& state, int w, int h, int spp) {
 // aa/book7/SCENE/WxH/sSAMPLES: the book's antialiased picture (ch. 7), 400x225
 // at 100 samples as its program renders it.
 void register_aa_rows() {
-  benchmark::RegisterBenchmark(aa_row_name("book7", "world", 400, 225, 100).c_str(), bench_book7, 400,
-                               225, 100)
+  const std::string name = aa_row_name("book7", "world", 400, 225, 100);
+  benchmark::RegisterBenchmark(name.c_str(), bench_book7, 400, 225, 100)
       ->Unit(benchmark::kMillisecond);
 }
 

@@ -35,7 +35,8 @@ std::vector<double> box_filtered_reference(int k) {
     for (int i = 0; i < W; ++i) {
       raycast::color sum(0.0);
       for (int b = 0; b < k; ++b)
-        for (int a = 0; a < k; ++a) sum += raycast::reference_pixel(fine, int64_t(k) * i + a, int64_t(k) * j + b);
+        for (int a = 0; a < k; ++a)
+          sum += raycast::reference_pixel(fine, int64_t(k) * i + a, int64_t(k) * j + b);
       const size_t at = (size_t(H - 1 - j) * W + size_t(i)) * 3;  // rows top first
       for (int c = 0; c < 3; ++c) out[at + size_t(c)] = sum[c] / (k * k);
     }
