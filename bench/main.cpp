@@ -292,6 +292,7 @@ int run(int argc, char** argv) {
   for (const size2& sz : sizes)
     if (sz.w <= 3840) scene_sizes.emplace_back(sz.w, sz.h);  // the reference at 15360x8640 takes minutes
   register_sphere_rows(scene_sizes, threads);
+  register_aa_rows();
   register_embree_rows(scene_sizes, opt.quick);
 
   run_table table;

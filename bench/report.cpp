@@ -89,6 +89,14 @@ std::optional<row_name> parse_row_name(const std::string& name) {
     if (!parse_size(p[3], n.width, n.height)) return std::nullopt;
     return n;
   }
+  if (p.size() == 5 && p[0] == "aa" && p[4].size() > 1 && p[4][0] == 's') {
+    n.kind = p[0];
+    n.backend = p[1];
+    n.scene = p[2];
+    n.samples = std::atoll(p[4].c_str() + 1);
+    if (!parse_size(p[3], n.width, n.height) || n.samples < 1) return std::nullopt;
+    return n;
+  }
   if (p.size() == 4 && p[0] == "bound" && p[1] == "memset") {
     n.kind = p[0];
     n.backend = p[1];
@@ -123,6 +131,12 @@ std::string scene_row_name(const std::string& backend, std::string_view precisio
 
 std::string memset_row_name(int64_t w, int64_t h) {
   return strf("bound/memset/%lldx%lld/rgb8", static_cast<long long>(w), static_cast<long long>(h));
+}
+
+std::string aa_row_name(const std::string& backend, const std::string& scene, int64_t w, int64_t h,
+                        int64_t samples) {
+  return strf("aa/%s/%s/%lldx%lld/s%lld", backend.c_str(), scene.c_str(), static_cast<long long>(w),
+              static_cast<long long>(h), static_cast<long long>(samples));
 }
 
 std::optional<double> run_table::seconds(const std::string& name) const {
@@ -166,6 +180,10 @@ void run_table::fill(std::vector<Run>& runs) {
     const std::string key = std::string(1, '|').append(aggregate_key(r));
     r.counters["ns_per_px"] = sec * 1e9 / px;
     r.counters["Mpix_per_s"] = px / sec * 1e-6;
+    if (name->kind == "aa") {
+      r.counters["ns_per_sample"] = sec * 1e9 / (px * double(name->samples));
+      continue;
+    }
     if (name->kind == "shortcuts") {
       const std::string none =
           shortcuts_row_name(name->backend, name->precision, name->width, name->height, "none");

@@ -17,18 +17,22 @@ namespace raycast::bench {
 
 // A row name split into its parts: render/BACKEND/PRECISION/WxH/tTHREADS/OUT
 // (the sky), render/BACKEND/PRECISION/SCENE/WxH/tTHREADS/OUT (a scene with
-// spheres; kind "scene") or bound/memset/WxH/rgb8.
+// spheres; kind "scene"), aa/BACKEND/SCENE/WxH/sSAMPLES (antialiased, SAMPLES
+// rays a pixel; kind "aa") or bound/memset/WxH/rgb8.
 struct row_name {
   std::string kind, backend, precision, out;
   std::string scene;  // scene rows only
   int64_t width = 0, height = 0;
   int threads = 1;
   std::string shortcuts;  // shortcuts/ rows: which shortcuts the plan may take
+  int64_t samples = 1;    // aa/ rows: rays a pixel
 };
 std::optional<row_name> parse_row_name(const std::string& name);
 std::string render_row_name(const std::string& backend, std::string_view precision, int64_t w,
                             int64_t h, int threads, std::string_view out);
 std::string memset_row_name(int64_t w, int64_t h);
+std::string aa_row_name(const std::string& backend, const std::string& scene, int64_t w, int64_t h,
+                        int64_t samples);
 std::string scene_row_name(const std::string& backend, std::string_view precision,
                            const std::string& scene, int64_t w, int64_t h, int threads,
                            std::string_view out);
@@ -50,8 +54,8 @@ struct measured_row {
 // Times of every row reported so far, shared by the display and file reporters.
 class run_table {
  public:
-  // Adds ns_per_px, Mpix_per_s, speedup and vs_memset to the runs of one
-  // benchmark and records them.
+  // Adds ns_per_px, Mpix_per_s, speedup and vs_memset (aa/ rows:
+  // ns_per_sample) to the runs of one benchmark and records them.
   void fill(std::vector<benchmark::BenchmarkReporter::Run>& runs);
   const std::map<std::string, measured_row>& rows() const { return rows_; }
   std::optional<double> seconds(const std::string& name) const;
