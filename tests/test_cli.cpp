@@ -199,6 +199,43 @@ TEST_F(Cli, BandsAssembleTheWholeImage) {
       << "the banded file differs from the image rendered in one call";
 }
 
+// Issue 14's recipe (README "Rendering across machines"): a frame split into
+// four regions, each rendered by its own process as a scheduler's job would
+// be, then pasted together, is the single render byte for byte -- many
+// samples, seeded, on two threads against one.
+TEST_F(Cli, FourRegionProcessesAssembleTheSingleRender) {
+  const std::vector<std::string> common = {"--scene", "world", "--samples", "8", "--seed", "3", "-w", "203", "-q"};
+  auto with = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = common;
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+  };
+  ASSERT_EQ(box.run(with({"--threads", "2", "-o", "full.ppm"})).exit_code, 0);
+  const raycast_test::ppm full = parse_ppm(read_file(box.work() / "full.ppm"));
+  ASSERT_EQ(full.error, "");
+  ASSERT_EQ(full.width, 203);
+  const int64_t W = full.width, H = full.height;
+  const int64_t xs[] = {0, 77, W}, ys[] = {0, 50, H};
+  std::string pasted(full.pixels.size(), '\0');
+  for (int q = 0; q < 4; ++q) {
+    const int64_t x0 = xs[q % 2], x1 = xs[q % 2 + 1], y0 = ys[q / 2], y1 = ys[q / 2 + 1];
+    const std::string name = "part" + std::to_string(q) + ".ppm";
+    const run_result r = box.run(with({"--threads", "1", "--region",
+                                       std::to_string(x0) + "," + std::to_string(y0) + "," + std::to_string(x1) +
+                                           "," + std::to_string(y1),
+                                       "-o", name}));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const raycast_test::ppm part = parse_ppm(read_file(box.work() / name));
+    ASSERT_EQ(part.error, "");
+    ASSERT_EQ(part.width, x1 - x0);
+    ASSERT_EQ(part.height, y1 - y0);
+    for (int64_t y = y0; y < y1; ++y)
+      pasted.replace(size_t((y * W + x0) * 3), size_t((x1 - x0) * 3), part.pixels, size_t((y - y0) * (x1 - x0) * 3),
+                     size_t((x1 - x0) * 3));
+  }
+  EXPECT_TRUE(pasted == full.pixels) << "the pasted regions differ from the single render";
+}
+
 TEST_F(Cli, FastPrecisionStaysWithinOneLsbOfTheReference) {
   const run_result r = box.run({"--precision", "fast", "-o", "fast.ppm"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -326,6 +363,11 @@ const usage_case usage_cases[] = {
     {"precision_unknown", {"--precision", "nope", "-o", "{out}"}, "--precision"},
     {"unknown_option", {"--bogus", "-o", "{out}"}, "--bogus"},
     {"scene_unknown", {"--scene", "cornell-box", "-o", "{out}"}, "red-sphere, normals, world"},
+    {"samples_over_max", {"--samples", "1048577", "-o", "{out}"}, "--samples"},
+    {"region_empty_width", {"--region", "5,0,5,8", "-o", "{out}"}, "--region"},
+    {"region_below_zero", {"--region", "0,-1,8,8", "-o", "{out}"}, "--region"},
+    {"region_past_height", {"--region", "0,0,8,226", "-o", "{out}"}, "--region"},
+    {"region_reversed", {"--region", "8,8,0,0", "-o", "{out}"}, "--region"},
 };
 
 std::string usage_name(const ::testing::TestParamInfo<usage_case>& p) { return p.param.name; }
@@ -362,6 +404,10 @@ const valued_option valued_options[] = {
     {"--precision", "--precision", "exact", "double", nullptr},
     {"--threads", "--threads", "2", "2.0", "1025"},
     {"--scene", "--scene", "world", "nowhere", nullptr},
+    {"--samples", "--samples", "4", "four", "0"},
+    {"--sampler", "--sampler", "sobol", "halton", nullptr},
+    {"--seed", "--seed", "7", "-1", "18446744073709551616"},
+    {"--region", "--region", "0,0,8,8", "0,0,8", "0,0,401,8"},
 };
 
 std::vector<usage_case> every_option_cases() {
