@@ -40,6 +40,8 @@ float_scene prepare_float_scene(const scene& s) {
     const double half = 0.5 * (double(f.top[k]) - double(f.bottom[k]));
     f.fast_qa[k] = float(255.999 * half);
     f.fast_qb[k] = float(255.999 * (double(f.bottom[k]) + half));
+    f.sky_mid[k] = float(double(f.bottom[k]) + 0.5 * double(f.delta[k]));
+    f.sky_half[k] = float(0.5 * double(f.delta[k]));
     f.lo[k] = std::min(f.bottom[k], f.top[k]);
     f.hi[k] = std::max(f.bottom[k], f.top[k]);
   }

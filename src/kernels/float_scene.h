@@ -32,6 +32,10 @@ struct float_scene {
   float bottom[3] = {}, top[3] = {};
   float delta[3] = {};          // top - bottom, in float
   float lo[3] = {}, hi[3] = {};  // min and max of bottom and top
+  // The sky as an affine function of u = d.y / |d|: bottom + (u + 1) / 2 *
+  // delta = sky_mid + u * sky_half (from bottom and delta in double; the
+  // sampled path, kernels/sampled_sky.h).
+  float sky_mid[3] = {}, sky_half[3] = {};
   // Fast mode's 8-bit shading folded into one multiply-add on y/|d|:
   // 255.999 * lerp(bottom, top, (uy + 1) / 2) = uy * fast_qa + fast_qb.
   float fast_qa[3] = {}, fast_qb[3] = {};

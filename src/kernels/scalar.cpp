@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "kernels/newton.h"
+#include "kernels/sampled_sky.h"
 
 #if defined(__SSE__) || defined(__x86_64__)
 #include <xmmintrin.h>
@@ -104,25 +105,33 @@ traced trace(const float_scene& f, float su, float sv) {
   return tr;
 }
 
-// The colour of the ray at (su, sv), exact: the closest sphere's shading, else the sky.
-void sample_colour(const float_scene& f, float su, float sv, float out[3]) {
-  const traced tr = trace(f, su, sv);
+// The colour of a hit (tr.hit < the sphere count): flat, or 0.5 (N + 1)
+// with N facing the ray inside a sphere.
+void hit_colour(const float_scene& f, const traced& tr, float out[3]) {
   const float_spheres& sp = f.spheres;
   const size_t hit = tr.hit;
   const float* d = tr.d;
-  if (hit == sp.size()) {
-    const float uy = d[1] / std::sqrt(vmax(tr.n2, FLT_MIN));
-    shade(f, clampf((uy + 1.0f) * 0.5f, 0.0f, 1.0f), out);
-  } else if (sp.flat[hit] == 1.0f) {
+  if (sp.flat[hit] == 1.0f) {
     out[0] = sp.red[hit];
     out[1] = sp.green[hit];
     out[2] = sp.blue[hit];
+    return;
+  }
+  const float fo[3] = {sp.fx[hit], sp.fy[hit], sp.fz[hit]};
+  float n[3];
+  for (int k = 0; k < 3; ++k) n[k] = (fo[k] + tr.s * d[k]) * sp.inv_r[hit];
+  const bool back = sp.inside[hit] && (n[0] * d[0] + n[1] * d[1]) + n[2] * d[2] >= 0.0f;  // face the ray
+  for (int k = 0; k < 3; ++k) out[k] = ((back ? -n[k] : n[k]) + 1.0f) * 0.5f;
+}
+
+// The colour of the ray at (su, sv), exact: the closest sphere's shading, else the sky.
+void sample_colour(const float_scene& f, float su, float sv, float out[3]) {
+  const traced tr = trace(f, su, sv);
+  if (tr.hit == f.spheres.size()) {
+    const float uy = tr.d[1] / std::sqrt(vmax(tr.n2, FLT_MIN));
+    shade(f, clampf((uy + 1.0f) * 0.5f, 0.0f, 1.0f), out);
   } else {
-    const float fo[3] = {sp.fx[hit], sp.fy[hit], sp.fz[hit]};
-    float n[3];
-    for (int k = 0; k < 3; ++k) n[k] = (fo[k] + tr.s * d[k]) * sp.inv_r[hit];
-    const bool back = sp.inside[hit] && (n[0] * d[0] + n[1] * d[1]) + n[2] * d[2] >= 0.0f;  // face the ray
-    for (int k = 0; k < 3; ++k) out[k] = ((back ? -n[k] : n[k]) + 1.0f) * 0.5f;
+    hit_colour(f, tr, out);
   }
 }
 
@@ -159,15 +168,23 @@ scalar_hit scalar_trace(const float_scene& f, int64_t i, int64_t j) {
 void scalar_pixel_samples(const float_scene& f, const sampling::sample_plan& sp, int64_t i, int64_t j,
                           float out[3]) {
   const float su = pixel_su(f, i), sv = pixel_sv(f, j);
-  float acc[3] = {0.0f, 0.0f, 0.0f};
+  const float_spheres& spheres = f.spheres;
+  float acc[3] = {0.0f, 0.0f, 0.0f}, sky_sum = 0.0f, sky_count = 0.0f;
   for (uint32_t s = 0; s < sp.count; ++s) {
-    float xi, eta, c[3];
+    float xi, eta;
     sampling::sample_offsets(sp, uint32_t(i), uint32_t(j), s, xi, eta);
-    sample_colour(f, su + xi * f.du, sv + eta * f.dv, c);
-    for (int k = 0; k < 3; ++k) acc[k] = acc[k] + c[k];
+    const traced tr = trace(f, su + xi * f.du, sv + eta * f.dv);
+    if (tr.hit == spheres.size()) {
+      sky_sum = sky_sum + sampled::sky_u<float, uint32_t>(tr.d[1], tr.n2);
+      sky_count = sky_count + 1.0f;
+    } else {
+      float c[3];
+      hit_colour(f, tr, c);
+      for (int k = 0; k < 3; ++k) acc[k] = acc[k] + c[k];
+    }
   }
   const float n = float(sp.count);
-  for (int k = 0; k < 3; ++k) out[k] = acc[k] / n;
+  for (int k = 0; k < 3; ++k) out[k] = (acc[k] + (sky_count * f.sky_mid[k] + sky_sum * f.sky_half[k])) / n;
 }
 
 void render_scalar(const float_scene& f, precision p, const image_band& band,

@@ -68,9 +68,11 @@ scalar_hit scalar_trace(const float_scene& f, int64_t i, int64_t j);
 
 // Many samples per pixel (scene/sampler.h gives where they fall): sample s
 // of pixel (i, j) is the ray at su = su_i + xi * du, sv = sv_j + eta * dv
-// (f.du, f.dv), its colour as above in exact mode (both precisions: fast mode
-// has no sampled path of its own), summed in sample order from 0 and divided
-// by the count: acc = ((0 + c_0) + c_1) + ..., pixel = acc / float(N).
+// (f.du, f.dv), its hit and hit colour as above; a sample that hits nothing
+// adds to the pixel's sky sum instead (kernels/sampled_sky.h). In sample
+// order from 0: acc = ((0 + c_0) + c_1) + ... over the hits, then
+//   pixel = (acc + (sky count * sky_mid + sky sum * sky_half)) / float(N).
+// Both precisions: fast mode has no sampled path of its own.
 void scalar_pixel_samples(const float_scene& f, const sampling::sample_plan& sp, int64_t i, int64_t j,
                           float out[3]);
 

@@ -27,6 +27,7 @@
 #include <cstdlib>
 
 #include "kernels/kernel.h"
+#include "kernels/sampled_sky.h"
 
 namespace raycast::kernels::RAYCAST_ISA {
 namespace {
@@ -166,6 +167,34 @@ struct sky_shader {
   }
 };
 
+// The hit colour of each lane that hit (float_spheres.h): 0.5 (N + 1), N
+// facing the ray inside a sphere, or the sphere's flat colour.
+template <int Shades>
+RAYCAST_INLINE void hit_colour(const sphere_arrays& sp, const closest_hit<Shades>& h, const rays& r,
+                               vfloat out[3]) {
+  const vfloat* d = r.d;
+  if constexpr ((Shades & normal_shading) != 0) {
+    const vfloat f[3] = {h.fx, h.fy, h.fz};
+    vfloat n[3];
+    for (int k = 0; k < 3; ++k) n[k] = (f[k] + h.s * d[k]) * h.inv_r;
+    if (sp.any_inside) {  // face the ray, inside a sphere
+      const vmask back = (h.inside == 1.0f) & ((n[0] * d[0] + n[1] * d[1]) + n[2] * d[2] >= 0.0f);
+      for (int k = 0; k < 3; ++k) n[k] = select(back, -n[k], n[k]);
+    }
+    for (int k = 0; k < 3; ++k) out[k] = (n[k] + 1.0f) * 0.5f;
+  }
+  if constexpr (Shades == flat_shading) {
+    out[0] = h.red;
+    out[1] = h.green;
+    out[2] = h.blue;
+  } else if constexpr (Shades == (normal_shading | flat_shading)) {
+    const vmask flat = h.flat == 1.0f;
+    out[0] = select(flat, h.red, out[0]);
+    out[1] = select(flat, h.green, out[1]);
+    out[2] = select(flat, h.blue, out[2]);
+  }
+}
+
 // The colour of one batch (float_spheres.h): the closest hit's shading, the
 // sky where nothing was hit.
 template <int Shades>
@@ -175,35 +204,15 @@ RAYCAST_INLINE void shade(const sky_shader& sky, const sphere_arrays& sp, const 
     sky.shade(r, out);
     return;
   }
-  const vfloat* d = r.d;
-  vfloat hit_colour[3];
-  if constexpr ((Shades & normal_shading) != 0) {
-    const vfloat f[3] = {h.fx, h.fy, h.fz};
-    vfloat n[3];
-    for (int k = 0; k < 3; ++k) n[k] = (f[k] + h.s * d[k]) * h.inv_r;
-    if (sp.any_inside) {  // face the ray, inside a sphere
-      const vmask back = (h.inside == 1.0f) & ((n[0] * d[0] + n[1] * d[1]) + n[2] * d[2] >= 0.0f);
-      for (int k = 0; k < 3; ++k) n[k] = select(back, -n[k], n[k]);
-    }
-    for (int k = 0; k < 3; ++k) hit_colour[k] = (n[k] + 1.0f) * 0.5f;
-  }
-  if constexpr (Shades == flat_shading) {
-    hit_colour[0] = h.red;
-    hit_colour[1] = h.green;
-    hit_colour[2] = h.blue;
-  } else if constexpr (Shades == (normal_shading | flat_shading)) {
-    const vmask flat = h.flat == 1.0f;
-    hit_colour[0] = select(flat, h.red, hit_colour[0]);
-    hit_colour[1] = select(flat, h.green, hit_colour[1]);
-    hit_colour[2] = select(flat, h.blue, hit_colour[2]);
-  }
+  vfloat hit[3];
+  hit_colour(sp, h, r, hit);
   if (all(h.hit)) {
-    for (int k = 0; k < 3; ++k) out[k] = hit_colour[k];
+    for (int k = 0; k < 3; ++k) out[k] = hit[k];
     return;
   }
   vfloat sky_colour[3];
   sky.shade(r, sky_colour);
-  for (int k = 0; k < 3; ++k) out[k] = select(h.hit, hit_colour[k], sky_colour[k]);
+  for (int k = 0; k < 3; ++k) out[k] = select(h.hit, hit[k], sky_colour[k]);
 }
 
 // Stores n pixels of a batch at column i0; Reversed, all N with their lanes
@@ -488,7 +497,6 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
   const float_scene& s = *a.scene;
   const sphere_arrays& sp = a.spheres;
   const sampling::sample_plan& plan = *a.samples;
-  const sky_shader sky(a);
   const bool f32 = band.format == pixel_format::rgb_f32;
   const int64_t W = s.width, c0 = band.col_begin, c1 = band.cols_end(W);
   const int64_t batches = (W + N - 1) / N;
@@ -522,7 +530,9 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
         const vuint column = vuint::iota(uint32_t(i0));
         const vfloat su_i = W == 1 ? vfloat(0.0f) : (to_float(column) - s.mid_col) / s.last_col;  // scalar.h
         const sampling::pixel_seeds<vuint> seeds = sampling::seeds_for<K>(plan, column, uint32_t(j));
-        vfloat acc[3] = {0.0f, 0.0f, 0.0f};
+        // Per lane: the hit colours' sum, and the sky's sum of u and count
+        // (kernels/sampled_sky.h).
+        vfloat acc[3] = {0.0f, 0.0f, 0.0f}, sky_sum = 0.0f, sky_count = 0.0f;
         for (uint32_t t = 0; t < plan.count; ++t) {
           vfloat xi, eta;
           sampling::offsets<K>(plan, seeds, t, xi, eta);
@@ -530,17 +540,27 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
           rays ry;
           for (int k = 0; k < 3; ++k) ry.d[k] = (centre[k] + su * horizontal[k]) + sv * vertical[k];
           ry.n2 = (ry.d[0] * ry.d[0] + ry.d[1] * ry.d[1]) + ry.d[2] * ry.d[2];
-          vfloat c[3];
-          if (tests == 0) {
-            sky.shade(ry, c);
-          } else {
-            closest_hit<Shades> h;
-            intersect(sp, list, tests, ry, h);
-            shade(sky, sp, h, ry, c);
+          if (tests == 0) {  // no sphere comes near these rays
+            sky_sum = sky_sum + sampled::sky_u<vfloat, vuint>(ry.d[1], ry.n2);
+            sky_count = sky_count + 1.0f;
+            continue;
           }
-          for (int k = 0; k < 3; ++k) acc[k] = acc[k] + c[k];
+          closest_hit<Shades> h;
+          intersect(sp, list, tests, ry, h);
+          // A lane adds only what its sample gave: + 0 leaves a sum that is
+          // never -0 unchanged, so the other lanes' adds change nothing.
+          if (any(h.hit)) {
+            vfloat c[3];
+            hit_colour(sp, h, ry, c);
+            const bool every = all(h.hit);
+            for (int k = 0; k < 3; ++k) acc[k] = acc[k] + (every ? c[k] : select(h.hit, c[k], 0.0f));
+            if (every) continue;
+          }
+          const vfloat u = sampled::sky_u<vfloat, vuint>(ry.d[1], ry.n2);
+          sky_sum = sky_sum + select(h.hit, 0.0f, u);
+          sky_count = sky_count + select(h.hit, 0.0f, 1.0f);
         }
-        for (int k = 0; k < 3; ++k) acc[k] = acc[k] / count;
+        for (int k = 0; k < 3; ++k) acc[k] = (acc[k] + (sky_count * s.sky_mid[k] + sky_sum * s.sky_half[k])) / count;
         if (f32) store_window<true>(out, i0, c0, c1, acc);
         else store_window<false>(out, i0, c0, c1, acc);
       }

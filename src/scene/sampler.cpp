@@ -22,8 +22,16 @@ std::optional<sampler_kind> parse_sampler(std::string_view text) {
 namespace sampling {
 namespace {
 
-// Dimension 1 of the Sobol sequence (its generator matrix is Pascal's
-// triangle mod 2; Burley 2020, listing 1).
+// Dimension 0 of the Sobol sequence: the van der Corput sequence, index's
+// bits reversed.
+uint32_t sobol_dimension0(uint32_t index) {
+  uint32_t x = 0;
+  for (int b = 0; b < 32; ++b) x |= ((index >> b) & 1u) << (31 - b);
+  return x;
+}
+
+// Dimension 1 (its generator matrix is Pascal's triangle mod 2; Burley,
+// "Practical Hash-based Owen Scrambling", JCGT 2020, listing 1).
 uint32_t sobol_dimension1(uint32_t index) {
   uint32_t v = 1u << 31, x = 0;
   for (; index != 0; index >>= 1, v ^= v >> 1)
@@ -48,11 +56,11 @@ sample_table::sample_table(sampler_kind kind, uint32_t count, uint64_t seed) {
   for (uint32_t s = 0; s < count; ++s) {
     sample_slot& sl = slots_[s];
     if (kind == sampler_kind::sobol) {
-      sl.k0 = s;
-      sl.k1 = reverse_bits(sobol_dimension1(s));
+      sl.k0 = sobol_dimension0(s);
+      sl.k1 = sobol_dimension1(s);
     } else {
-      sl.k0 = (2 * s + 1) * golden;
-      sl.k1 = (2 * s + 2) * golden;
+      sl.k0 = (s + 1) * golden;
+      sl.k1 = 0;
     }
     sl.sx = float(s % nx);
     sl.sy = float(s / nx);

@@ -11,25 +11,26 @@
 // pixel's direction bit for bit.
 //
 // Randomness is counter-based, not a stream: every number is a hash of
-// (seed, pixel, sample index, dimension), so a pixel's samples are the same
-// whichever thread, band, region or backend renders it, and in whatever order.
-// The hash is Wellons' "lowbias32" (two multiplies, three xor-shifts; a
-// bijection of 32-bit integers with low bias), applied as
+// (seed, pixel, sample index), so a pixel's samples are the same whichever
+// thread, band, region or backend renders it, and in whatever order. The
+// hash is Wellons' "lowbias32" (two multiplies, three xor-shifts; a bijection
+// of 32-bit integers with low bias), applied as
 //   key(i, j)   = mix(mix(i ^ seed_key) + j * golden)          per pixel
-//   random(k)   = mix(key + k * golden)                        k = 2s + 1 + dimension
-// (golden = 2^32 / phi, so key + k * golden is a Weyl sequence per pixel).
+//   random(s)   = mix(key + (s + 1) * golden)                  per sample
+// (golden = 2^32 / phi, so key + (s + 1) * golden is a Weyl sequence per
+// pixel); one hash gives both offsets, 16 bits each: xi its high half, eta
+// its low half, on a 2^-16 grid (a 65536th of a pixel).
 //
 // The samplers (--sampler):
-// - random: xi, eta = random(2s + 1), random(2s + 2) -- the book's choice.
+// - random: xi, eta from random(s) -- the book's choice.
 // - stratified: an nx x ny grid of strata, nx the largest divisor of N not
 //   above sqrt(N) (10 x 10 for 100, 1 x N for a prime N), sample s in stratum
-//   (s mod nx, s div nx), jittered within it by random(...) as above.
-// - sobol: the first N points of the 2-D Sobol sequence, Owen-scrambled per
-//   pixel with Burley's hash-based nested uniform scramble ("Practical
-//   Hash-based Owen Scrambling", JCGT 2020): each dimension's value bit
-//   reversed, put through the Laine-Karras permutation keyed by a per-pixel,
-//   per-dimension seed, and reversed back. Every power of two N is a (0, m, 2)
-//   net: one sample in each of N elementary rectangles of every shape.
+//   (s mod nx, s div nx), jittered within it by random(s) as above.
+// - sobol: the first N points of the 2-D Sobol sequence (24 bits) with a
+//   random digital shift per pixel: each dimension's bits xor a per-pixel
+//   seed, mix(key ^ constant). A digital shift keeps the net property -- for
+//   a power of two N, one sample in each of the N elementary rectangles of
+//   every shape (2^-a x 2^-(m-a)) -- and costs one xor per dimension.
 #pragma once
 #include <cstdint>
 #include <optional>
@@ -64,36 +65,25 @@ inline U mix(U x) {
   return x ^ (x >> 16);
 }
 
-template <class U>
-inline U reverse_bits(U x) {
-  x = ((x >> 1) & U(0x55555555u)) | ((x & U(0x55555555u)) << 1);
-  x = ((x >> 2) & U(0x33333333u)) | ((x & U(0x33333333u)) << 2);
-  x = ((x >> 4) & U(0x0f0f0f0fu)) | ((x & U(0x0f0f0f0fu)) << 4);
-  x = ((x >> 8) & U(0x00ff00ffu)) | ((x & U(0x00ff00ffu)) << 8);
-  return (x >> 16) | (x << 16);
-}
-
-// Laine and Karras's permutation: a bit of x flips depending only on the
-// bits below it (on reversed values: the bits above it, as Owen scrambling).
-template <class U>
-inline U laine_karras(U x, U seed) {
-  x = x + seed;
-  x = x ^ (x * U(0x6c50b47cu));
-  x = x ^ (x * U(0xb82f1e52u));
-  x = x ^ (x * U(0xc7afe638u));
-  return x ^ (x * U(0x8d22f6e6u));
-}
-
 // The top 24 bits as a float in [0, 1).
 template <class F, class U>
 inline F unit(U bits) {
   return F(to_float(bits >> 8)) * F(0x1p-24f);
 }
+// The high and the low 16 bits as floats in [0, 1).
+template <class F, class U>
+inline F unit_high(U bits) {
+  return F(to_float(bits >> 16)) * F(0x1p-16f);
+}
+template <class F, class U>
+inline F unit_low(U bits) {
+  return F(to_float(bits & U(0xffffu))) * F(0x1p-16f);
+}
 
 // Sample s's per-sample constants, the same for every pixel (the kernels
-// broadcast them): random and stratified add k0, k1 to the pixel's key;
-// stratified's stratum is (sx, sy); sobol's k0, k1 are the bit-reversed
-// Sobol values of dimensions 0 and 1 (dimension 0 reversed is s itself).
+// broadcast them): random and stratified add k0 = (s + 1) * golden to the
+// pixel's key; stratified's stratum is (sx, sy); sobol's k0, k1 are the
+// Sobol values of dimensions 0 and 1.
 struct sample_slot {
   uint32_t k0, k1;
   float sx, sy;
@@ -109,7 +99,7 @@ struct sample_plan {
   const sample_slot* slots = nullptr;  // count entries
 };
 
-// The per-pixel state: the key, or sobol's two scramble seeds.
+// The per-pixel state: the key, or sobol's two digital shifts.
 template <class U>
 struct pixel_seeds {
   U a, b;
@@ -127,15 +117,17 @@ template <sampler_kind K, class F, class U>
 inline void offsets(const sample_plan& p, const pixel_seeds<U>& px, uint32_t s, F& xi, F& eta) {
   const sample_slot& sl = p.slots[s];
   if constexpr (K == sampler_kind::random) {
-    xi = unit<F>(mix(px.a + U(sl.k0)));
-    eta = unit<F>(mix(px.a + U(sl.k1)));
+    const U r = mix(px.a + U(sl.k0));
+    xi = unit_high<F>(r);
+    eta = unit_low<F>(r);
   } else if constexpr (K == sampler_kind::stratified) {
     // (stratum + jitter) / strata, kept below 1 where it rounds up to it.
-    xi = min((F(sl.sx) + unit<F>(mix(px.a + U(sl.k0)))) * F(p.inv_nx), F(one_below));
-    eta = min((F(sl.sy) + unit<F>(mix(px.a + U(sl.k1)))) * F(p.inv_ny), F(one_below));
+    const U r = mix(px.a + U(sl.k0));
+    xi = min((F(sl.sx) + unit_high<F>(r)) * F(p.inv_nx), F(one_below));
+    eta = min((F(sl.sy) + unit_low<F>(r)) * F(p.inv_ny), F(one_below));
   } else {
-    xi = unit<F>(reverse_bits(laine_karras(U(sl.k0), px.a)));
-    eta = unit<F>(reverse_bits(laine_karras(U(sl.k1), px.b)));
+    xi = unit<F>(U(sl.k0) ^ px.a);
+    eta = unit<F>(U(sl.k1) ^ px.b);
   }
 }
 

@@ -123,6 +123,7 @@ struct vuint {
   }
 };
 RAYCAST_INLINE vuint operator+(vuint a, vuint b) { return _mm256_add_epi32(a.v, b.v); }
+RAYCAST_INLINE vuint operator-(vuint a, vuint b) { return _mm256_sub_epi32(a.v, b.v); }
 RAYCAST_INLINE vuint operator*(vuint a, vuint b) { return _mm256_mullo_epi32(a.v, b.v); }
 RAYCAST_INLINE vuint operator^(vuint a, vuint b) { return _mm256_xor_si256(a.v, b.v); }
 RAYCAST_INLINE vuint operator&(vuint a, vuint b) { return _mm256_and_si256(a.v, b.v); }
@@ -131,5 +132,9 @@ RAYCAST_INLINE vuint operator>>(vuint a, int n) { return _mm256_srli_epi32(a.v, 
 RAYCAST_INLINE vuint operator<<(vuint a, int n) { return _mm256_slli_epi32(a.v, n); }
 // Lanes below 2^31, as floats (exact below 2^24).
 RAYCAST_INLINE vfloat to_float(vuint a) { return _mm256_cvtepi32_ps(a.v); }
+
+// The bits of a float as an unsigned integer, and back.
+RAYCAST_INLINE vuint as_uint(vfloat a) { return _mm256_castps_si256(a.v); }
+RAYCAST_INLINE vfloat as_float(vuint a) { return _mm256_castsi256_ps(a.v); }
 
 }  // namespace raycast::simd::avx2

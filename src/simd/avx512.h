@@ -169,6 +169,7 @@ struct vuint {
   }
 };
 RAYCAST_INLINE vuint operator+(vuint a, vuint b) { return _mm512_add_epi32(a.v, b.v); }
+RAYCAST_INLINE vuint operator-(vuint a, vuint b) { return _mm512_sub_epi32(a.v, b.v); }
 RAYCAST_INLINE vuint operator*(vuint a, vuint b) { return _mm512_mullo_epi32(a.v, b.v); }
 RAYCAST_INLINE vuint operator^(vuint a, vuint b) { return _mm512_xor_si512(a.v, b.v); }
 RAYCAST_INLINE vuint operator&(vuint a, vuint b) { return _mm512_and_si512(a.v, b.v); }
@@ -177,5 +178,9 @@ RAYCAST_INLINE vuint operator>>(vuint a, int n) { return _mm512_srli_epi32(a.v, 
 RAYCAST_INLINE vuint operator<<(vuint a, int n) { return _mm512_slli_epi32(a.v, unsigned(n)); }
 // Lanes below 2^31, as floats (exact below 2^24).
 RAYCAST_INLINE vfloat to_float(vuint a) { return _mm512_cvtepi32_ps(a.v); }
+
+// The bits of a float as an unsigned integer, and back.
+RAYCAST_INLINE vuint as_uint(vfloat a) { return _mm512_castps_si512(a.v); }
+RAYCAST_INLINE vfloat as_float(vuint a) { return _mm512_castsi512_ps(a.v); }
 
 }  // namespace raycast::simd::avx512

@@ -167,6 +167,7 @@ struct vuint {
 #define RAYCAST_NEON_UINT(name, op) \
   RAYCAST_INLINE vuint name(vuint a, vuint b) { return {op(a.lo, b.lo), op(a.hi, b.hi)}; }
 RAYCAST_NEON_UINT(operator+, vaddq_u32)
+RAYCAST_NEON_UINT(operator-, vsubq_u32)
 RAYCAST_NEON_UINT(operator*, vmulq_u32)
 RAYCAST_NEON_UINT(operator^, veorq_u32)
 RAYCAST_NEON_UINT(operator&, vandq_u32)
@@ -182,5 +183,9 @@ RAYCAST_INLINE vuint operator<<(vuint a, int n) {
 }
 // Lanes below 2^31, as floats (exact below 2^24).
 RAYCAST_INLINE vfloat to_float(vuint a) { return {vcvtq_f32_u32(a.lo), vcvtq_f32_u32(a.hi)}; }
+
+// The bits of a float as an unsigned integer, and back.
+RAYCAST_INLINE vuint as_uint(vfloat a) { return {vreinterpretq_u32_f32(a.lo), vreinterpretq_u32_f32(a.hi)}; }
+RAYCAST_INLINE vfloat as_float(vuint a) { return {vreinterpretq_f32_u32(a.lo), vreinterpretq_f32_u32(a.hi)}; }
 
 }  // namespace raycast::simd::neon

@@ -166,6 +166,7 @@ RAYCAST_INLINE __m128i mullo32(__m128i a, __m128i b) {
 #define RAYCAST_SSE2_UINT(name, op) \
   RAYCAST_INLINE vuint name(vuint a, vuint b) { return {op(a.lo, b.lo), op(a.hi, b.hi)}; }
 RAYCAST_SSE2_UINT(operator+, _mm_add_epi32)
+RAYCAST_SSE2_UINT(operator-, _mm_sub_epi32)
 RAYCAST_SSE2_UINT(operator*, mullo32)
 RAYCAST_SSE2_UINT(operator^, _mm_xor_si128)
 RAYCAST_SSE2_UINT(operator&, _mm_and_si128)
@@ -175,5 +176,9 @@ RAYCAST_INLINE vuint operator>>(vuint a, int n) { return {_mm_srli_epi32(a.lo, n
 RAYCAST_INLINE vuint operator<<(vuint a, int n) { return {_mm_slli_epi32(a.lo, n), _mm_slli_epi32(a.hi, n)}; }
 // Lanes below 2^31, as floats (exact below 2^24).
 RAYCAST_INLINE vfloat to_float(vuint a) { return {_mm_cvtepi32_ps(a.lo), _mm_cvtepi32_ps(a.hi)}; }
+
+// The bits of a float as an unsigned integer, and back.
+RAYCAST_INLINE vuint as_uint(vfloat a) { return {_mm_castps_si128(a.lo), _mm_castps_si128(a.hi)}; }
+RAYCAST_INLINE vfloat as_float(vuint a) { return {_mm_castsi128_ps(a.lo), _mm_castsi128_ps(a.hi)}; }
 
 }  // namespace raycast::simd::sse2
