@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "aa_report.h"
+#include "aa_rows.h"
 #include "embree_peer.h"
 #include "embree_rows.h"
 #include "errors.h"
@@ -28,6 +30,7 @@ struct options {
   std::string plot;
   std::optional<std::pair<int64_t, int64_t>> summary_size;
   int summary_threads = 1;
+  std::string aa_reference_dir = RAYCAST_BENCH_CACHE_DIR;
 };
 
 struct size2 {
@@ -145,6 +148,8 @@ void print_help() {
       "  --summary-size WxH      size of the summary table (default 3840x2160;\n"
       "                          --quick: 1920x1080)\n"
       "  --summary-threads N     threads of the summary table (default 1)\n"
+      "  --aa-reference-dir DIR  where the aa/ rows' converged references are cached\n"
+      "                          (default " RAYCAST_BENCH_CACHE_DIR "; '' : not cached)\n"
       "Google Benchmark's flags:\n");
   benchmark::PrintDefaultHelp();
 }
@@ -172,6 +177,8 @@ options parse_own_flags(int& argc, char** argv) {
       o.quick = true;
     } else if (auto v = value("--plot")) {
       o.plot = *v;
+    } else if (auto d = value("--aa-reference-dir")) {
+      o.aa_reference_dir = *d;
     } else if (auto sz = value("--summary-size")) {
       long long w = 0, h = 0;
       char tail = 0;
@@ -292,7 +299,8 @@ int run(int argc, char** argv) {
   for (const size2& sz : sizes)
     if (sz.w <= 3840) scene_sizes.emplace_back(sz.w, sz.h);  // the reference at 15360x8640 takes minutes
   register_sphere_rows(scene_sizes, threads);
-  register_aa_rows();
+  const aa_config aa = aa_config_for(opt.quick, opt.aa_reference_dir);
+  register_aa_rows(aa);
   register_embree_rows(scene_sizes, opt.quick);
 
   run_table table;
@@ -320,6 +328,9 @@ int run(int argc, char** argv) {
     }
     os << "Plot written to " << opt.plot << "\n";
   }
+  print_aa_summary(os, table, aa, aa_references_used(), so.cpu, so.date);
+  if (!opt.plot.empty() && write_aa_svg(aa_plot_file(opt.plot), table, aa, so.cpu, so.date))
+    os << "Antialiasing plot written to " << aa_plot_file(opt.plot) << "\n";
   std::vector<std::string> names;
   for (const shortcut_set& v : shortcut_sets()) names.push_back(v.name);
   print_shortcuts(os, table, names);

@@ -10,11 +10,8 @@
 #include <sstream>
 
 namespace raycast::bench {
-namespace {
 
-using Run = benchmark::BenchmarkReporter::Run;
-
-__attribute__((format(printf, 1, 2))) std::string strf(const char* format, ...) {
+std::string strf(const char* format, ...) {
   char buf[512];
   va_list args;
   va_start(args, format);
@@ -22,6 +19,10 @@ __attribute__((format(printf, 1, 2))) std::string strf(const char* format, ...) 
   va_end(args);
   return buf;
 }
+
+namespace {
+
+using Run = benchmark::BenchmarkReporter::Run;
 
 std::vector<std::string> split(const std::string& s, char sep) {
   std::vector<std::string> parts;
@@ -89,12 +90,14 @@ std::optional<row_name> parse_row_name(const std::string& name) {
     if (!parse_size(p[3], n.width, n.height)) return std::nullopt;
     return n;
   }
-  if (p.size() == 5 && p[0] == "aa" && p[4].size() > 1 && p[4][0] == 's') {
+  if ((p.size() == 5 || p.size() == 6) && p[0] == "aa" && p.back().size() > 1 && p.back()[0] == 's') {
+    const size_t at = p.size() - 5;  // 1 when the row names a sampler
     n.kind = p[0];
     n.backend = p[1];
-    n.scene = p[2];
-    n.samples = std::atoll(p[4].c_str() + 1);
-    if (!parse_size(p[3], n.width, n.height) || n.samples < 1) return std::nullopt;
+    if (at) n.sampler = p[2];
+    n.scene = p[2 + at];
+    n.samples = std::atoll(p.back().c_str() + 1);
+    if (!parse_size(p[3 + at], n.width, n.height) || n.samples < 1) return std::nullopt;
     return n;
   }
   if (p.size() == 4 && p[0] == "bound" && p[1] == "memset") {
@@ -133,10 +136,11 @@ std::string memset_row_name(int64_t w, int64_t h) {
   return strf("bound/memset/%lldx%lld/rgb8", static_cast<long long>(w), static_cast<long long>(h));
 }
 
-std::string aa_row_name(const std::string& backend, const std::string& scene, int64_t w, int64_t h,
-                        int64_t samples) {
-  return strf("aa/%s/%s/%lldx%lld/s%lld", backend.c_str(), scene.c_str(), static_cast<long long>(w),
-              static_cast<long long>(h), static_cast<long long>(samples));
+std::string aa_row_name(const std::string& backend, const std::string& sampler, const std::string& scene,
+                        int64_t w, int64_t h, int64_t samples) {
+  return strf("aa/%s%s%s/%s/%lldx%lld/s%lld", backend.c_str(), sampler.empty() ? "" : "/",
+              sampler.c_str(), scene.c_str(), static_cast<long long>(w), static_cast<long long>(h),
+              static_cast<long long>(samples));
 }
 
 std::optional<double> run_table::seconds(const std::string& name) const {
@@ -198,7 +202,7 @@ void run_table::fill(std::vector<Run>& runs) {
     if (auto t = seconds(bound + key)) r.counters["vs_memset"] = sec / *t;
   }
 
-  if (name->kind != "render" && name->kind != "scene") return;
+  if (name->kind != "render" && name->kind != "scene" && name->kind != "aa") return;
   measured_row row;
   row.name = *name;
   for (const Run& r : runs) {
@@ -274,8 +278,6 @@ std::vector<summary_row> summary_rows(const run_table& table, const summary_opti
   return rows;
 }
 
-namespace {
-
 std::string size_text(int64_t w, int64_t h) {
   return strf("%lldx%lld", static_cast<long long>(w), static_cast<long long>(h));
 }
@@ -285,8 +287,6 @@ std::string error_text(double e) {
   if (!std::isfinite(e)) return "inf";
   return strf("%.1e", e);
 }
-
-}  // namespace
 
 void print_summary(std::ostream& os, const std::vector<summary_row>& rows,
                    const summary_options& opt, const std::vector<skipped_backend>& skipped) {
@@ -320,8 +320,6 @@ void print_summary(std::ostream& os, const std::vector<summary_row>& rows,
   os << "\n";
 }
 
-namespace {
-
 std::string xml_escape(const std::string& s) {
   std::string out;
   for (char c : s) {
@@ -341,14 +339,68 @@ std::string decade_label(int e) {
   return strf("10<tspan dy=\"-7\" font-size=\"10\">%d</tspan>", e);
 }
 
-}  // namespace
+
+void write_svg_header(std::ostream& out, const log_chart& c, const std::string& title,
+                      const std::string& subtitle) {
+  out << strf(
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" "
+      "viewBox=\"0 0 %.0f %.0f\" font-family=\"sans-serif\" font-size=\"12\">\n",
+      c.W, c.H, c.W, c.H);
+  out << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  out << strf("<text x=\"%.0f\" y=\"28\" text-anchor=\"middle\" font-size=\"16\">", c.W / 2)
+      << title << "</text>\n";
+  out << strf("<text x=\"%.0f\" y=\"50\" text-anchor=\"middle\" fill=\"#444\">", c.W / 2) << subtitle
+      << "</text>\n";
+  // Grid, ticks and axis titles.
+  for (int e = c.x0; e <= c.x1; ++e) {
+    const double x = c.px(std::pow(10.0, e));
+    out << strf("<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#ddd\"/>\n", x, c.top,
+                x, c.top + c.ph());
+    out << strf("<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">", x, c.top + c.ph() + 20)
+        << decade_label(e) << "</text>\n";
+  }
+  for (int e = c.y0; e <= c.y1; ++e) {
+    const double y = c.py(std::pow(10.0, e));
+    out << strf("<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#ddd\"/>\n", c.left,
+                y, c.left + c.pw(), y);
+    out << strf("<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">", c.left - 8, y + 4)
+        << (e == c.y0 && c.zero_at_bottom ? std::string("0") : decade_label(e)) << "</text>\n";
+  }
+  out << strf(
+      "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"none\" "
+      "stroke=\"#333\"/>\n",
+      c.left, c.top, c.pw(), c.ph());
+  out << strf("<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">", c.left + c.pw() / 2, c.H - 22)
+      << c.x_title << "</text>\n";
+  out << strf("<text transform=\"translate(24 %.1f) rotate(-90)\" text-anchor=\"middle\">",
+              c.top + c.ph() / 2)
+      << c.y_title << "</text>\n";
+}
+
+double log_chart::px(double v) const { return left + (std::log10(v) - x0) / (x1 - x0) * pw(); }
+
+double log_chart::py(double v) const {
+  const double y = std::isfinite(v) ? std::log10(std::max(v, y_floor)) : y1;
+  return top + ph() - (y - y0) / (y1 - y0) * ph();
+}
+
+void log_chart::fit_x(double lo, double hi) {
+  x0 = int(std::floor(std::log10(lo)));
+  x1 = std::max(x0 + 1, int(std::ceil(std::log10(hi))));
+}
+
+void log_chart::fit_y(double lo, double hi) {
+  y_floor = lo;
+  y0 = int(std::floor(std::log10(lo) + 1e-9));  // 1e-9 is decade -9, whatever log10 rounds to
+  y1 = std::max(y0 + 1, int(std::ceil(std::log10(hi))));
+}
 
 bool write_svg(const std::string& file, const std::vector<summary_row>& rows,
                const summary_options& opt) {
   std::ofstream out(file);
   if (!out) return false;
-  constexpr double W = 960, H = 640, left = 90, right = 150, top = 80, bottom = 70;
   constexpr double floor_err = 1e-9;
+  log_chart c;
   double xlo = 1e300, xhi = 0, yhi = floor_err * 10;
   for (const summary_row& r : rows) {
     xlo = std::min(xlo, r.ns_per_px);
@@ -356,53 +408,18 @@ bool write_svg(const std::string& file, const std::vector<summary_row>& rows,
     if (std::isfinite(r.max_abs_err)) yhi = std::max(yhi, r.max_abs_err);  // NaN: not plotted
   }
   if (rows.empty()) xlo = xhi = 1;
-  const int x0 = int(std::floor(std::log10(xlo))),
-            x1 = std::max(x0 + 1, int(std::ceil(std::log10(xhi))));
-  const int y0 = int(std::log10(floor_err)), y1 = std::max(y0 + 1, int(std::ceil(std::log10(yhi))));
-  const double pw = W - left - right, ph = H - top - bottom;
-  auto px = [&](double ns) { return left + (std::log10(ns) - x0) / (x1 - x0) * pw; };
-  auto py = [&](double e) {
-    const double y = std::isfinite(e) ? std::log10(std::max(e, floor_err)) : y1;
-    return top + ph - (y - y0) / (y1 - y0) * ph;
-  };
-
-  out << strf(
-      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" "
-      "viewBox=\"0 0 %.0f %.0f\" font-family=\"sans-serif\" font-size=\"12\">\n",
-      W, H, W, H);
-  out << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  out << strf("<text x=\"%.0f\" y=\"28\" text-anchor=\"middle\" font-size=\"16\">", W / 2)
-      << "raycast: error vs run time — " << xml_escape(opt.cpu) << ", " << opt.date << "</text>\n";
-  out << strf("<text x=\"%.0f\" y=\"50\" text-anchor=\"middle\" fill=\"#444\">", W / 2)
-      << size_text(opt.width, opt.height) << ", " << opt.threads << " thread"
-      << (opt.threads == 1 ? "" : "s") << ", " << opt.out
-      << " output; error vs the double reference; filled = Pareto-optimal</text>\n";
-  // Grid, ticks and axis titles.
-  for (int e = x0; e <= x1; ++e) {
-    const double x = px(std::pow(10.0, e));
-    out << strf("<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#ddd\"/>\n", x, top,
-                x, top + ph);
-    out << strf("<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">", x, top + ph + 20)
-        << decade_label(e) << "</text>\n";
-  }
-  for (int e = y0; e <= y1; ++e) {
-    const double y = py(std::pow(10.0, e));
-    out << strf("<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#ddd\"/>\n", left,
-                y, left + pw, y);
-    out << strf("<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">", left - 8, y + 4)
-        << (e == y0 ? std::string("0") : decade_label(e)) << "</text>\n";
-  }
-  out << strf(
-      "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"none\" "
-      "stroke=\"#333\"/>\n",
-      left, top, pw, ph);
-  out << strf(
-      "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">time per pixel (ns, log)</text>\n",
-      left + pw / 2, H - 22);
-  out << strf(
-      "<text transform=\"translate(24 %.1f) rotate(-90)\" text-anchor=\"middle\">"
-      "max abs error, linear colour (log; 0 at the bottom)</text>\n",
-      top + ph / 2);
+  c.fit_x(xlo, xhi);
+  c.fit_y(floor_err, yhi);
+  c.zero_at_bottom = true;
+  c.x_title = "time per pixel (ns, log)";
+  c.y_title = "max abs error, linear colour (log; 0 at the bottom)";
+  const double W = c.W, H = c.H, top = c.top;
+  auto px = [&](double ns) { return c.px(ns); };
+  auto py = [&](double e) { return c.py(e); };
+  write_svg_header(out, c, "raycast: error vs run time — " + xml_escape(opt.cpu) + ", " + opt.date,
+                   size_text(opt.width, opt.height) + ", " + std::to_string(opt.threads) + " thread" +
+                       (opt.threads == 1 ? "" : "s") + ", " + opt.out +
+                       " output; error vs the double reference; filled = Pareto-optimal");
   // Each scene's Pareto front as a dashed staircase (the edge of what it
   // dominates); rows are sorted by scene, then time.
   std::map<std::string, std::pair<std::string, std::string>> fronts;  // scene -> points, last y

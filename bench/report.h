@@ -17,8 +17,9 @@ namespace raycast::bench {
 
 // A row name split into its parts: render/BACKEND/PRECISION/WxH/tTHREADS/OUT
 // (the sky), render/BACKEND/PRECISION/SCENE/WxH/tTHREADS/OUT (a scene with
-// spheres; kind "scene"), aa/BACKEND/SCENE/WxH/sSAMPLES (antialiased, SAMPLES
-// rays a pixel; kind "aa") or bound/memset/WxH/rgb8.
+// spheres; kind "scene"), aa/BACKEND[/SAMPLER]/SCENE/WxH/sSAMPLES (antialiased,
+// SAMPLES rays a pixel; kind "aa"; the book's peer has no SAMPLER part) or
+// bound/memset/WxH/rgb8.
 struct row_name {
   std::string kind, backend, precision, out;
   std::string scene;  // scene rows only
@@ -26,13 +27,15 @@ struct row_name {
   int threads = 1;
   std::string shortcuts;  // shortcuts/ rows: which shortcuts the plan may take
   int64_t samples = 1;    // aa/ rows: rays a pixel
+  std::string sampler;    // aa/ rows of ours: random, stratified or sobol
 };
 std::optional<row_name> parse_row_name(const std::string& name);
 std::string render_row_name(const std::string& backend, std::string_view precision, int64_t w,
                             int64_t h, int threads, std::string_view out);
 std::string memset_row_name(int64_t w, int64_t h);
-std::string aa_row_name(const std::string& backend, const std::string& scene, int64_t w, int64_t h,
-                        int64_t samples);
+// sampler empty: aa/BACKEND/SCENE/WxH/sSAMPLES (the book's peer).
+std::string aa_row_name(const std::string& backend, const std::string& sampler, const std::string& scene,
+                        int64_t w, int64_t h, int64_t samples);
 std::string scene_row_name(const std::string& backend, std::string_view precision,
                            const std::string& scene, int64_t w, int64_t h, int threads,
                            std::string_view out);
@@ -104,6 +107,25 @@ struct summary_row {
 std::vector<summary_row> summary_rows(const run_table& table, const summary_options& opt);
 void print_summary(std::ostream& os, const std::vector<summary_row>& rows,
                    const summary_options& opt, const std::vector<skipped_backend>& skipped);
+// A log-log chart's frame: the page, the plot area, its decades and titles.
+struct log_chart {
+  double W = 960, H = 640, left = 90, right = 150, top = 80, bottom = 70;
+  int x0 = 0, x1 = 1, y0 = 0, y1 = 1;  // decades shown
+  double y_floor = 0;                  // values below it are drawn at it
+  bool zero_at_bottom = false;         // label the lowest decade "0"
+  std::string x_title, y_title;
+  double pw() const { return W - left - right; }
+  double ph() const { return H - top - bottom; }
+  double px(double v) const;  // page coordinates of a value
+  double py(double v) const;  // (infinite: the top)
+  void fit_x(double lo, double hi);  // the decades covering [lo, hi]
+  void fit_y(double lo, double hi);  // ...and the floor at lo
+};
+// The <svg> element, a white page, the title and subtitle (already escaped),
+// the grid, the decades' labels and the axis titles.
+void write_svg_header(std::ostream& out, const log_chart& c, const std::string& title,
+                      const std::string& subtitle);
+
 // Log-log scatter of ns/px against max_abs_err; false when the file cannot be written.
 bool write_svg(const std::string& file, const std::vector<summary_row>& rows,
                const summary_options& opt);
@@ -134,5 +156,13 @@ void print_sphere_stiff(std::ostream& os, const std::vector<sphere_stiff_result>
 
 std::string cpu_model();
 std::string today();
+
+// Text helpers the report rooms share: printf into a string, "WxH", an error
+// as "%.1e" (0 and inf spelled out), XML escaping, and an SVG "10^e" label.
+__attribute__((format(printf, 1, 2))) std::string strf(const char* format, ...);
+std::string size_text(int64_t w, int64_t h);
+std::string error_text(double e);
+std::string xml_escape(const std::string& s);
+std::string decade_label(int e);
 
 }  // namespace raycast::bench

@@ -9,7 +9,6 @@
 #include <tuple>
 
 #include "book_ch6.h"
-#include "book_ch7.h"
 #include "errors.h"
 #include "report.h"
 #include "scene/builtin.h"
@@ -94,34 +93,7 @@ void bench_book(benchmark::State& state, int64_t w, int64_t h) {
   set_error_counters(state, e.book, false);
 }
 
-// The book's ch. 7 program (bench/book_ch7.h) on world: samples_per_pixel
-// jittered rays a pixel, one thread. ns_per_sample (filled by the reporter,
-// report.h) is the time per ray the book's logic spends (rand() twice, the
-// virtual hits, the shading); rms_err
-// is its averaged colour against the one-ray double reference, the ch. 6
-// picture: antialiasing moves the edges, so it is not zero by design.
-void bench_book7(benchmark::State& state, int w, int h, int spp) {
-  book_ch7_image img;
-  for (auto _ : state) {
-    img = render_book_ch7(w, h, spp);
-    benchmark::DoNotOptimize(img.rgb.data());
-    benchmark::ClobberMemory();
-  }
-  const scene s = scene_of("world", w, h);
-  error_stats e;
-  raycast_test::reference_band(s, 0, h).compare(img.rgb.data(), nullptr, e);
-  state.counters["rms_err"] = e.rms_err();
-}
-
 }  // namespace
-
-// aa/book7/SCENE/WxH/sSAMPLES: the book's antialiased picture (ch. 7), 400x225
-// at 100 samples as its program renders it.
-void register_aa_rows() {
-  const std::string name = aa_row_name("book7", "world", 400, 225, 100);
-  benchmark::RegisterBenchmark(name.c_str(), bench_book7, 400, 225, 100)
-      ->Unit(benchmark::kMillisecond);
-}
 
 void register_sphere_rows(const std::vector<std::pair<int64_t, int64_t>>& sizes,
                           const std::vector<int>& threads) {

@@ -12,8 +12,4 @@ namespace raycast::bench {
 void register_sphere_rows(const std::vector<std::pair<int64_t, int64_t>>& sizes,
                           const std::vector<int>& threads);
 
-// aa/book7/world/400x225/s100: the book's ch. 7 program (bench/book_ch7.h),
-// 100 jittered samples a pixel, one thread, with ns_per_sample.
-void register_aa_rows();
-
 }  // namespace raycast::bench
