@@ -23,6 +23,7 @@
 // flat-shaded scene tracks no centres and computes no normals, a
 // normal-shaded one tracks no colours.
 #include <cfloat>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 
@@ -69,68 +70,93 @@ struct rays {
   bool have_inv_ = false;
 };
 
-// Tests the spheres list[0 .. count) (every sphere, 0 .. count, when list is null).
+// Records sphere k's hit where m (its s and t already chosen) in h.
 template <int Shades>
-RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, size_t count, rays& r,
-                              closest_hit<Shades>& h) {
-  const vfloat dx = r.d[0], dy = r.d[1], dz = r.d[2];
+RAYCAST_INLINE void record(const sphere_arrays& sp, size_t k, vmask m, vfloat s, closest_hit<Shades>& h) {
+  if (none(h.hit)) {  // the first sphere hit: lanes it misses never read these
+    h.hit = m;
+    if constexpr ((Shades & normal_shading) != 0) {
+      h.s = s;
+      h.fx = sp.fx[k];
+      h.fy = sp.fy[k];
+      h.fz = sp.fz[k];
+      h.inv_r = sp.inv_r[k];
+      if (sp.any_inside) h.inside = sp.inside[k] ? 1.0f : 0.0f;
+    }
+    if constexpr ((Shades & flat_shading) != 0) {
+      h.red = sp.red[k];
+      h.green = sp.green[k];
+      h.blue = sp.blue[k];
+      if constexpr (Shades == (normal_shading | flat_shading)) h.flat = sp.flat[k];
+    }
+    return;
+  }
+  h.hit = h.hit | m;
+  if constexpr ((Shades & normal_shading) != 0) {
+    h.s = select(m, s, h.s);
+    h.fx = select(m, vfloat(sp.fx[k]), h.fx);
+    h.fy = select(m, vfloat(sp.fy[k]), h.fy);
+    h.fz = select(m, vfloat(sp.fz[k]), h.fz);
+    h.inv_r = select(m, vfloat(sp.inv_r[k]), h.inv_r);
+    if (sp.any_inside) h.inside = select(m, vfloat(sp.inside[k] ? 1.0f : 0.0f), h.inside);
+  }
+  if constexpr ((Shades & flat_shading) != 0) {
+    h.red = select(m, vfloat(sp.red[k]), h.red);
+    h.green = select(m, vfloat(sp.green[k]), h.green);
+    h.blue = select(m, vfloat(sp.blue[k]), h.blue);
+    if constexpr (Shades == (normal_shading | flat_shading)) h.flat = select(m, vfloat(sp.flat[k]), h.flat);
+  }
+}
+
+// Tests the spheres list[0 .. count) (every sphere, 0 .. count, when list is
+// null) against M independent ray batches at once, each step written for all
+// M before the next (the sampled path takes two samples at a time: their
+// long dependency chains -- square root, then division -- overlap).
+template <int Shades, int M>
+RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, size_t count, rays (&r)[M],
+                              closest_hit<Shades> (&h)[M]) {
   for (size_t x = 0; x < count; ++x) {
     const size_t k = list ? list[x] : x;
     const vfloat fx = sp.fx[k], fy = sp.fy[k], fz = sp.fz[k];
-    const vfloat b = (fx * dx + fy * dy) + fz * dz;
-    vfloat disc;
+    vfloat b[M], disc[M];
+    vmask can_hit[M];
+    bool any_can = false;
+    for (int u = 0; u < M; ++u) b[u] = (fx * r[u].d[0] + fy * r[u].d[1]) + fz * r[u].d[2];
     if (sp.near[k]) {
-      disc = b * b - r.n2 * vfloat(sp.c[k]);
+      for (int u = 0; u < M; ++u) disc[u] = b[u] * b[u] - r[u].n2 * vfloat(sp.c[k]);
     } else {
-      const vfloat kb = b * r.inv_n2();
-      const vfloat vx = fx - kb * dx, vy = fy - kb * dy, vz = fz - kb * dz;
-      disc = r.n2 * (vfloat(sp.r2[k]) - ((vx * vx + vy * vy) + vz * vz));
-    }
-    const vmask can_hit = disc >= 0.0f;
-    if (none(can_hit)) continue;  // no lane can hit it: no sqrt, no divide
-    const vfloat q = -(b + copysign(sqrt(max(disc, 0.0f)), b));
-    vfloat s = vfloat(sp.c[k]) / q;
-    // The far root where the near one is behind (the camera inside).
-    const vmask behind = can_hit & !(s >= 0.0f);
-    if (any(behind)) s = select(behind, q / r.n2, s);
-    const vfloat t = s * vfloat(sp.scale[k]);
-    const vmask m = can_hit & (s >= 0.0f) & (t <= h.t);
-    h.t = select(m, t, h.t);
-    if (none(h.hit)) {  // the first sphere hit: lanes it misses never read these
-      h.hit = m;
-      if constexpr ((Shades & normal_shading) != 0) {
-        h.s = s;
-        h.fx = fx;
-        h.fy = fy;
-        h.fz = fz;
-        h.inv_r = sp.inv_r[k];
-        if (sp.any_inside) h.inside = sp.inside[k] ? 1.0f : 0.0f;
+      for (int u = 0; u < M; ++u) {
+        const vfloat kb = b[u] * r[u].inv_n2();
+        const vfloat vx = fx - kb * r[u].d[0], vy = fy - kb * r[u].d[1], vz = fz - kb * r[u].d[2];
+        disc[u] = r[u].n2 * (vfloat(sp.r2[k]) - ((vx * vx + vy * vy) + vz * vz));
       }
-      if constexpr ((Shades & flat_shading) != 0) {
-        h.red = sp.red[k];
-        h.green = sp.green[k];
-        h.blue = sp.blue[k];
-        if constexpr (Shades == (normal_shading | flat_shading)) h.flat = sp.flat[k];
-      }
-      continue;
     }
-    h.hit = h.hit | m;
-    if constexpr ((Shades & normal_shading) != 0) {
-      h.s = select(m, s, h.s);
-      h.fx = select(m, fx, h.fx);
-      h.fy = select(m, fy, h.fy);
-      h.fz = select(m, fz, h.fz);
-      h.inv_r = select(m, vfloat(sp.inv_r[k]), h.inv_r);
-      if (sp.any_inside) h.inside = select(m, vfloat(sp.inside[k] ? 1.0f : 0.0f), h.inside);
+    for (int u = 0; u < M; ++u) {
+      can_hit[u] = disc[u] >= 0.0f;
+      any_can = any_can || any(can_hit[u]);
     }
-    if constexpr ((Shades & flat_shading) != 0) {
-      h.red = select(m, vfloat(sp.red[k]), h.red);
-      h.green = select(m, vfloat(sp.green[k]), h.green);
-      h.blue = select(m, vfloat(sp.blue[k]), h.blue);
-      if constexpr (Shades == (normal_shading | flat_shading))
-        h.flat = select(m, vfloat(sp.flat[k]), h.flat);
+    if (!any_can) continue;  // no lane can hit it: no sqrt, no divide
+    vfloat q[M], s[M];
+    for (int u = 0; u < M; ++u) q[u] = -(b[u] + copysign(sqrt(max(disc[u], 0.0f)), b[u]));
+    for (int u = 0; u < M; ++u) s[u] = vfloat(sp.c[k]) / q[u];
+    for (int u = 0; u < M; ++u) {
+      // The far root where the near one is behind (the camera inside).
+      const vmask behind = can_hit[u] & !(s[u] >= 0.0f);
+      if (any(behind)) s[u] = select(behind, q[u] / r[u].n2, s[u]);
+      const vfloat t = s[u] * vfloat(sp.scale[k]);
+      const vmask m = can_hit[u] & (s[u] >= 0.0f) & (t <= h[u].t);
+      h[u].t = select(m, t, h[u].t);
+      record(sp, k, m, s[u], h[u]);
     }
   }
+}
+
+// One ray batch.
+template <int Shades>
+RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, size_t count, rays& r,
+                              closest_hit<Shades>& h) {
+  intersect<Shades, 1>(sp, list, count, reinterpret_cast<rays(&)[1]>(r),
+                       reinterpret_cast<closest_hit<Shades>(&)[1]>(h));
 }
 
 // The sky's constants in registers, loaded once per call, and the sky
@@ -507,6 +533,13 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
   const vfloat horizontal[3] = {s.horizontal[0], s.horizontal[1], s.horizontal[2]};
   const vfloat vertical[3] = {s.vertical[0], s.vertical[1], s.vertical[2]};
   const vfloat count = float(plan.count);
+  // The lesson's camera (centre = (0, 0, -f), horizontal = (h, 0, 0),
+  // vertical = (0, v, 0)): scalar.h's d.x = (+0 + su h) + sv 0 is +0 + su h
+  // bit for bit (a sum that is +0 stays +0 when a zero is added), d.y =
+  // (+0 + su 0) + sv v is +0 + sv v, and d.z is -f exactly.
+  const bool lesson = s.axis_aligned_camera && s.centre[0] == 0.0f && s.centre[1] == 0.0f &&
+                      !std::signbit(s.centre[0]) && !std::signbit(s.centre[1]) && s.centre[2] != 0.0f;
+  const vfloat z2 = s.centre[2] * s.centre[2];
   for (int64_t r = r0; r < r1; ++r) {
     const int64_t j = s.height - 1 - r;
     const float sv_j = s.height == 1 ? 0.0f : (float(j) - s.mid_row) / s.last_row;  // scalar.h
@@ -533,33 +566,53 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
         // Per lane: the hit colours' sum, and the sky's sum of u and count
         // (kernels/sampled_sky.h).
         vfloat acc[3] = {0.0f, 0.0f, 0.0f}, sky_sum = 0.0f, sky_count = 0.0f;
-        for (uint32_t t = 0; t < plan.count; ++t) {
-          vfloat xi, eta;
-          sampling::offsets<K>(plan, seeds, t, xi, eta);
-          const vfloat su = su_i + xi * s.du, sv = vfloat(sv_j) + eta * s.dv;
-          rays ry;
-          for (int k = 0; k < 3; ++k) ry.d[k] = (centre[k] + su * horizontal[k]) + sv * vertical[k];
-          ry.n2 = (ry.d[0] * ry.d[0] + ry.d[1] * ry.d[1]) + ry.d[2] * ry.d[2];
-          if (tests == 0) {  // no sphere comes near these rays
-            sky_sum = sky_sum + sampled::sky_u<vfloat, vuint>(ry.d[1], ry.n2);
-            sky_count = sky_count + 1.0f;
-            continue;
+        // M samples at a time (two, and one for an odd count's last), each
+        // step for all M before the next; their sums in sample order.
+        const auto samples = [&]<int M>(uint32_t t0) {
+          rays ry[M];
+          for (int u = 0; u < M; ++u) {
+            vfloat xi, eta;
+            sampling::offsets<K>(plan, seeds, t0 + uint32_t(u), xi, eta);
+            const vfloat su = su_i + xi * s.du, sv = vfloat(sv_j) + eta * s.dv;
+            if (lesson) {
+              ry[u].d[0] = centre[0] + su * horizontal[0];
+              ry[u].d[1] = centre[1] + sv * vertical[1];
+              ry[u].d[2] = centre[2];
+              ry[u].n2 = (ry[u].d[0] * ry[u].d[0] + ry[u].d[1] * ry[u].d[1]) + z2;
+            } else {
+              for (int k = 0; k < 3; ++k) ry[u].d[k] = (centre[k] + su * horizontal[k]) + sv * vertical[k];
+              ry[u].n2 = (ry[u].d[0] * ry[u].d[0] + ry[u].d[1] * ry[u].d[1]) + ry[u].d[2] * ry[u].d[2];
+            }
           }
-          closest_hit<Shades> h;
-          intersect(sp, list, tests, ry, h);
+          if (tests == 0) {  // no sphere comes near these rays
+            vfloat u_of[M];
+            for (int u = 0; u < M; ++u) u_of[u] = sampled::sky_u<vfloat, vuint>(ry[u].d[1], ry[u].n2);
+            for (int u = 0; u < M; ++u) {
+              sky_sum = sky_sum + u_of[u];
+              sky_count = sky_count + 1.0f;
+            }
+            return;
+          }
+          closest_hit<Shades> h[M];
+          intersect<Shades, M>(sp, list, tests, ry, h);
           // A lane adds only what its sample gave: + 0 leaves a sum that is
           // never -0 unchanged, so the other lanes' adds change nothing.
-          if (any(h.hit)) {
-            vfloat c[3];
-            hit_colour(sp, h, ry, c);
-            const bool every = all(h.hit);
-            for (int k = 0; k < 3; ++k) acc[k] = acc[k] + (every ? c[k] : select(h.hit, c[k], 0.0f));
-            if (every) continue;
+          for (int u = 0; u < M; ++u) {
+            if (any(h[u].hit)) {
+              vfloat c[3];
+              hit_colour(sp, h[u], ry[u], c);
+              const bool every = all(h[u].hit);
+              for (int k = 0; k < 3; ++k) acc[k] = acc[k] + (every ? c[k] : select(h[u].hit, c[k], 0.0f));
+              if (every) continue;
+            }
+            const vfloat sky = sampled::sky_u<vfloat, vuint>(ry[u].d[1], ry[u].n2);
+            sky_sum = sky_sum + select(h[u].hit, 0.0f, sky);
+            sky_count = sky_count + select(h[u].hit, 0.0f, 1.0f);
           }
-          const vfloat u = sampled::sky_u<vfloat, vuint>(ry.d[1], ry.n2);
-          sky_sum = sky_sum + select(h.hit, 0.0f, u);
-          sky_count = sky_count + select(h.hit, 0.0f, 1.0f);
-        }
+        };
+        uint32_t t = 0;
+        for (; t + 2 <= plan.count; t += 2) samples.template operator()<2>(t);
+        if (t < plan.count) samples.template operator()<1>(t);
         for (int k = 0; k < 3; ++k) acc[k] = (acc[k] + (sky_count * s.sky_mid[k] + sky_sum * s.sky_half[k])) / count;
         if (f32) store_window<true>(out, i0, c0, c1, acc);
         else store_window<false>(out, i0, c0, c1, acc);
