@@ -78,9 +78,12 @@ std::string strata_text(uint32_t n) {
 
 }  // namespace
 
+void print_region_summary(std::ostream& os, const run_table& table, const aa_config& cfg);
+
 void print_aa_summary(std::ostream& os, const run_table& table, const aa_config& cfg,
                       const std::vector<const aa_reference*>& refs, const std::string& cpu,
                       const std::string& date) {
+  print_region_summary(os, table, cfg);
   const std::vector<aa_point> pts = aa_points(table, cfg);
   if (pts.empty()) return;
   const std::string book = "book7";
@@ -156,6 +159,27 @@ void print_aa_summary(std::ostream& os, const run_table& table, const aa_config&
       os << "\n";
     }
   }
+}
+
+void print_region_summary(std::ostream& os, const run_table& table, const aa_config& cfg) {
+  const std::vector<region_row> rows = region_rows(cfg);
+  const std::optional<double> full = table.seconds(rows.front().name + "|");
+  if (!full) return;
+  os << "\nRegions (--region) of world " << rows.front().width << "x" << rows.front().height
+     << ", 16 samples, 1 thread: each quadrant rendered on its own (edges inside batches)\n";
+  double sum = 0;
+  bool all = true;
+  for (const region_row& r : rows) {
+    const std::optional<double> t = table.seconds(r.name + "|");
+    if (!t) {
+      all = false;
+      continue;
+    }
+    const double px = double(r.x1 - r.x0) * double(r.y1 - r.y0);
+    os << strf("  %-44s %9.2f ms  %6.2f ns per region pixel\n", r.name.c_str(), *t * 1e3, *t * 1e9 / px);
+    if (&r != &rows.front()) sum += *t;
+  }
+  if (all) os << strf("  the four quadrants together: %.2f ms, %.3f x the whole frame's time\n", sum * 1e3, sum / *full);
 }
 
 std::string aa_plot_file(const std::string& plot) {

@@ -10,6 +10,7 @@
 #include "errors.h"
 #include "report.h"
 #include "render/render.h"
+#include "scene/builtin.h"
 
 namespace raycast::bench {
 namespace {
@@ -82,6 +83,36 @@ void bench_book7(benchmark::State& state, int w, int h, int spp) {
   set_aa_counters(state, img.rgb.data(), ref);
 }
 
+// A region of a many-sample frame (--region): the frame's camera and keys,
+// only the window's pixels rendered. ns_per_px counts the window's pixels,
+// so a region whose cost is in proportion to its pixels shows the whole
+// frame's ns_per_px.
+struct window {
+  int64_t x0, y0, x1, y1;
+};
+
+void bench_region(benchmark::State& state, int64_t w, int64_t h, uint32_t samples, window win) {
+  camera_params cp;
+  cp.image_width = w;
+  cp.image_height = h;
+  const scene s = make_scene(scene_params{cp, {}, *builtin_spheres("world")});
+  render_options o;
+  o.which = best_backend();
+  o.threads = 1;
+  o.samples = samples;
+  const renderer r(s, o);
+  const int64_t rw = win.x1 - win.x0, rh = win.y1 - win.y0;
+  const size_t stride = size_t(rw) * bytes_per_pixel(pixel_format::rgb8);
+  const image_band band{scratch(stride * size_t(rh)), stride, pixel_format::rgb8, win.y0, win.y1, win.x0, win.x1};
+  for (auto _ : state) {
+    r.render(band);
+    benchmark::ClobberMemory();
+  }
+  state.counters["ns_per_px"] = benchmark::Counter(double(rw * rh) * 1e-9,
+                                                   benchmark::Counter::kIsIterationInvariantRate |
+                                                       benchmark::Counter::kInvert);
+}
+
 }  // namespace
 
 aa_config aa_config_for(bool quick, const std::string& reference_dir) {
@@ -113,6 +144,22 @@ void register_aa_rows(const aa_config& cfg) {
   benchmark::RegisterBenchmark(aa_row_name("book7", "", "world", cfg.width, cfg.height, cfg.book_samples).c_str(),
                                bench_book7, int(cfg.width), int(cfg.height), cfg.book_samples)
       ->Unit(benchmark::kMillisecond);
+  for (const region_row& row : region_rows(cfg))
+    benchmark::RegisterBenchmark(row.name.c_str(), bench_region, row.width, row.height, row.samples,
+                                 window{row.x0, row.y0, row.x1, row.y1})
+        ->Unit(benchmark::kMillisecond);
+}
+
+std::vector<region_row> region_rows(const aa_config& cfg) {
+  // The four quadrants of a frame 4x the rows' size, at 16 samples, and the
+  // frame itself: together the quadrants are the frame's pixels.
+  const int64_t W = 4 * cfg.width, H = 4 * cfg.height;
+  const std::string base = "region/" + cfg.backend + "/world/" + std::to_string(W) + "x" + std::to_string(H) + "/s16/";
+  std::vector<region_row> rows = {{base + "full", W, H, 16, 0, 0, W, H}};
+  const int64_t xs[] = {0, W / 2 - 7, W}, ys[] = {0, H / 2 + 5, H};  // edges inside batches
+  for (int q = 0; q < 4; ++q)
+    rows.push_back({base + "q" + std::to_string(q), W, H, 16, xs[q % 2], ys[q / 2], xs[q % 2 + 1], ys[q / 2 + 1]});
+  return rows;
 }
 
 std::vector<const aa_reference*> aa_references_used() {

@@ -38,6 +38,16 @@ aa_reference_spec aa_reference_spec_for(const aa_config& cfg, const std::string&
 
 void register_aa_rows(const aa_config& cfg);
 
+// The region rows (--region): a frame and its four quadrants, each its own
+// row, so that the quadrants' times can be added up against the frame's.
+struct region_row {
+  std::string name;
+  int64_t width, height;
+  uint32_t samples;
+  int64_t x0, y0, x1, y1;
+};
+std::vector<region_row> region_rows(const aa_config& cfg);
+
 // The references the rows have used so far (each loaded or computed once,
 // the first time a row of its scene ran), by scene.
 std::vector<const aa_reference*> aa_references_used();
