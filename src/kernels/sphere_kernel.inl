@@ -151,14 +151,6 @@ RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, siz
   }
 }
 
-// One ray batch.
-template <int Shades>
-RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, size_t count, rays& r,
-                              closest_hit<Shades>& h) {
-  intersect<Shades, 1>(sp, list, count, reinterpret_cast<rays(&)[1]>(r),
-                       reinterpret_cast<closest_hit<Shades>(&)[1]>(h));
-}
-
 // The sky's constants in registers, loaded once per call, and the sky
 // kernel's shortcuts `channels` and `clamps` (render/plan.h), which the plan
 // decides for sphere scenes too.
@@ -500,9 +492,10 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
           sky.shade(ry, c);  // no sphere comes near these rays
         } else {
           const uint32_t* list = lists.ok() ? lists.list + (count > 0 ? lists.first[b - base] : 0) : nullptr;
-          closest_hit<Shades> h;
-          intersect(sp, list, tests, ry, h);
-          shade(sky, sp, h, ry, c);
+          rays one[1] = {ry};
+          closest_hit<Shades> h[1];
+          intersect<Shades, 1>(sp, list, tests, one, h);
+          shade(sky, sp, h[0], one[0], c);
         }
         store_window<Float>(out, i0, c0, c1, c);
       }
