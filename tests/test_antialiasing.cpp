@@ -89,7 +89,7 @@ TEST(Samplers, StratifiedPutsOneSampleInEachStratum) {
   }
 }
 
-// Owen-scrambled Sobol: the first 2^m points are a (0, m, 2)-net -- one point
+// Sobol with a per-pixel digital shift: the first 2^m points are a (0, m, 2)-net -- one point
 // in each of the 2^m rectangles 2^-a x 2^-(m-a), for every a -- in every pixel.
 TEST(Samplers, SobolIsANetInEveryPixel) {
   for (int m : {2, 4, 6, 8}) {

@@ -22,6 +22,10 @@
 // root or division; a batch where every lane hit something computes no sky; a
 // flat-shaded scene tracks no centres and computes no normals, a
 // normal-shaded one tracks no colours.
+//
+// Many samples per pixel (render_samples, below; every scene, the sky alone
+// included) run the same batches with each sample as one pass, the lists
+// widened to the pixels' squares of samples.
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
