@@ -407,13 +407,16 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
   if (const int64_t side = io::max_side(j.format); side > 0) {
     const std::string limit = std::string(io::display_name(j.format)) + " supports at most " +
                               std::to_string(side) + " pixels per side, got ";
-    if (given("--region") && (j.region.width() > side || j.region.height() > side))
-      return usage("--region", limit + std::to_string(std::max(j.region.width(), j.region.height())));
-    if (given("--region")) return {std::move(j), 0};
-    if (j.sc.cam.image_width > side) return usage("--width", limit + std::to_string(j.sc.cam.image_width));
-    if (j.sc.cam.image_height > side)
+    // The file holds the region: with --region, its sides are what count.
+    if (given("--region")) {
+      if (j.region.width() > side || j.region.height() > side)
+        return usage("--region", limit + std::to_string(std::max(j.region.width(), j.region.height())));
+    } else if (j.sc.cam.image_width > side) {
+      return usage("--width", limit + std::to_string(j.sc.cam.image_width));
+    } else if (j.sc.cam.image_height > side) {
       return usage(cp.image_height ? "--height" : "--aspect",
                    limit + (cp.image_height ? "" : "a height of ") + std::to_string(j.sc.cam.image_height));
+    }
   }
   return {std::move(j), 0};
 }
