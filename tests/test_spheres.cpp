@@ -318,6 +318,25 @@ TEST(SphereCulling, RowListsLoseNoSphere) {
     }
 }
 
+// Rays that stray up to a pixel (many samples per pixel: spheres_in_row
+// with the scene's pixel_spread) put the camera inside the ground's widened
+// culling sphere -- it stands 0.5 above a radius-100 sphere -- yet the rows
+// above the horizon still leave the ground out: a ray that strays cannot
+// reach a sphere whose centre is behind it. Without that, every sky batch of
+// a many-sample `world` tested the ground (twice the sky's cost per sample).
+TEST(SphereCulling, StrayingRaysLeaveTheGroundOutAboveTheHorizon) {
+  camera_params cp;
+  cp.image_width = 400;
+  cp.image_height = 225;
+  const float_scene f = prepare_float_scene(raycast_test::make_scene(cp, {}, *builtin_spheres("world")));
+  ASSERT_GT(f.pixel_spread, 0.0);
+  std::vector<sphere_span> spans(f.spheres.size() + 1);
+  for (int64_t j = f.height - 40; j < f.height; ++j)  // the top 40 rows: sky only
+    EXPECT_EQ(0u, spheres_in_row(f, pixel_sv(f, j), 16, spans.data(), nullptr, 0, f.pixel_spread)) << "row " << j;
+  // ...and a row just below the horizon keeps it.
+  EXPECT_EQ(1u, spheres_in_row(f, pixel_sv(f, 40), 16, spans.data(), nullptr, 0, f.pixel_spread));
+}
+
 TEST(SphereScalar, FastIsExactForSpheres) {
   for (const sphere_case& sc : sphere_cases()) {
     const scene s = raycast_test::make_scene({}, {}, sc.spheres);

@@ -143,10 +143,12 @@ bool index_range(double s0, double s1, float last, float mid, double slack, int6
 
 // The columns [lo, hi] of the row whose rays come within r of the sphere's
 // centre (f = O - C, both in the sphere's unit). Their lines do where
-// |f x d|^2 <= r^2 |d|^2, a quadratic in su; and unless the camera is within
-// r of the centre, a ray (s >= 0, not the whole line) also needs the centre
-// ahead, f.d <= 0, linear in su (here with slack m). False when no column's does.
-bool columns_near(const float_scene& fs, const row_rays& rr, const double* f, double r, double m,
+// |f x d|^2 <= r^2 |d|^2, a quadratic in su; and where the camera is outside
+// the sphere (`outside`: outside its unwidened culling radius, even when it is
+// within the widened r -- the ground seen by rays that stray a pixel), a ray
+// (s >= 0, not the whole line) also needs the centre ahead, f.d <= 0, linear
+// in su (here with slack m, which covers the stray). False when no column's does.
+bool columns_near(const float_scene& fs, const row_rays& rr, const double* f, double r, bool outside, double m,
                   int64_t& lo, int64_t& hi) {
   double A[3], B[3];
   cross(f, rr.a, A);
@@ -157,7 +159,7 @@ bool columns_near(const float_scene& fs, const row_rays& rr, const double* f, do
   const double gamma = dot(A, A) - r2 * dot(rr.a, rr.a);
   double s0 = -INFINITY, s1 = INFINITY;  // the su interval
   if (!below_zero(alpha, beta, gamma, s0, s1)) return false;  // no line comes near
-  if (dot(f, f) > r2) {  // the camera outside: the centre must be ahead
+  if (outside) {  // the centre must be ahead
     const double g0 = dot(f, rr.a), g1 = dot(f, rr.h);
     if (g1 > 0.0) s1 = std::min(s1, (m - g0) / g1);
     else if (g1 < 0.0) s0 = std::max(s0, (m - g0) / g1);
@@ -230,7 +232,8 @@ size_t spheres_in_row(const float_scene& f, float sv, int batch, sphere_span* ou
     if (plane && std::abs(dot(fk, n)) > wide * len) continue;  // NaN: kept
     int64_t lo = 0, hi = f.width - 1;
     const double ahead_slack = (wide - std::sqrt(double(sp.r2[k]))) * d_len;
-    if (!columns_near(f, rr, fk, wide, ahead_slack, lo, hi)) continue;
+    const bool outside = dot(fk, fk) > sp.cull_radius[k] * sp.cull_radius[k];
+    if (!columns_near(f, rr, fk, wide, outside, ahead_slack, lo, hi)) continue;
     out[count++] = {k, int32_t(std::min(lo / batch, last_batch)), int32_t(std::min(hi / batch, last_batch))};
   }
   return count;
