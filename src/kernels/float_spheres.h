@@ -25,7 +25,9 @@
 //           disc = n2 (r2 - ((v.x v.x + v.y v.y) + v.z v.z))     Hearn & Baker
 //   q    = -(b + copysign(sqrt(max(disc, 0)), b))      Press et al.: no cancellation
 //   s0   = c / q,  s1 = q / n2                         the two roots, s0 s1 = c / n2
-//   s    = s0 >= 0 ? s0 : s1                           the nearest root not behind
+//   s    = s0 >= 0 ? s0 : s1                           the nearest root not behind,
+//          for a sphere that holds the camera (inside); else s = s0 (c > 0:
+//          both roots have q's sign, so a negative s0 is a sphere behind)
 //   t    = s scale                                     exact: a power of two
 //   hit  when disc >= 0 and s >= 0 and t <= closest; then closest = t
 //        (t <= closest: on a tie the later sphere wins, as in the book's

@@ -94,7 +94,7 @@ traced trace(const float_scene& f, float su, float sv) {
     const float sq = std::sqrt(vmax(disc, 0.0f));
     const float q = -(b + std::copysign(sq, b));
     const float s0 = sp.c[k] / q;
-    const float s = s0 >= 0.0f ? s0 : q / n2;
+    const float s = s0 >= 0.0f || !sp.inside[k] ? s0 : q / n2;
     const float t = s * sp.scale[k];
     if (disc >= 0.0f && s >= 0.0f && t <= tr.closest) {
       tr.closest = t;

@@ -144,9 +144,10 @@ RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, siz
     for (int u = 0; u < M; ++u) q[u] = -(b[u] + copysign(sqrt(max(disc[u], 0.0f)), b[u]));
     for (int u = 0; u < M; ++u) s[u] = vfloat(sp.c[k]) / q[u];
     for (int u = 0; u < M; ++u) {
-      // The far root where the near one is behind (the camera inside).
-      const vmask behind = can_hit[u] & !(s[u] >= 0.0f);
-      if (any(behind)) s[u] = select(behind, q[u] / r[u].n2, s[u]);
+      if (sp.inside[k]) {  // the far root where the near one is behind
+        const vmask behind = can_hit[u] & !(s[u] >= 0.0f);
+        if (any(behind)) s[u] = select(behind, q[u] / r[u].n2, s[u]);
+      }
       const vfloat t = s[u] * vfloat(sp.scale[k]);
       const vmask m = can_hit[u] & (s[u] >= 0.0f) & (t <= h[u].t);
       h[u].t = select(m, t, h[u].t);
@@ -177,8 +178,10 @@ RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, siz
     if (none(can_hit)) continue;
     const vfloat q = -(b + copysign(sqrt(max(disc, 0.0f)), b));
     vfloat s = vfloat(sp.c[k]) / q;
-    const vmask behind = can_hit & !(s >= 0.0f);
-    if (any(behind)) s = select(behind, q / r.n2, s);
+    if (sp.inside[k]) {  // the far root where the near one is behind
+      const vmask behind = can_hit & !(s >= 0.0f);
+      if (any(behind)) s = select(behind, q / r.n2, s);
+    }
     const vfloat t = s * vfloat(sp.scale[k]);
     const vmask m = can_hit & (s >= 0.0f) & (t <= h.t);
     h.t = select(m, t, h.t);
@@ -560,6 +563,7 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
   const vfloat horizontal[3] = {s.horizontal[0], s.horizontal[1], s.horizontal[2]};
   const vfloat vertical[3] = {s.vertical[0], s.vertical[1], s.vertical[2]};
   const vfloat count = float(plan.count);
+  const vfloat du = s.du * sampling::offset_unit<K>, dv = s.dv * sampling::offset_unit<K>;  // exact
   // The lesson's camera (centre = (0, 0, -f), horizontal = (h, 0, 0),
   // vertical = (0, v, 0)): scalar.h's d.x = (+0 + su h) + sv 0 is +0 + su h
   // bit for bit (a sum that is +0 stays +0 when a zero is added), d.y =
@@ -598,9 +602,9 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
         const auto samples = [&]<int M>(uint32_t t0) {
           rays ry[M];
           for (int u = 0; u < M; ++u) {
-            vfloat xi, eta;
-            sampling::offsets<K>(plan, seeds, t0 + uint32_t(u), xi, eta);
-            const vfloat su = su_i + xi * s.du, sv = vfloat(sv_j) + eta * s.dv;
+            vfloat xi, eta;  // in units of the sampler's offset_unit, folded into du and dv
+            sampling::offset_counts<K>(plan, seeds, t0 + uint32_t(u), xi, eta);
+            const vfloat su = su_i + xi * du, sv = vfloat(sv_j) + eta * dv;
             if (lesson) {
               ry[u].d[0] = centre[0] + su * horizontal[0];
               ry[u].d[1] = centre[1] + sv * vertical[1];

@@ -65,11 +65,6 @@ inline U mix(U x) {
   return x ^ (x >> 16);
 }
 
-// The top 24 bits as a float in [0, 1).
-template <class F, class U>
-inline F unit(U bits) {
-  return F(to_float(bits >> 8)) * F(0x1p-24f);
-}
 // The high and the low 16 bits as floats in [0, 1).
 template <class F, class U>
 inline F unit_high(U bits) {
@@ -112,22 +107,40 @@ inline pixel_seeds<U> seeds_for(const sample_plan& p, U i, uint32_t j) {
   else return {key, key};
 }
 
-// Sample s's offsets (xi, eta) within the pixel, in [0, 1).
+// The offsets as counts of a unit: xi = xi_count * offset_unit<K> exactly
+// (sobol: 24-bit counts, unit 2^-24; random: 16-bit, 2^-16; stratified's
+// are not counts, unit 1). The kernels fold the unit into du and dv: xi * du
+// and xi_count * (du * unit) are the same exact product rounded once (a
+// power of two times a count is exact), so they are the same bits, one
+// multiply fewer per sample.
+template <sampler_kind K>
+inline constexpr float offset_unit = K == sampler_kind::sobol ? 0x1p-24f : K == sampler_kind::random ? 0x1p-16f : 1.0f;
+
 template <sampler_kind K, class F, class U>
-inline void offsets(const sample_plan& p, const pixel_seeds<U>& px, uint32_t s, F& xi, F& eta) {
+inline void offset_counts(const sample_plan& p, const pixel_seeds<U>& px, uint32_t s, F& xi, F& eta) {
   const sample_slot& sl = p.slots[s];
   if constexpr (K == sampler_kind::random) {
     const U r = mix(px.a + U(sl.k0));
-    xi = unit_high<F>(r);
-    eta = unit_low<F>(r);
+    xi = F(to_float(r >> 16));
+    eta = F(to_float(r & U(0xffffu)));
   } else if constexpr (K == sampler_kind::stratified) {
     // (stratum + jitter) / strata, kept below 1 where it rounds up to it.
     const U r = mix(px.a + U(sl.k0));
     xi = min((F(sl.sx) + unit_high<F>(r)) * F(p.inv_nx), F(one_below));
     eta = min((F(sl.sy) + unit_low<F>(r)) * F(p.inv_ny), F(one_below));
   } else {
-    xi = unit<F>(U(sl.k0) ^ px.a);
-    eta = unit<F>(U(sl.k1) ^ px.b);
+    xi = F(to_float((U(sl.k0) ^ px.a) >> 8));
+    eta = F(to_float((U(sl.k1) ^ px.b) >> 8));
+  }
+}
+
+// Sample s's offsets (xi, eta) within the pixel, in [0, 1).
+template <sampler_kind K, class F, class U>
+inline void offsets(const sample_plan& p, const pixel_seeds<U>& px, uint32_t s, F& xi, F& eta) {
+  offset_counts<K>(p, px, s, xi, eta);
+  if constexpr (offset_unit<K> != 1.0f) {
+    xi = xi * F(offset_unit<K>);
+    eta = eta * F(offset_unit<K>);
   }
 }
 
