@@ -69,10 +69,11 @@ struct traced {
   size_t hit;        // sp.size(): none
 };
 
-traced trace(const float_scene& f, float su, float sv) {
+// The ray with direction d (kernels/float_spheres.h).
+traced trace(const float_scene& f, const float (&dir)[3]) {
   traced tr;
   float* d = tr.d;
-  for (int k = 0; k < 3; ++k) d[k] = (f.centre[k] + su * f.horizontal[k]) + sv * f.vertical[k];
+  for (int k = 0; k < 3; ++k) d[k] = dir[k];
   const float n2 = (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2];
   const float inv_n2 = 1.0f / n2;
   tr.n2 = n2;
@@ -105,23 +106,37 @@ traced trace(const float_scene& f, float su, float sv) {
   return tr;
 }
 
-// The colour of a hit (tr.hit < the sphere count): flat, or 0.5 (N + 1)
-// with N facing the ray inside a sphere.
-void hit_colour(const float_scene& f, const traced& tr, float out[3]) {
+// The ray through (su, sv): kernels/scalar.h's direction.
+traced trace(const float_scene& f, float su, float sv) {
+  float d[3];
+  for (int k = 0; k < 3; ++k) d[k] = (f.centre[k] + su * f.horizontal[k]) + sv * f.vertical[k];
+  return trace(f, d);
+}
+
+// The normal of a hit on a normal-shaded sphere: N, facing the ray inside a sphere.
+void hit_normal(const float_scene& f, const traced& tr, float n[3]) {
   const float_spheres& sp = f.spheres;
   const size_t hit = tr.hit;
   const float* d = tr.d;
+  const float fo[3] = {sp.fx[hit], sp.fy[hit], sp.fz[hit]};
+  for (int k = 0; k < 3; ++k) n[k] = (fo[k] + tr.s * d[k]) * sp.inv_r[hit];
+  if (sp.inside[hit] && (n[0] * d[0] + n[1] * d[1]) + n[2] * d[2] >= 0.0f)  // face the ray
+    for (int k = 0; k < 3; ++k) n[k] = -n[k];
+}
+
+// The colour of a hit (tr.hit < the sphere count): flat, or 0.5 (N + 1).
+void hit_colour(const float_scene& f, const traced& tr, float out[3]) {
+  const float_spheres& sp = f.spheres;
+  const size_t hit = tr.hit;
   if (sp.flat[hit] == 1.0f) {
     out[0] = sp.red[hit];
     out[1] = sp.green[hit];
     out[2] = sp.blue[hit];
     return;
   }
-  const float fo[3] = {sp.fx[hit], sp.fy[hit], sp.fz[hit]};
   float n[3];
-  for (int k = 0; k < 3; ++k) n[k] = (fo[k] + tr.s * d[k]) * sp.inv_r[hit];
-  const bool back = sp.inside[hit] && (n[0] * d[0] + n[1] * d[1]) + n[2] * d[2] >= 0.0f;  // face the ray
-  for (int k = 0; k < 3; ++k) out[k] = ((back ? -n[k] : n[k]) + 1.0f) * 0.5f;
+  hit_normal(f, tr, n);
+  for (int k = 0; k < 3; ++k) out[k] = (n[k] + 1.0f) * 0.5f;
 }
 
 // The colour of the ray at (su, sv), exact: the closest sphere's shading, else the sky.
@@ -168,23 +183,38 @@ scalar_hit scalar_trace(const float_scene& f, int64_t i, int64_t j) {
 void scalar_pixel_samples(const float_scene& f, const sampling::sample_plan& sp, int64_t i, int64_t j,
                           float out[3]) {
   const float su = pixel_su(f, i), sv = pixel_sv(f, j);
+  const float unit = sampling::offset_unit_of(sp.kind);
+  const float du = f.du * unit, dv = f.dv * unit;  // exact: a power of two
+  float base[3], step_x[3], step_y[3];
+  for (int k = 0; k < 3; ++k) {
+    base[k] = (f.centre[k] + su * f.horizontal[k]) + sv * f.vertical[k];
+    step_x[k] = du * f.horizontal[k];
+    step_y[k] = dv * f.vertical[k];
+  }
   const float_spheres& spheres = f.spheres;
-  float acc[3] = {0.0f, 0.0f, 0.0f}, sky_sum = 0.0f, sky_count = 0.0f;
+  float flat[3] = {0.0f, 0.0f, 0.0f}, normals[3] = {0.0f, 0.0f, 0.0f}, normal_count = 0.0f;
+  float sky_sum = 0.0f, sky_count = 0.0f;
   for (uint32_t s = 0; s < sp.count; ++s) {
     float xi, eta;
-    sampling::sample_offsets(sp, uint32_t(i), uint32_t(j), s, xi, eta);
-    const traced tr = trace(f, su + xi * f.du, sv + eta * f.dv);
+    sampling::sample_offset_counts(sp, uint32_t(i), uint32_t(j), s, xi, eta);
+    float d[3];
+    for (int k = 0; k < 3; ++k) d[k] = (base[k] + xi * step_x[k]) + eta * step_y[k];
+    const traced tr = trace(f, d);
     if (tr.hit == spheres.size()) {
       sky_sum = sky_sum + sampled::sky_u<float, uint32_t>(tr.d[1], tr.n2);
       sky_count = sky_count + 1.0f;
+    } else if (spheres.flat[tr.hit] == 1.0f) {
+      for (int k = 0; k < 3; ++k) flat[k] = flat[k] + (k == 0 ? spheres.red : k == 1 ? spheres.green : spheres.blue)[tr.hit];
     } else {
-      float c[3];
-      hit_colour(f, tr, c);
-      for (int k = 0; k < 3; ++k) acc[k] = acc[k] + c[k];
+      float n[3];
+      hit_normal(f, tr, n);
+      for (int k = 0; k < 3; ++k) normals[k] = normals[k] + n[k];
+      normal_count = normal_count + 1.0f;
     }
   }
   const float n = float(sp.count);
-  for (int k = 0; k < 3; ++k) out[k] = (acc[k] + (sky_count * f.sky_mid[k] + sky_sum * f.sky_half[k])) / n;
+  for (int k = 0; k < 3; ++k)
+    out[k] = ((flat[k] + (normals[k] + normal_count) * 0.5f) + (sky_count * f.sky_mid[k] + sky_sum * f.sky_half[k])) / n;
 }
 
 void render_scalar(const float_scene& f, precision p, const image_band& band,

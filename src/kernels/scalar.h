@@ -66,12 +66,20 @@ struct scalar_hit {
 };
 scalar_hit scalar_trace(const float_scene& f, int64_t i, int64_t j);
 
-// Many samples per pixel (scene/sampler.h gives where they fall): sample s
-// of pixel (i, j) is the ray at su = su_i + xi * du, sv = sv_j + eta * dv
-// (f.du, f.dv), its hit and hit colour as above; a sample that hits nothing
-// adds to the pixel's sky sum instead (kernels/sampled_sky.h). In sample
-// order from 0: acc = ((0 + c_0) + c_1) + ... over the hits, then
-//   pixel = (acc + (sky count * sky_mid + sky sum * sky_half)) / float(N).
+// Many samples per pixel (scene/sampler.h gives where they fall). Per
+// pixel, its one-sample direction base = (centre + su_i h) + sv_j v (as
+// above) and the steps step_x = (du unit) h, step_y = (dv unit) v (du, dv:
+// f.du, f.dv; unit: the sampler's offset_unit, so du unit is exact); sample
+// s, at offset counts (xi, eta), is the ray
+//   d = (base + xi step_x) + eta step_y          per component
+// (xi = eta = 0 is the one-sample ray), its hit as above. In sample order
+// from 0, per pixel: a hit on a normal-shaded sphere adds its normal N (facing
+// the ray inside a sphere) to `normals` and 1 to `normal count`; a hit on a
+// flat sphere adds its colour to `flat`; a sample that hits nothing adds to
+// the sky sum instead (kernels/sampled_sky.h). Then, per channel,
+//   pixel = ((flat + (normals + normal count) 0.5) + (sky count sky_mid + sky sum sky_half)) / float(N)
+// -- the average of the samples' colours 0.5 (N + 1), flat colours and sky,
+// with each affine map applied once per pixel rather than per sample.
 // Both precisions: fast mode has no sampled path of its own.
 void scalar_pixel_samples(const float_scene& f, const sampling::sample_plan& sp, int64_t i, int64_t j,
                           float out[3]);

@@ -223,20 +223,27 @@ struct sky_shader {
   }
 };
 
-// The hit colour of each lane that hit (float_spheres.h): 0.5 (N + 1), N
-// facing the ray inside a sphere, or the sphere's flat colour.
+// The normal of each lane that hit a normal-shaded sphere (float_spheres.h):
+// N, facing the ray inside a sphere.
+template <int Shades>
+RAYCAST_INLINE void hit_normal(const sphere_arrays& sp, const closest_hit<Shades>& h, const rays& r, vfloat n[3]) {
+  const vfloat* d = r.d;
+  const vfloat f[3] = {h.fx, h.fy, h.fz};
+  for (int k = 0; k < 3; ++k) n[k] = (f[k] + h.s * d[k]) * h.inv_r;
+  if (sp.any_inside) {  // face the ray, inside a sphere
+    const vmask back = (h.inside == 1.0f) & ((n[0] * d[0] + n[1] * d[1]) + n[2] * d[2] >= 0.0f);
+    for (int k = 0; k < 3; ++k) n[k] = select(back, -n[k], n[k]);
+  }
+}
+
+// The hit colour of each lane that hit (float_spheres.h): 0.5 (N + 1), or
+// the sphere's flat colour.
 template <int Shades>
 RAYCAST_INLINE void hit_colour(const sphere_arrays& sp, const closest_hit<Shades>& h, const rays& r,
                                vfloat out[3]) {
-  const vfloat* d = r.d;
   if constexpr ((Shades & normal_shading) != 0) {
-    const vfloat f[3] = {h.fx, h.fy, h.fz};
     vfloat n[3];
-    for (int k = 0; k < 3; ++k) n[k] = (f[k] + h.s * d[k]) * h.inv_r;
-    if (sp.any_inside) {  // face the ray, inside a sphere
-      const vmask back = (h.inside == 1.0f) & ((n[0] * d[0] + n[1] * d[1]) + n[2] * d[2] >= 0.0f);
-      for (int k = 0; k < 3; ++k) n[k] = select(back, -n[k], n[k]);
-    }
+    hit_normal(sp, h, r, n);
     for (int k = 0; k < 3; ++k) out[k] = (n[k] + 1.0f) * 0.5f;
   }
   if constexpr (Shades == flat_shading) {
@@ -545,7 +552,7 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
 // pixel: the batch's sphere list holds the spheres any ray of its pixels'
 // squares may come near (the culling radii widened by the scene's
 // pixel_spread), and each sample is one pass of the one-sample batch --
-// offsets, direction, intersection, shading -- added to a per-lane sum in
+// offsets, direction, intersection, normal -- added to a per-lane sum in
 // sample order. The random numbers are drawn per lane with the vector
 // layer's integer operations.
 template <int Shades, sampler_kind K>
@@ -559,15 +566,20 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
   const int64_t first_batch = c0 / N, end_batch = (c1 + N - 1) / N;
   batch_lists lists(sp.n, batches);
   const row_lists rows(s, r0, r1, s.pixel_spread);
-  const vfloat centre[3] = {s.centre[0], s.centre[1], s.centre[2]};
-  const vfloat horizontal[3] = {s.horizontal[0], s.horizontal[1], s.horizontal[2]};
-  const vfloat vertical[3] = {s.vertical[0], s.vertical[1], s.vertical[2]};
   const vfloat count = float(plan.count);
-  const vfloat du = s.du * sampling::offset_unit<K>, dv = s.dv * sampling::offset_unit<K>;  // exact
-  // The lesson's camera (centre = (0, 0, -f), horizontal = (h, 0, 0),
-  // vertical = (0, v, 0)): scalar.h's d.x = (+0 + su h) + sv 0 is +0 + su h
-  // bit for bit (a sum that is +0 stays +0 when a zero is added), d.y =
-  // (+0 + su 0) + sv v is +0 + sv v, and d.z is -f exactly.
+  // scalar.h: the steps of one offset count, du and dv times the sampler's
+  // unit (exact), times horizontal and vertical.
+  const float du = s.du * sampling::offset_unit<K>, dv = s.dv * sampling::offset_unit<K>;
+  vfloat step_x[3], step_y[3];
+  for (int k = 0; k < 3; ++k) {
+    step_x[k] = du * s.horizontal[k];
+    step_y[k] = dv * s.vertical[k];
+  }
+  // The lesson's camera (centre = (+0, +0, -f), horizontal = (h, 0, 0),
+  // vertical = (0, v, 0)): scalar.h's d.x = (base.x + xi step_x.x) + eta 0
+  // is base.x + xi step_x.x bit for bit (adding +0 changes a sum that is
+  // never -0: base.x starts from centre.x = +0), d.y = base.y + eta step_y.y
+  // likewise, and d.z = base.z = -f exactly.
   const bool lesson = s.axis_aligned_camera && s.centre[0] == 0.0f && s.centre[1] == 0.0f &&
                       !std::signbit(s.centre[0]) && !std::signbit(s.centre[1]) && s.centre[2] != 0.0f;
   const vfloat z2 = s.centre[2] * s.centre[2];
@@ -593,25 +605,27 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
         }
         const vuint column = vuint::iota(uint32_t(i0));
         const vfloat su_i = W == 1 ? vfloat(0.0f) : (to_float(column) - s.mid_col) / s.last_col;  // scalar.h
+        vfloat base[3];  // the pixels' one-sample directions
+        for (int k = 0; k < 3; ++k) base[k] = (s.centre[k] + su_i * s.horizontal[k]) + sv_j * s.vertical[k];
         const sampling::pixel_seeds<vuint> seeds = sampling::seeds_for<K>(plan, column, uint32_t(j));
-        // Per lane: the hit colours' sum, and the sky's sum of u and count
-        // (kernels/sampled_sky.h).
-        vfloat acc[3] = {0.0f, 0.0f, 0.0f}, sky_sum = 0.0f, sky_count = 0.0f;
+        // Per lane (scalar.h): the flat colours' sum, the normals' sum and
+        // count, the sky's sum of u and count (kernels/sampled_sky.h).
+        vfloat flat[3] = {0.0f, 0.0f, 0.0f}, normals[3] = {0.0f, 0.0f, 0.0f}, normal_count = 0.0f;
+        vfloat sky_sum = 0.0f, sky_count = 0.0f;
         // M samples at a time (two, and one for an odd count's last), each
         // step for all M before the next; their sums in sample order.
         const auto samples = [&]<int M>(uint32_t t0) {
           rays ry[M];
           for (int u = 0; u < M; ++u) {
-            vfloat xi, eta;  // in units of the sampler's offset_unit, folded into du and dv
+            vfloat xi, eta;  // counts of the sampler's offset_unit
             sampling::offset_counts<K>(plan, seeds, t0 + uint32_t(u), xi, eta);
-            const vfloat su = su_i + xi * du, sv = vfloat(sv_j) + eta * dv;
             if (lesson) {
-              ry[u].d[0] = centre[0] + su * horizontal[0];
-              ry[u].d[1] = centre[1] + sv * vertical[1];
-              ry[u].d[2] = centre[2];
+              ry[u].d[0] = base[0] + xi * step_x[0];
+              ry[u].d[1] = base[1] + eta * step_y[1];
+              ry[u].d[2] = base[2];
               ry[u].n2 = (ry[u].d[0] * ry[u].d[0] + ry[u].d[1] * ry[u].d[1]) + z2;
             } else {
-              for (int k = 0; k < 3; ++k) ry[u].d[k] = (centre[k] + su * horizontal[k]) + sv * vertical[k];
+              for (int k = 0; k < 3; ++k) ry[u].d[k] = (base[k] + xi * step_x[k]) + eta * step_y[k];
               ry[u].n2 = (ry[u].d[0] * ry[u].d[0] + ry[u].d[1] * ry[u].d[1]) + ry[u].d[2] * ry[u].d[2];
             }
           }
@@ -630,10 +644,25 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
           // never -0 unchanged, so the other lanes' adds change nothing.
           for (int u = 0; u < M; ++u) {
             if (any(h[u].hit)) {
-              vfloat c[3];
-              hit_colour(sp, h[u], ry[u], c);
               const bool every = all(h[u].hit);
-              for (int k = 0; k < 3; ++k) acc[k] = acc[k] + (every ? c[k] : select(h[u].hit, c[k], 0.0f));
+              if constexpr ((Shades & normal_shading) != 0) {
+                vmask normal = h[u].hit;
+                if constexpr ((Shades & flat_shading) != 0) normal = normal & !(h[u].flat == 1.0f);
+                vfloat n[3];
+                hit_normal(sp, h[u], ry[u], n);
+                if constexpr (Shades == normal_shading) {
+                  for (int k = 0; k < 3; ++k) normals[k] = normals[k] + (every ? n[k] : select(normal, n[k], 0.0f));
+                } else {
+                  for (int k = 0; k < 3; ++k) normals[k] = normals[k] + select(normal, n[k], 0.0f);
+                  normal_count = normal_count + select(normal, 1.0f, 0.0f);
+                }
+              }
+              if constexpr ((Shades & flat_shading) != 0) {
+                vmask flat_hit = h[u].hit;
+                if constexpr (Shades != flat_shading) flat_hit = flat_hit & (h[u].flat == 1.0f);
+                const vfloat c[3] = {h[u].red, h[u].green, h[u].blue};
+                for (int k = 0; k < 3; ++k) flat[k] = flat[k] + select(flat_hit, c[k], 0.0f);
+              }
               if (every) continue;
             }
             const vfloat sky = sampled::sky_u<vfloat, vuint>(ry[u].d[1], ry[u].n2);
@@ -644,9 +673,13 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
         uint32_t t = 0;
         for (; t + 2 <= plan.count; t += 2) samples.template operator()<2>(t);
         if (t < plan.count) samples.template operator()<1>(t);
-        for (int k = 0; k < 3; ++k) acc[k] = (acc[k] + (sky_count * s.sky_mid[k] + sky_sum * s.sky_half[k])) / count;
-        if (f32) store_window<true>(out, i0, c0, c1, acc);
-        else store_window<false>(out, i0, c0, c1, acc);
+        // A normal-shaded scene's normal count is what the sky did not take (exact: below 2^24).
+        if constexpr (Shades == normal_shading) normal_count = count - sky_count;
+        vfloat c[3];
+        for (int k = 0; k < 3; ++k)
+          c[k] = ((flat[k] + (normals[k] + normal_count) * 0.5f) + (sky_count * s.sky_mid[k] + sky_sum * s.sky_half[k])) / count;
+        if (f32) store_window<true>(out, i0, c0, c1, c);
+        else store_window<false>(out, i0, c0, c1, c);
       }
     }
   }

@@ -68,18 +68,30 @@ sample_table::sample_table(sampler_kind kind, uint32_t count, uint64_t seed) {
   plan_.slots = slots_.data();
 }
 
-void sample_offsets(const sample_plan& p, uint32_t i, uint32_t j, uint32_t s, float& xi, float& eta) {
-  switch (p.kind) {
-    case sampler_kind::random:
-      offsets<sampler_kind::random>(p, seeds_for<sampler_kind::random>(p, i, j), s, xi, eta);
-      break;
-    case sampler_kind::stratified:
-      offsets<sampler_kind::stratified>(p, seeds_for<sampler_kind::stratified>(p, i, j), s, xi, eta);
-      break;
-    case sampler_kind::sobol:
-      offsets<sampler_kind::sobol>(p, seeds_for<sampler_kind::sobol>(p, i, j), s, xi, eta);
-      break;
+namespace {
+// Calls f with the sampler's kind as a template argument.
+template <class F>
+void with_kind(sampler_kind k, F&& f) {
+  switch (k) {
+    case sampler_kind::random: f.template operator()<sampler_kind::random>(); break;
+    case sampler_kind::stratified: f.template operator()<sampler_kind::stratified>(); break;
+    case sampler_kind::sobol: f.template operator()<sampler_kind::sobol>(); break;
   }
+}
+}  // namespace
+
+void sample_offsets(const sample_plan& p, uint32_t i, uint32_t j, uint32_t s, float& xi, float& eta) {
+  with_kind(p.kind, [&]<sampler_kind K>() { offsets<K>(p, seeds_for<K>(p, i, j), s, xi, eta); });
+}
+
+void sample_offset_counts(const sample_plan& p, uint32_t i, uint32_t j, uint32_t s, float& xi, float& eta) {
+  with_kind(p.kind, [&]<sampler_kind K>() { offset_counts<K>(p, seeds_for<K>(p, i, j), s, xi, eta); });
+}
+
+float offset_unit_of(sampler_kind k) {
+  float unit = 1.0f;
+  with_kind(k, [&]<sampler_kind K>() { unit = offset_unit<K>; });
+  return unit;
 }
 
 }  // namespace sampling
