@@ -639,7 +639,10 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
             return;
           }
           closest_hit<Shades> h[M];
-          intersect<Shades, M>(sp, list, tests, ry, h);
+          // One sphere (most batches that test any): its own copy, in which
+          // the compiler knows the closest hit starts empty.
+          if (tests == 1) intersect<Shades, M>(sp, list, 1, ry, h);
+          else intersect<Shades, M>(sp, list, tests, ry, h);
           // A lane adds only what its sample gave: + 0 leaves a sum that is
           // never -0 unchanged, so the other lanes' adds change nothing.
           for (int u = 0; u < M; ++u) {
