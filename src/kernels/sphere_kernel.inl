@@ -118,14 +118,18 @@ RAYCAST_INLINE void record(const sphere_arrays& sp, size_t k, vmask m, vfloat s,
 // long dependency chains -- square root, then division -- overlap).
 template <int Shades, int M>
 RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, size_t count, rays (&r)[M],
-                              closest_hit<Shades> (&h)[M]) {
+                              closest_hit<Shades> (&h)[M], const float* fz_dz = nullptr) {
   for (size_t x = 0; x < count; ++x) {
     const size_t k = list ? list[x] : x;
     const vfloat fx = sp.fx[k], fy = sp.fy[k], fz = sp.fz[k];
     vfloat b[M], disc[M];
     vmask can_hit[M];
     bool any_can = false;
-    for (int u = 0; u < M; ++u) b[u] = (fx * r[u].d[0] + fy * r[u].d[1]) + fz * r[u].d[2];
+    if (fz_dz) {  // every ray's d.z is the same: f.z d.z is the sphere's
+      for (int u = 0; u < M; ++u) b[u] = (fx * r[u].d[0] + fy * r[u].d[1]) + vfloat(fz_dz[k]);
+    } else {
+      for (int u = 0; u < M; ++u) b[u] = (fx * r[u].d[0] + fy * r[u].d[1]) + fz * r[u].d[2];
+    }
     if (sp.near[k]) {
       for (int u = 0; u < M; ++u) disc[u] = b[u] * b[u] - r[u].n2 * vfloat(sp.c[k]);
     } else {
@@ -141,7 +145,8 @@ RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, siz
     }
     if (!any_can) continue;  // no lane can hit it: no sqrt, no divide
     vfloat q[M], s[M];
-    for (int u = 0; u < M; ++u) q[u] = -(b[u] + copysign(sqrt(max(disc[u], 0.0f)), b[u]));
+    // The lanes where disc < 0 are not read: no max(disc, 0) here.
+    for (int u = 0; u < M; ++u) q[u] = -(b[u] + copysign(sqrt(disc[u]), b[u]));
     for (int u = 0; u < M; ++u) s[u] = vfloat(sp.c[k]) / q[u];
     for (int u = 0; u < M; ++u) {
       if (sp.inside[k]) {  // the far root where the near one is behind
@@ -583,6 +588,10 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
   const bool lesson = s.axis_aligned_camera && s.centre[0] == 0.0f && s.centre[1] == 0.0f &&
                       !std::signbit(s.centre[0]) && !std::signbit(s.centre[1]) && s.centre[2] != 0.0f;
   const vfloat z2 = s.centre[2] * s.centre[2];
+  // The lesson's camera: each sphere's f.z d.z, once (raw memory, as batch_lists).
+  float* const fz_dz = lesson ? static_cast<float*>(std::malloc(sp.n * sizeof(float) + 1)) : nullptr;
+  if (fz_dz)
+    for (size_t k = 0; k < sp.n; ++k) fz_dz[k] = sp.fz[k] * s.centre[2];
   for (int64_t r = r0; r < r1; ++r) {
     const int64_t j = s.height - 1 - r;
     const float sv_j = s.height == 1 ? 0.0f : (float(j) - s.mid_row) / s.last_row;  // scalar.h
@@ -641,8 +650,8 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
           closest_hit<Shades> h[M];
           // One sphere (most batches that test any): its own copy, in which
           // the compiler knows the closest hit starts empty.
-          if (tests == 1) intersect<Shades, M>(sp, list, 1, ry, h);
-          else intersect<Shades, M>(sp, list, tests, ry, h);
+          if (tests == 1) intersect<Shades, M>(sp, list, 1, ry, h, fz_dz);
+          else intersect<Shades, M>(sp, list, tests, ry, h, fz_dz);
           // A lane adds only what its sample gave: + 0 leaves a sum that is
           // never -0 unchanged, so the other lanes' adds change nothing.
           for (int u = 0; u < M; ++u) {
@@ -686,6 +695,7 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
       }
     }
   }
+  std::free(fz_dz);
 }
 
 template <int Shades>
