@@ -208,7 +208,9 @@ void print_embree_summary(std::ostream& os, const run_table& table, int64_t w, i
   const auto e1 = ns_per_px(table, scene_row_name("embree1", "float", "world", w, h, 1, "rgb8"), w, h);
   const auto book = ns_per_px(table, scene_row_name("book", "exact", "world", w, h, 1, "rgb8"), w, h);
   char line[256];
-  os << "\nPeers on world, " << w << "x" << h << ", 1 thread, rgb8 (ns/px; x = peer / ours):\n";
+  // Sections with no row measured (filtered out by --benchmark_filter) are left out.
+  if (ours || e16 || e1 || book)
+    os << "\nPeers on world, " << w << "x" << h << ", 1 thread, rgb8 (ns/px; x = peer / ours):\n";
   auto peer_line = [&](const char* label, std::optional<double> v) {
     if (!v) return;
     std::snprintf(line, sizeof line, "  %-26s %9.2f", label, *v);
@@ -225,15 +227,20 @@ void print_embree_summary(std::ostream& os, const run_table& table, int64_t w, i
   peer_line("book (double, virtual)", book);
 
   const auto [sw, sh] = quick ? quick_scaling_size : full_scaling_size;
+  std::map<int, std::optional<double>> ours_at, embree_at;
+  bool any_scaling = false;
+  for (int n : scaling_counts(quick)) {
+    ours_at[n] = ns_per_px(table, scene_row_name(best.backend, prec, random_name(n), sw, sh, 1, "rgb8"), sw, sh);
+    embree_at[n] = ns_per_px(table, scene_row_name("embree16", "float", random_name(n), sw, sh, 1, "rgb8"), sw, sh);
+    any_scaling = any_scaling || ours_at[n] || embree_at[n];
+  }
+  if (!any_scaling) return;
   os << "\nScaling: N random spheres (random_spheres), " << sw << "x" << sh
      << ", 1 thread, rgb8, ns/px\n";
   std::snprintf(line, sizeof line, "  %6s %14s %10s %12s\n", "N", ours_label.c_str(), "embree16",
                 "ours/embree");
   os << line;
-  std::map<int, std::optional<double>> ours_at, embree_at;
   for (int n : scaling_counts(quick)) {
-    ours_at[n] = ns_per_px(table, scene_row_name(best.backend, prec, random_name(n), sw, sh, 1, "rgb8"), sw, sh);
-    embree_at[n] = ns_per_px(table, scene_row_name("embree16", "float", random_name(n), sw, sh, 1, "rgb8"), sw, sh);
     std::optional<double> ratio;
     if (ours_at[n] && embree_at[n]) ratio = *ours_at[n] / *embree_at[n];
     std::snprintf(line, sizeof line, "  %6d %14s %10s %12s\n", n, cell(ours_at[n]).c_str(),
