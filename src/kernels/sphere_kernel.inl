@@ -40,6 +40,16 @@ namespace {
 using namespace raycast::simd::RAYCAST_ISA;
 constexpr int N = vfloat::size;
 
+// Samples per pass of the sampled path (render_samples): two overlap their
+// dependency chains where the registers hold both passes' rays and hits
+// (AVX-512's 32 zmm, AVX2's 16 ymm, NEON's 32 q registers as 8-lane pairs);
+// SSE2's 16 xmm registers, two per vector, do not, and it takes one
+// (sphere_sse2.cpp; on `world` one sample at a time is 7 % faster there).
+#ifndef RAYCAST_SAMPLES_PER_PASS
+#define RAYCAST_SAMPLES_PER_PASS 2
+#endif
+constexpr int samples_per_pass = RAYCAST_SAMPLES_PER_PASS;
+
 // Which shadings the scene's spheres use (bit 0: normal, bit 1: flat).
 constexpr int normal_shading = 1;
 constexpr int flat_shading = 2;
@@ -621,9 +631,11 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
         // count, the sky's sum of u and count (kernels/sampled_sky.h).
         vfloat flat[3] = {0.0f, 0.0f, 0.0f}, normals[3] = {0.0f, 0.0f, 0.0f}, normal_count = 0.0f;
         vfloat sky_sum = 0.0f, sky_count = 0.0f;
-        // M samples at a time (two, and one for an odd count's last), each
-        // step for all M before the next; their sums in sample order.
-        const auto samples = [&]<int M>(uint32_t t0) {
+        // M samples at a time (samples_per_pass, then one at a time for
+        // the rest), each step for all M before the next; their sums in
+        // sample order. Always inlined: GCC 12 kept SSE2's two-sample pass
+        // out of line (+40 % per sample).
+        const auto samples = [&]<int M>(uint32_t t0) __attribute__((always_inline)) {
           rays ry[M];
           for (int u = 0; u < M; ++u) {
             vfloat xi, eta;  // counts of the sampler's offset_unit
@@ -683,8 +695,9 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
           }
         };
         uint32_t t = 0;
-        for (; t + 2 <= plan.count; t += 2) samples.template operator()<2>(t);
-        if (t < plan.count) samples.template operator()<1>(t);
+        for (; t + samples_per_pass <= plan.count; t += samples_per_pass)
+          samples.template operator()<samples_per_pass>(t);
+        for (; t < plan.count; ++t) samples.template operator()<1>(t);
         // A normal-shaded scene's normal count is what the sky did not take (exact: below 2^24).
         if constexpr (Shades == normal_shading) normal_count = count - sky_count;
         vfloat c[3];
