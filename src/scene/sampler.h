@@ -6,9 +6,9 @@
 // Sample s of pixel (i, j) (j = 0 at the bottom) lies at (i + xi, j + eta),
 // xi and eta in [0, 1) on a 2^-24 grid: up and to the right of the one-sample
 // point, as the book's u = (i + random_double()) / (W - 1). The float renderer
-// turns that into su = su_i + xi * du, sv = sv_j + eta * dv (kernels/scalar.h;
-// du = 1 / (W - 1) in float, 0 when W = 1), so xi = eta = 0 is the one-sample
-// pixel's direction bit for bit.
+// turns that into the pixel's one-sample direction plus xi and eta, as counts
+// of offset_unit (below), times per-render steps (kernels/scalar.h), so
+// xi = eta = 0 is the one-sample pixel's direction bit for bit.
 //
 // Randomness is counter-based, not a stream: every number is a hash of
 // (seed, pixel, sample index), so a pixel's samples are the same whichever
@@ -109,10 +109,9 @@ inline pixel_seeds<U> seeds_for(const sample_plan& p, U i, uint32_t j) {
 
 // The offsets as counts of a unit: xi = xi_count * offset_unit<K> exactly
 // (sobol: 24-bit counts, unit 2^-24; random: 16-bit, 2^-16; stratified's
-// are not counts, unit 1). The kernels fold the unit into du and dv: xi * du
-// and xi_count * (du * unit) are the same exact product rounded once (a
-// power of two times a count is exact), so they are the same bits, one
-// multiply fewer per sample.
+// are not counts, unit 1). The float renderers take the counts and fold the
+// unit into their steps (du * unit is exact: a power of two), one multiply
+// fewer per offset.
 template <sampler_kind K>
 inline constexpr float offset_unit = K == sampler_kind::sobol ? 0x1p-24f : K == sampler_kind::random ? 0x1p-16f : 1.0f;
 
