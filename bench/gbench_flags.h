@@ -9,7 +9,6 @@
 
 namespace benchmark {
 extern bool FLAGS_benchmark_list_tests;
-extern bool FLAGS_benchmark_enable_random_interleaving;
 extern double FLAGS_benchmark_min_time;
 extern std::string FLAGS_benchmark_format;
 extern std::string FLAGS_benchmark_out;

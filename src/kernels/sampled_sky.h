@@ -5,8 +5,8 @@
 // A sample that hits no sphere adds u = d.y / |d| to the pixel's sky sum and
 // 1 to its sky count; the sky's colour, affine in u (bottom + t delta with
 // t = (u + 1) / 2 = sky_mid + u * sky_half), is applied once per pixel:
-//   pixel = (hit colours summed + (sky count * sky_mid + sky sum * sky_half)) / N
-// (kernels/scalar.h). u comes without the divider: 1/|d| is a bit-level
+//   pixel = ((flat + (normals + normal count) 0.5) + (sky count * sky_mid + sky sum * sky_half)) / N
+// (kernels/scalar.h: the hits' sums). u comes without the divider: 1/|d| is a bit-level
 // first guess refined by two Newton steps -- plain IEEE multiplies and
 // subtractions, so every instruction set gives the same bits -- accurate to
 // a few float ulp (the first guess is within 3.5e-3, each step squares

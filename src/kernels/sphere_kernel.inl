@@ -124,8 +124,8 @@ RAYCAST_INLINE void record(const sphere_arrays& sp, size_t k, vmask m, vfloat s,
 
 // Tests the spheres list[0 .. count) (every sphere, 0 .. count, when list is
 // null) against M independent ray batches at once, each step written for all
-// M before the next (the sampled path takes two samples at a time: their
-// long dependency chains -- square root, then division -- overlap).
+// M before the next (the sampled path takes samples_per_pass samples at a
+// time: their long dependency chains overlap).
 template <int Shades, int M>
 RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, size_t count, rays (&r)[M],
                               closest_hit<Shades> (&h)[M], const float* fz_dz = nullptr) {
@@ -592,16 +592,22 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
   }
   // The lesson's camera (centre = (+0, +0, -f), horizontal = (h, 0, 0),
   // vertical = (0, v, 0)): scalar.h's d.x = (base.x + xi step_x.x) + eta 0
-  // is base.x + xi step_x.x bit for bit (adding +0 changes a sum that is
-  // never -0: base.x starts from centre.x = +0), d.y = base.y + eta step_y.y
+  // is base.x + xi step_x.x bit for bit (adding +0 leaves a sum that is
+  // never -0 unchanged: base.x starts from centre.x = +0), d.y = base.y + eta step_y.y
   // likewise, and d.z = base.z = -f exactly.
   const bool lesson = s.axis_aligned_camera && s.centre[0] == 0.0f && s.centre[1] == 0.0f &&
                       !std::signbit(s.centre[0]) && !std::signbit(s.centre[1]) && s.centre[2] != 0.0f;
   const vfloat z2 = s.centre[2] * s.centre[2];
-  // The lesson's camera: each sphere's f.z d.z, once (raw memory, as batch_lists).
-  float* const fz_dz = lesson ? static_cast<float*>(std::malloc(sp.n * sizeof(float) + 1)) : nullptr;
-  if (fz_dz)
-    for (size_t k = 0; k < sp.n; ++k) fz_dz[k] = sp.fz[k] * s.centre[2];
+  // The lesson's camera: each sphere's f.z d.z, once (raw memory, as
+  // batch_lists; without it, intersect forms f.z d.z per ray, the same bits).
+  struct products {
+    float* v = nullptr;
+    ~products() { std::free(v); }
+  } fz_dz_table;
+  if (lesson) fz_dz_table.v = static_cast<float*>(std::malloc(sp.n * sizeof(float) + 1));
+  const float* const fz_dz = fz_dz_table.v;
+  if (fz_dz_table.v)
+    for (size_t k = 0; k < sp.n; ++k) fz_dz_table.v[k] = sp.fz[k] * s.centre[2];
   for (int64_t r = r0; r < r1; ++r) {
     const int64_t j = s.height - 1 - r;
     const float sv_j = s.height == 1 ? 0.0f : (float(j) - s.mid_row) / s.last_row;  // scalar.h
@@ -708,7 +714,6 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
       }
     }
   }
-  std::free(fz_dz);
 }
 
 template <int Shades>

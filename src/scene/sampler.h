@@ -154,8 +154,8 @@ class sample_table {
   sample_plan plan_;
 };
 
-// (xi, eta) of sample s of pixel (i, j), for the scalar renderers and tests;
-// and as counts of offset_unit_of(p.kind).
+// (xi, eta) of sample s of pixel (i, j), for the double reference and tests;
+// and as counts of offset_unit_of(p.kind), for the scalar float renderer.
 void sample_offsets(const sample_plan& p, uint32_t i, uint32_t j, uint32_t s, float& xi, float& eta);
 void sample_offset_counts(const sample_plan& p, uint32_t i, uint32_t j, uint32_t s, float& xi, float& eta);
 float offset_unit_of(sampler_kind k);
