@@ -204,7 +204,9 @@ void scalar_pixel_samples(const float_scene& f, const sampling::sample_plan& sp,
       sky_sum = sky_sum + sampled::sky_u<float, uint32_t>(tr.d[1], tr.n2);
       sky_count = sky_count + 1.0f;
     } else if (spheres.flat[tr.hit] == 1.0f) {
-      for (int k = 0; k < 3; ++k) flat[k] = flat[k] + (k == 0 ? spheres.red : k == 1 ? spheres.green : spheres.blue)[tr.hit];
+      float c[3];
+      hit_colour(f, tr, c);  // the flat colour
+      for (int k = 0; k < 3; ++k) flat[k] = flat[k] + c[k];
     } else {
       float n[3];
       hit_normal(f, tr, n);
