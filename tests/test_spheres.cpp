@@ -16,6 +16,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "kernels/culling.h"
 #include "kernels/float_scene.h"
 #include "kernels/scalar.h"
 #include "reference/hittable.h"

@@ -47,41 +47,7 @@ struct float_scene {
   float_spheres spheres;
 };
 
-float_scene prepare_float_scene(const scene& s);
-
-// A sphere some ray of a row may hit, and the batches of `batch` columns
-// (batch lo .. hi, inclusive: columns lo * batch .. hi * batch + batch - 1)
-// whose rays may hit it.
-struct sphere_span {
-  uint32_t sphere;
-  int32_t lo, hi;
-};
-
-// The spheres a ray of the row with this sv (kernels/scalar.h) may hit, in
-// scene order, with their batches. Every ray of a row lies in the plane
-// through the camera origin spanned by centre + sv * vertical and horizontal,
-// so a sphere whose centre is farther than its radius from that plane is hit
-// by none of them; of the others, a column's ray can hit the sphere only if
-// its line comes within the radius of the centre, a quadratic in the column.
-// The tests are in double on the float renderers' own constants, with a
-// margin (1e-4 of |f| + r) hundreds of times the float intersection's
-// rounding, so leaving a sphere out never changes a pixel. Writes to out
-// (room for every sphere) and returns how many. (Raw memory: the kernels,
-// compiled per instruction set, instantiate no standard-library templates.)
-// With candidates, only those spheres (scene order) are considered: the
-// others are known not to come near this row (sphere_rows).
-// With spread (a float_scene's pixel_spread, for renders with many samples),
-// the spheres a ray of the pixels' whole square of samples may hit: each
-// radius widened by spread |f| (a ray within angle spread of another passes
-// within spread |f| of where that one does, up to the sphere's distance).
-size_t spheres_in_row(const float_scene& f, float sv, int batch, sphere_span* out,
-                      const uint32_t* candidates = nullptr, size_t n_candidates = 0,
-                      double spread = 0.0);
-
-// The rows j (j = 0 at the bottom, kernels/scalar.h) whose plane may come
-// near sphere k -- every row where spheres_in_row's plane test could keep
-// it, and a little more; false when none does. So each row need not look at
-// every sphere of the scene.
-bool sphere_rows(const float_scene& f, uint32_t k, int64_t& j_lo, int64_t& j_hi, double spread = 0.0);
+// With up to `threads` threads for large scenes; the same bytes for any count.
+float_scene prepare_float_scene(const scene& s, int threads = 1);
 
 }  // namespace raycast

@@ -74,24 +74,32 @@
 
 namespace raycast {
 
-// A structure of arrays, one entry per sphere in scene order.
+// What the intersection reads of one sphere, in one record of half a cache
+// line: a ray batch tests spheres in scene order, which in a large scene
+// jumps about memory, so each test costs one cache line rather than one per
+// constant.
+struct alignas(32) sphere_record {
+  float fx, fy, fz;  // f = (O - C) 2^-e
+  float c;           // |f|^2 - r^2, in double, in the scaled unit
+  float r2;          // r^2 (scaled)
+  float inv_r;       // 1 / r (scaled)
+  float scale;       // 2^e
+  uint8_t near;      // 1: the textbook discriminant; 0: Hearn & Baker
+  uint8_t inside;    // 1: the camera is inside the sphere or on it
+};
+
+// One record per sphere in scene order, and what shading reads of a hit.
 struct float_spheres {
-  std::vector<float> fx, fy, fz;  // f = (O - C) 2^-e
-  std::vector<float> c;           // |f|^2 - r^2, in double, in the scaled unit
-  std::vector<float> r2;          // r^2 (scaled)
-  std::vector<float> inv_r;       // 1 / r (scaled)
-  std::vector<float> scale;       // 2^e
-  std::vector<uint8_t> near;      // 1: the textbook discriminant; 0: Hearn & Baker
-  std::vector<uint8_t> inside;    // 1: the camera is inside the sphere or on it
+  std::vector<sphere_record> rec;
   std::vector<float> red, green, blue;  // flat colour (0 for normal-shaded spheres)
   std::vector<float> flat;        // 1 for flat-shaded spheres, 0 for normal-shaded
   bool any_flat = false, any_normal = false, any_inside = false;
-  // For culling (float_scene.h's spheres_in_row), in the sphere's unit: the
-  // radius widened by a margin far above float's rounding, 1e-4 (|f| + r).
-  std::vector<double> cull_radius;
+  // For culling (kernels/culling.h), in the sphere's unit: the radius
+  // widened by a margin far above float's rounding, 1e-5 (|f| + r).
+  std::vector<float> cull_radius;
 
-  size_t size() const { return fx.size(); }
-  bool empty() const { return fx.empty(); }
+  size_t size() const { return rec.size(); }
+  bool empty() const { return rec.empty(); }
 };
 
 // The same arrays as plain pointers, for the kernels: they are compiled per
@@ -99,17 +107,15 @@ struct float_spheres {
 // inline function built for AVX-512 could be picked by the linker for the
 // others). The plan (render/plan.cpp) fills it.
 struct sphere_arrays {
-  const float *fx = nullptr, *fy = nullptr, *fz = nullptr, *c = nullptr, *r2 = nullptr,
-              *inv_r = nullptr, *scale = nullptr;
-  const uint8_t *near = nullptr, *inside = nullptr;
+  const sphere_record* rec = nullptr;
   const float *red = nullptr, *green = nullptr, *blue = nullptr, *flat = nullptr;
   size_t n = 0;
   bool any_flat = false, any_normal = false, any_inside = false;
 };
 
 inline sphere_arrays arrays_of(const float_spheres& s) {
-  return {s.fx.data(), s.fy.data(), s.fz.data(), s.c.data(), s.r2.data(), s.inv_r.data(),
-          s.scale.data(), s.near.data(), s.inside.data(), s.red.data(), s.green.data(), s.blue.data(), s.flat.data(), s.size(), s.any_flat, s.any_normal, s.any_inside};
+  return {s.rec.data(), s.red.data(), s.green.data(), s.blue.data(), s.flat.data(),
+          s.size(), s.any_flat, s.any_normal, s.any_inside};
 }
 
 }  // namespace raycast

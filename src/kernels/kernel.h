@@ -3,6 +3,7 @@
 #include <cstdint>
 
 #include "image/image.h"
+#include "kernels/culling.h"
 #include "kernels/float_scene.h"
 #include "kernels/precision.h"
 #include "scene/sampler.h"
@@ -43,6 +44,12 @@ struct kernel_args {
   bool colours_in_unit_range = false;
   // The sphere kernel's spheres (kernels/float_spheres.h); n = 0 for the sky.
   sphere_arrays spheres;
+  // The frame's row index (kernels/culling.h; built by the renderer, with the
+  // sampled path's spread when samples is set): row r's candidate spheres
+  // are row_list[row_first[r] .. row_first[r + 1]), at most row_most.
+  const uint64_t* row_first = nullptr;
+  const sphere_span* row_list = nullptr;
+  size_t row_most = 0;
   // Many samples per pixel (scene/sampler.h): the sphere kernel's sampled
   // path, for every scene, the sky alone included; null for one sample.
   const sampling::sample_plan* samples = nullptr;

@@ -83,20 +83,20 @@ traced trace(const float_scene& f, const float (&dir)[3]) {
   tr.s = 0.0f;
   tr.hit = sp.size();
   for (size_t k = 0; k < sp.size(); ++k) {
-    const float b = (sp.fx[k] * d[0] + sp.fy[k] * d[1]) + sp.fz[k] * d[2];
+    const float b = (sp.rec[k].fx * d[0] + sp.rec[k].fy * d[1]) + sp.rec[k].fz * d[2];
     float disc;
-    if (sp.near[k]) {
-      disc = b * b - n2 * sp.c[k];
+    if (sp.rec[k].near) {
+      disc = b * b - n2 * sp.rec[k].c;
     } else {
       const float kb = b * inv_n2;
-      const float vx = sp.fx[k] - kb * d[0], vy = sp.fy[k] - kb * d[1], vz = sp.fz[k] - kb * d[2];
-      disc = n2 * (sp.r2[k] - ((vx * vx + vy * vy) + vz * vz));
+      const float vx = sp.rec[k].fx - kb * d[0], vy = sp.rec[k].fy - kb * d[1], vz = sp.rec[k].fz - kb * d[2];
+      disc = n2 * (sp.rec[k].r2 - ((vx * vx + vy * vy) + vz * vz));
     }
     const float sq = std::sqrt(vmax(disc, 0.0f));
     const float q = -(b + std::copysign(sq, b));
-    const float s0 = sp.c[k] / q;
-    const float s = s0 >= 0.0f || !sp.inside[k] ? s0 : q / n2;
-    const float t = s * sp.scale[k];
+    const float s0 = sp.rec[k].c / q;
+    const float s = s0 >= 0.0f || !sp.rec[k].inside ? s0 : q / n2;
+    const float t = s * sp.rec[k].scale;
     if (disc >= 0.0f && s >= 0.0f && t <= tr.closest) {
       tr.closest = t;
       tr.s = s;
@@ -118,9 +118,9 @@ void hit_normal(const float_scene& f, const traced& tr, float n[3]) {
   const float_spheres& sp = f.spheres;
   const size_t hit = tr.hit;
   const float* d = tr.d;
-  const float fo[3] = {sp.fx[hit], sp.fy[hit], sp.fz[hit]};
-  for (int k = 0; k < 3; ++k) n[k] = (fo[k] + tr.s * d[k]) * sp.inv_r[hit];
-  if (sp.inside[hit] && (n[0] * d[0] + n[1] * d[1]) + n[2] * d[2] >= 0.0f)  // face the ray
+  const float fo[3] = {sp.rec[hit].fx, sp.rec[hit].fy, sp.rec[hit].fz};
+  for (int k = 0; k < 3; ++k) n[k] = (fo[k] + tr.s * d[k]) * sp.rec[hit].inv_r;
+  if (sp.rec[hit].inside && (n[0] * d[0] + n[1] * d[1]) + n[2] * d[2] >= 0.0f)  // face the ray
     for (int k = 0; k < 3; ++k) n[k] = -n[k];
 }
 

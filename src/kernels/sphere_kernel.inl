@@ -91,11 +91,11 @@ RAYCAST_INLINE void record(const sphere_arrays& sp, size_t k, vmask m, vfloat s,
     h.hit = m;
     if constexpr ((Shades & normal_shading) != 0) {
       h.s = s;
-      h.fx = sp.fx[k];
-      h.fy = sp.fy[k];
-      h.fz = sp.fz[k];
-      h.inv_r = sp.inv_r[k];
-      if (sp.any_inside) h.inside = sp.inside[k] ? 1.0f : 0.0f;
+      h.fx = sp.rec[k].fx;
+      h.fy = sp.rec[k].fy;
+      h.fz = sp.rec[k].fz;
+      h.inv_r = sp.rec[k].inv_r;
+      if (sp.any_inside) h.inside = sp.rec[k].inside ? 1.0f : 0.0f;
     }
     if constexpr ((Shades & flat_shading) != 0) {
       h.red = sp.red[k];
@@ -108,11 +108,11 @@ RAYCAST_INLINE void record(const sphere_arrays& sp, size_t k, vmask m, vfloat s,
   h.hit = h.hit | m;
   if constexpr ((Shades & normal_shading) != 0) {
     h.s = select(m, s, h.s);
-    h.fx = select(m, vfloat(sp.fx[k]), h.fx);
-    h.fy = select(m, vfloat(sp.fy[k]), h.fy);
-    h.fz = select(m, vfloat(sp.fz[k]), h.fz);
-    h.inv_r = select(m, vfloat(sp.inv_r[k]), h.inv_r);
-    if (sp.any_inside) h.inside = select(m, vfloat(sp.inside[k] ? 1.0f : 0.0f), h.inside);
+    h.fx = select(m, vfloat(sp.rec[k].fx), h.fx);
+    h.fy = select(m, vfloat(sp.rec[k].fy), h.fy);
+    h.fz = select(m, vfloat(sp.rec[k].fz), h.fz);
+    h.inv_r = select(m, vfloat(sp.rec[k].inv_r), h.inv_r);
+    if (sp.any_inside) h.inside = select(m, vfloat(sp.rec[k].inside ? 1.0f : 0.0f), h.inside);
   }
   if constexpr ((Shades & flat_shading) != 0) {
     h.red = select(m, vfloat(sp.red[k]), h.red);
@@ -131,7 +131,7 @@ RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, siz
                               closest_hit<Shades> (&h)[M], const float* fz_dz = nullptr) {
   for (size_t x = 0; x < count; ++x) {
     const size_t k = list ? list[x] : x;
-    const vfloat fx = sp.fx[k], fy = sp.fy[k], fz = sp.fz[k];
+    const vfloat fx = sp.rec[k].fx, fy = sp.rec[k].fy, fz = sp.rec[k].fz;
     vfloat b[M], disc[M];
     vmask can_hit[M];
     bool any_can = false;
@@ -140,13 +140,13 @@ RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, siz
     } else {
       for (int u = 0; u < M; ++u) b[u] = (fx * r[u].d[0] + fy * r[u].d[1]) + fz * r[u].d[2];
     }
-    if (sp.near[k]) {
-      for (int u = 0; u < M; ++u) disc[u] = b[u] * b[u] - r[u].n2 * vfloat(sp.c[k]);
+    if (sp.rec[k].near) {
+      for (int u = 0; u < M; ++u) disc[u] = b[u] * b[u] - r[u].n2 * vfloat(sp.rec[k].c);
     } else {
       for (int u = 0; u < M; ++u) {
         const vfloat kb = b[u] * r[u].inv_n2();
         const vfloat vx = fx - kb * r[u].d[0], vy = fy - kb * r[u].d[1], vz = fz - kb * r[u].d[2];
-        disc[u] = r[u].n2 * (vfloat(sp.r2[k]) - ((vx * vx + vy * vy) + vz * vz));
+        disc[u] = r[u].n2 * (vfloat(sp.rec[k].r2) - ((vx * vx + vy * vy) + vz * vz));
       }
     }
     for (int u = 0; u < M; ++u) {
@@ -157,13 +157,13 @@ RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, siz
     vfloat q[M], s[M];
     // The lanes where disc < 0 are not read: no max(disc, 0) here.
     for (int u = 0; u < M; ++u) q[u] = -(b[u] + copysign(sqrt(disc[u]), b[u]));
-    for (int u = 0; u < M; ++u) s[u] = vfloat(sp.c[k]) / q[u];
+    for (int u = 0; u < M; ++u) s[u] = vfloat(sp.rec[k].c) / q[u];
     for (int u = 0; u < M; ++u) {
-      if (sp.inside[k]) {  // the far root where the near one is behind
+      if (sp.rec[k].inside) {  // the far root where the near one is behind
         const vmask behind = can_hit[u] & !(s[u] >= 0.0f);
         if (any(behind)) s[u] = select(behind, q[u] / r[u].n2, s[u]);
       }
-      const vfloat t = s[u] * vfloat(sp.scale[k]);
+      const vfloat t = s[u] * vfloat(sp.rec[k].scale);
       const vmask m = can_hit[u] & (s[u] >= 0.0f) & (t <= h[u].t);
       h[u].t = select(m, t, h[u].t);
       record(sp, k, m, s[u], h[u]);
@@ -179,25 +179,25 @@ RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, siz
                               closest_hit<Shades>& h) {
   for (size_t x = 0; x < count; ++x) {
     const size_t k = list ? list[x] : x;
-    const vfloat fx = sp.fx[k], fy = sp.fy[k], fz = sp.fz[k];
+    const vfloat fx = sp.rec[k].fx, fy = sp.rec[k].fy, fz = sp.rec[k].fz;
     const vfloat b = (fx * r.d[0] + fy * r.d[1]) + fz * r.d[2];
     vfloat disc;
-    if (sp.near[k]) {
-      disc = b * b - r.n2 * vfloat(sp.c[k]);
+    if (sp.rec[k].near) {
+      disc = b * b - r.n2 * vfloat(sp.rec[k].c);
     } else {
       const vfloat kb = b * r.inv_n2();
       const vfloat vx = fx - kb * r.d[0], vy = fy - kb * r.d[1], vz = fz - kb * r.d[2];
-      disc = r.n2 * (vfloat(sp.r2[k]) - ((vx * vx + vy * vy) + vz * vz));
+      disc = r.n2 * (vfloat(sp.rec[k].r2) - ((vx * vx + vy * vy) + vz * vz));
     }
     const vmask can_hit = disc >= 0.0f;
     if (none(can_hit)) continue;
     const vfloat q = -(b + copysign(sqrt(max(disc, 0.0f)), b));
-    vfloat s = vfloat(sp.c[k]) / q;
-    if (sp.inside[k]) {  // the far root where the near one is behind
+    vfloat s = vfloat(sp.rec[k].c) / q;
+    if (sp.rec[k].inside) {  // the far root where the near one is behind
       const vmask behind = can_hit & !(s >= 0.0f);
       if (any(behind)) s = select(behind, q / r.n2, s);
     }
-    const vfloat t = s * vfloat(sp.scale[k]);
+    const vfloat t = s * vfloat(sp.rec[k].scale);
     const vmask m = can_hit & (s >= 0.0f) & (t <= h.t);
     h.t = select(m, t, h.t);
     record(sp, k, m, s, h);
@@ -342,134 +342,6 @@ RAYCAST_INLINE void store_window(unsigned char* row, int64_t i0, int64_t c0, int
   __builtin_memcpy(row + bpp * size_t(lo - c0), tmp + bpp * size_t(lo - i0), bpp * size_t(hi - lo));
 }
 
-// Per-batch sphere lists for a run of a row's batches, built from the row's
-// spans: list[first[b] .. first[b + 1]) are the spheres of batch b0 + b, in
-// scene order. Raw memory (no standard-library template is instantiated with
-// this instruction set's flags); without memory, every batch tests every
-// sphere (list == nullptr).
-struct batch_lists {
-  static constexpr size_t budget = size_t(1) << 16;  // entries per run
-  sphere_span* spans = nullptr;
-  uint32_t* list = nullptr;
-  uint32_t* first = nullptr;
-  uint32_t* fill = nullptr;
-
-  batch_lists(size_t spheres, int64_t batches) {
-    spans = static_cast<sphere_span*>(std::malloc(spheres * sizeof(sphere_span) + 1));
-    list = static_cast<uint32_t*>(std::malloc((spheres > budget ? spheres : budget) * sizeof(uint32_t)));
-    first = static_cast<uint32_t*>(std::malloc(size_t(batches + 1) * sizeof(uint32_t)));
-    fill = static_cast<uint32_t*>(std::malloc(size_t(batches + 1) * sizeof(uint32_t)));
-    if (!spans || !list || !first || !fill) release();
-  }
-  ~batch_lists() { release(); }
-  batch_lists(const batch_lists&) = delete;
-  batch_lists& operator=(const batch_lists&) = delete;
-  void release() {
-    std::free(spans);
-    std::free(list);
-    std::free(first);
-    std::free(fill);
-    spans = nullptr;
-    list = first = fill = nullptr;
-  }
-  bool ok() const { return spans != nullptr; }
-
-  // How many batches one run may cover so that its lists fit the budget.
-  static int64_t run_length(size_t count, int64_t batches) {
-    const int64_t most = count == 0 ? batches : int64_t(budget / count);
-    return most < 1 ? 1 : (most < batches ? most : batches);
-  }
-
-  // The lists of batches [b0, b1) from the row's count spans.
-  void build(size_t count, int64_t b0, int64_t b1) {
-    const int64_t n = b1 - b0;
-    for (int64_t b = 0; b <= n; ++b) fill[b] = 0;
-    for (size_t x = 0; x < count; ++x) {
-      const int64_t lo = spans[x].lo > b0 ? spans[x].lo : b0;
-      const int64_t hi = spans[x].hi < b1 - 1 ? spans[x].hi : b1 - 1;
-      for (int64_t b = lo; b <= hi; ++b) ++fill[b - b0 + 1];
-    }
-    first[0] = 0;
-    for (int64_t b = 0; b < n; ++b) {
-      first[b + 1] = first[b] + fill[b + 1];
-      fill[b] = first[b];
-    }
-    for (size_t x = 0; x < count; ++x) {
-      const int64_t lo = spans[x].lo > b0 ? spans[x].lo : b0;
-      const int64_t hi = spans[x].hi < b1 - 1 ? spans[x].hi : b1 - 1;
-      for (int64_t b = lo; b <= hi; ++b) list[fill[b - b0]++] = spans[x].sphere;
-    }
-  }
-};
-
-// The spheres each row of rows [r0, r1) may come near (sphere_rows), a list
-// per row in scene order, so a row looks only at those rather than at every
-// sphere of the scene. Raw memory, as batch_lists; without memory, or past the
-// budget (spheres spanning many rows each), every row looks at every sphere.
-struct row_lists {
-  static constexpr size_t budget = size_t(1) << 24;  // entries
-  uint32_t* first = nullptr;  // list[first[r - r0] .. first[r - r0 + 1]) for row r
-  uint32_t* list = nullptr;
-  int64_t r0 = 0;
-
-  row_lists(const float_scene& s, int64_t row0, int64_t row1, double spread) : r0(row0) {
-    const size_t n = s.spheres.size(), rows = size_t(row1 - row0);
-    int64_t* range = static_cast<int64_t*>(std::malloc(2 * n * sizeof(int64_t) + 1));
-    first = static_cast<uint32_t*>(std::malloc((rows + 1) * sizeof(uint32_t)));
-    if (!range || !first) {
-      std::free(range);
-      release();
-      return;
-    }
-    // Each sphere's rows [range[2k], range[2k+1]] within the band (empty: lo > hi).
-    size_t total = 0;
-    for (size_t k = 0; k < n; ++k) {
-      int64_t j_lo = 0, j_hi = 0;
-      int64_t lo = 1, hi = 0;
-      if (sphere_rows(s, uint32_t(k), j_lo, j_hi, spread)) {
-        lo = s.height - 1 - j_hi > row0 ? s.height - 1 - j_hi : row0;
-        hi = s.height - 1 - j_lo < row1 - 1 ? s.height - 1 - j_lo : row1 - 1;
-      }
-      range[2 * k] = lo;
-      range[2 * k + 1] = hi;
-      if (lo <= hi) total += size_t(hi - lo + 1);
-    }
-    if (total > budget || !(list = static_cast<uint32_t*>(std::malloc(total * sizeof(uint32_t) + 1)))) {
-      std::free(range);
-      release();
-      return;
-    }
-    for (size_t r = 0; r <= rows; ++r) first[r] = 0;
-    for (size_t k = 0; k < n; ++k)
-      for (int64_t r = range[2 * k]; r <= range[2 * k + 1]; ++r) ++first[r - row0 + 1];
-    for (size_t r = 0; r < rows; ++r) first[r + 1] += first[r];
-    // Fill in scene order, each row's cursor starting at its first entry.
-    uint32_t* cursor = static_cast<uint32_t*>(std::malloc(rows * sizeof(uint32_t) + 1));
-    if (!cursor) {
-      std::free(range);
-      release();
-      return;
-    }
-    for (size_t r = 0; r < rows; ++r) cursor[r] = first[r];
-    for (size_t k = 0; k < n; ++k)
-      for (int64_t r = range[2 * k]; r <= range[2 * k + 1]; ++r) list[cursor[r - row0]++] = uint32_t(k);
-    std::free(cursor);
-    std::free(range);
-  }
-  ~row_lists() { release(); }
-  row_lists(const row_lists&) = delete;
-  row_lists& operator=(const row_lists&) = delete;
-  void release() {
-    std::free(first);
-    std::free(list);
-    first = nullptr;
-    list = nullptr;
-  }
-  bool ok() const { return list != nullptr; }
-  const uint32_t* of(int64_t r) const { return list + first[r - r0]; }
-  size_t count(int64_t r) const { return first[r - r0 + 1] - first[r - r0]; }
-};
-
 template <int Shades, bool Float, bool Lanes>
 void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
   const float_scene& s = *a.scene;
@@ -479,23 +351,16 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
   const int64_t batches = (W + N - 1) / N;
   // The batches that hold the band's columns.
   const int64_t first_batch = c0 / N, end_batch = (c1 + N - 1) / N;
-  batch_lists lists(sp.n, batches);
-  const row_lists rows(s, r0, r1, 0.0);
+  batch_culler lists(s, a.row_most, N, 0.0);
   const bool mirror = a.mirror && lists.ok() && band.whole_rows(W);
   for (int64_t r = r0; r < r1; ++r) {
     const int64_t j = s.height - 1 - r;
     const float sv = s.height == 1 ? 0.0f : (float(j) - s.mid_row) / s.last_row;  // scalar.h
-    size_t count = sp.n;
-    if (lists.ok())
-      count = rows.ok() ? spheres_in_row(s, sv, N, lists.spans, rows.of(r), rows.count(r))
-                        : spheres_in_row(s, sv, N, lists.spans);
-    const int64_t run = lists.ok() ? batch_lists::run_length(count, batches) : batches;
+    if (lists.ok()) lists.row(sv, a.row_list + a.row_first[r], size_t(a.row_first[r + 1] - a.row_first[r]));
+    const int64_t run = lists.ok() ? lists.run_length() : batches;
     const vfloat row_part[3] = {sv * s.vertical[0], sv * s.vertical[1], sv * s.vertical[2]};
     unsigned char* const out = band.row(r);
-    const auto tests_of = [&](int64_t b, int64_t b0) -> size_t {
-      if (!lists.ok()) return sp.n;
-      return count > 0 ? lists.first[b - b0 + 1] - lists.first[b - b0] : 0;
-    };
+    const auto tests_of = [&](int64_t b) -> size_t { return lists.ok() ? lists.tests(b) : sp.n; };
     // Shortcut `lanes` (the axis-aligned camera): every column's d.y and d.z
     // are the first column's, bit for bit (scalar.h: centre + su * 0), so
     // they and their squares are per row.
@@ -520,10 +385,10 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
     // both ends. It needs the whole row's lists at once (one run).
     int64_t ends = 0;
     if (mirror && run == batches) {
-      if (count > 0) lists.build(count, 0, batches);
+      lists.build(0, batches);
       int64_t lead = 0, trail = 0;
-      while (lead < batches && tests_of(lead, 0) == 0) ++lead;
-      while (trail < batches - lead && tests_of(batches - 1 - trail, 0) == 0) ++trail;
+      while (lead < batches && tests_of(lead) == 0) ++lead;
+      while (trail < batches - lead && tests_of(batches - 1 - trail) == 0) ++trail;
       const int64_t sky_from = lead == batches ? 0 : (batches - trail) * N;  // sky to the row's end
       const int64_t by_right = (W - N - sky_from) / N + 1, by_middle = (W - 2 * N) / (2 * N) + 1;
       ends = W < 2 * N ? 0 : (lead < by_right ? lead : by_right);
@@ -539,19 +404,18 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
     for (int64_t b0 = ends > first_batch ? ends : first_batch; b0 < end_batch; b0 += run) {
       const int64_t b1 = b0 + run < end_batch ? b0 + run : end_batch;
       const bool built = mirror && run == batches;  // above, from batch 0
-      const int64_t base = built ? 0 : b0;
-      if (!built && lists.ok() && count > 0) lists.build(count, b0, b1);
+      if (!built && lists.ok()) lists.build(b0, b1);
       for (int64_t b = b0; b < b1; ++b) {
         const int64_t i0 = b * N;
         if (i0 >= W - ends * N) break;  // the mirrored end, already stored
         // The ray batch: scalar.h's direction and its squared length.
         rays ry = rays_at(i0);
-        const size_t tests = tests_of(b, base);
+        const size_t tests = tests_of(b);
         vfloat c[3];
         if (tests == 0) {
           sky.shade(ry, c);  // no sphere comes near these rays
         } else {
-          const uint32_t* list = lists.ok() ? lists.list + (count > 0 ? lists.first[b - base] : 0) : nullptr;
+          const uint32_t* list = lists.ok() ? lists.list(b) : nullptr;
           closest_hit<Shades> h;
           intersect(sp, list, tests, ry, h);
           shade(sky, sp, h, ry, c);
@@ -579,8 +443,7 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
   const int64_t W = s.width, c0 = band.col_begin, c1 = band.cols_end(W);
   const int64_t batches = (W + N - 1) / N;
   const int64_t first_batch = c0 / N, end_batch = (c1 + N - 1) / N;
-  batch_lists lists(sp.n, batches);
-  const row_lists rows(s, r0, r1, s.pixel_spread);
+  batch_culler lists(s, a.row_most, N, s.pixel_spread);
   const vfloat count = float(plan.count);
   // scalar.h: the steps of one offset count, du and dv times the sampler's
   // unit (exact), times horizontal and vertical.
@@ -607,27 +470,20 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
   if (lesson) fz_dz_table.v = static_cast<float*>(std::malloc(sp.n * sizeof(float) + 1));
   const float* const fz_dz = fz_dz_table.v;
   if (fz_dz_table.v)
-    for (size_t k = 0; k < sp.n; ++k) fz_dz_table.v[k] = sp.fz[k] * s.centre[2];
+    for (size_t k = 0; k < sp.n; ++k) fz_dz_table.v[k] = sp.rec[k].fz * s.centre[2];
   for (int64_t r = r0; r < r1; ++r) {
     const int64_t j = s.height - 1 - r;
     const float sv_j = s.height == 1 ? 0.0f : (float(j) - s.mid_row) / s.last_row;  // scalar.h
-    size_t listed = sp.n;
-    if (lists.ok())
-      listed = rows.ok() ? spheres_in_row(s, sv_j, N, lists.spans, rows.of(r), rows.count(r), s.pixel_spread)
-                         : spheres_in_row(s, sv_j, N, lists.spans, nullptr, 0, s.pixel_spread);
-    const int64_t run = lists.ok() ? batch_lists::run_length(listed, batches) : batches;
+    if (lists.ok()) lists.row(sv_j, a.row_list + a.row_first[r], size_t(a.row_first[r + 1] - a.row_first[r]));
+    const int64_t run = lists.ok() ? lists.run_length() : batches;
     unsigned char* const out = band.row(r);
     for (int64_t b0 = first_batch; b0 < end_batch; b0 += run) {
       const int64_t b1 = b0 + run < end_batch ? b0 + run : end_batch;
-      if (lists.ok() && listed > 0) lists.build(listed, b0, b1);
+      if (lists.ok()) lists.build(b0, b1);
       for (int64_t b = b0; b < b1; ++b) {
         const int64_t i0 = b * N;
-        size_t tests = sp.n;
-        const uint32_t* list = nullptr;
-        if (lists.ok()) {
-          tests = listed > 0 ? lists.first[b - b0 + 1] - lists.first[b - b0] : 0;
-          list = listed > 0 ? lists.list + lists.first[b - b0] : lists.list;
-        }
+        const size_t tests = lists.ok() ? lists.tests(b) : sp.n;
+        const uint32_t* list = lists.ok() && tests > 0 ? lists.list(b) : nullptr;
         const vuint column = vuint::iota(uint32_t(i0));
         const vfloat su_i = W == 1 ? vfloat(0.0f) : (to_float(column) - s.mid_col) / s.last_col;  // scalar.h
         vfloat base[3];  // the pixels' one-sample directions

@@ -35,6 +35,12 @@ class plan {
   const kernels::kernel_args& args() const { return args_; }
   // Many samples per pixel: the kernels' sampled path (kernels/kernel.h).
   void set_samples(const sampling::sample_plan* p) { args_.samples = p; }
+  // The frame's row index (kernels/culling.h); it must outlive the plan.
+  void set_rows(const row_index& rows) {
+    args_.row_first = rows.first.data();
+    args_.row_list = rows.list.data();
+    args_.row_most = rows.most;
+  }
 
  private:
   struct free_deleter {

@@ -87,11 +87,18 @@ int threads_that_start(int wanted) {
   return got;
 }
 
+// Threads for preparing a scene (kernels/float_scene.h, kernels/culling.h):
+// only large scenes use more than one.
+int preparation_threads(const scene& s, int threads) {
+  if (s.spheres.size() < (size_t(1) << 15)) return 1;
+  return threads_that_start(threads > 0 ? threads : available_cores());
+}
+
 }  // namespace
 
 renderer::renderer(const scene& s, const render_options& opts)
     : scene_(s),
-      fscene_(prepare_float_scene(s)),
+      fscene_(prepare_float_scene(s, preparation_threads(s, opts.threads))),
       which_(opts.which == backend::automatic ? best_backend() : opts.which),
       prec_(opts.prec),
       threads_(opts.threads > 0 ? opts.threads : available_cores()) {
@@ -107,6 +114,11 @@ renderer::renderer(const scene& s, const render_options& opts)
   if (kernel_) {  // reference and scalar need no plan
     plan_.emplace(fscene_, prec_, opts.shortcuts);
     if (samples_) plan_->set_samples(&samples_->plan());
+    // The frame's culling (kernels/culling.h), once, shared by every thread.
+    if (spheres || samples_) {
+      rows_ = row_index::build(fscene_, samples_ ? fscene_.pixel_spread : 0.0, preparation_threads(s, threads_));
+      plan_->set_rows(rows_);
+    }
   }
 }
 

@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "image/image.h"
+#include "kernels/culling.h"
 #include "kernels/float_scene.h"
 #include "kernels/precision.h"
 #include "render/backend.h"
@@ -59,6 +60,7 @@ class renderer {
   int threads_;
   kernels::render_rows_fn kernel_ = nullptr;
   std::optional<plan> plan_;  // SIMD backends only
+  row_index rows_;            // SIMD backends, scenes with spheres
   std::optional<sampling::sample_table> samples_;  // more than one sample
 };
 

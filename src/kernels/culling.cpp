@@ -1,0 +1,347 @@
+#include "kernels/culling.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <optional>
+#include <utility>
+
+namespace raycast {
+
+namespace {
+
+// Rays of a row: d(su) = a + su h, su in [-1/2, 1/2] (scalar.h, in double).
+struct row_rays {
+  double a[3], h[3];
+};
+
+double dot(const double* x, const double* y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; }
+
+void cross(const double* x, const double* y, double* out) {
+  out[0] = x[1] * y[2] - x[2] * y[1];
+  out[1] = x[2] * y[0] - x[0] * y[2];
+  out[2] = x[0] * y[1] - x[1] * y[0];
+}
+
+// Where alpha x^2 + 2 beta x + gamma <= 0, as an interval [s0, s1]: left
+// unbounded (as given) where that set is not one bounded interval (alpha <= 0,
+// or NaN), false where it is empty.
+bool below_zero(double alpha, double beta, double gamma, double& s0, double& s1) {
+  if (!(alpha > 0.0)) return true;
+  const double disc = beta * beta - alpha * gamma;
+  if (disc < 0.0) return false;
+  if (!(disc >= 0.0)) return true;
+  // The roots, without cancellation.
+  const double q = -(beta + std::copysign(std::sqrt(disc), beta));
+  s0 = q / alpha;
+  s1 = q != 0.0 ? gamma / q : s0;
+  if (s0 > s1) std::swap(s0, s1);
+  return true;
+}
+
+// The indices i in [0, count) with (i - mid) / last in [s0, s1] (a column
+// from su, a row from sv: kernels/scalar.h), widened by slack each way, as
+// [lo, hi]; false when there is none.
+bool index_range(double s0, double s1, float last, float mid, double slack, int64_t count, int64_t& lo,
+                 int64_t& hi) {
+  const double i0 = std::floor(s0 * double(last) + double(mid)) - slack;
+  const double i1 = std::ceil(s1 * double(last) + double(mid)) + slack;
+  if (i1 < 0.0 || i0 > double(count - 1) || i0 > i1) return false;
+  lo = i0 > 0.0 ? int64_t(i0) : 0;  // (NaN: 0)
+  hi = i1 < double(count - 1) ? int64_t(i1) : count - 1;
+  return true;
+}
+
+// The columns [lo, hi] of the row whose rays come within r of the sphere's
+// centre (f = O - C, both in the sphere's unit). Their lines do where
+// |f x d|^2 <= r^2 |d|^2, a quadratic in su; and where the camera is outside
+// the sphere (`outside`: outside its unwidened culling radius, even when it is
+// within the widened r -- the ground seen by rays that stray a pixel), a ray
+// (s >= 0, not the whole line) also needs the centre ahead, f.d <= 0, linear
+// in su (here with slack m, which covers the stray). False when no column's does.
+bool columns_near(const float_scene& fs, const row_rays& rr, const double* f, double r, bool outside, double m,
+                  int64_t& lo, int64_t& hi) {
+  double A[3], B[3];
+  cross(f, rr.a, A);
+  cross(f, rr.h, B);
+  const double r2 = r * r;
+  const double alpha = dot(B, B) - r2 * dot(rr.h, rr.h);
+  const double beta = dot(A, B) - r2 * dot(rr.a, rr.h);
+  const double gamma = dot(A, A) - r2 * dot(rr.a, rr.a);
+  double s0 = -INFINITY, s1 = INFINITY;  // the su interval
+  if (!below_zero(alpha, beta, gamma, s0, s1)) return false;  // no line comes near
+  if (outside) {  // the centre must be ahead
+    const double g0 = dot(f, rr.a), g1 = dot(f, rr.h);
+    if (g1 > 0.0) s1 = std::min(s1, (m - g0) / g1);
+    else if (g1 < 0.0) s0 = std::max(s0, (m - g0) / g1);
+    else if (g0 > m) return false;
+  }
+  if (fs.width == 1) return !(s0 > 0.0 || s1 < 0.0);
+  // su = (i - mid_col) / last_col; one column of slack each way.
+  return index_range(s0, s1, fs.last_col, fs.mid_col, 1.0, fs.width, lo, hi);
+}
+
+// The sphere's culling radius for rays that may stray by spread (float_scene.h).
+double widened(const float_spheres& sp, uint32_t k, double spread) {
+  if (spread == 0.0) return sp.cull_radius[k];
+  const double f2 = double(sp.rec[k].fx) * sp.rec[k].fx + double(sp.rec[k].fy) * sp.rec[k].fy + double(sp.rec[k].fz) * sp.rec[k].fz;
+  return sp.cull_radius[k] + spread * std::sqrt(f2);
+}
+
+// The indices i in [0, count) whose plane may come near the sphere at fk
+// (within w): the plane through the camera origin spanned by a + s step and
+// along, with s = (i - mid) / last -- a row's plane (step = vertical, along =
+// horizontal) or a column's (the other way round). Its normal is a x along +
+// s step x along; the sphere is near where (fk.n)^2 <= w^2 |n|^2, a
+// quadratic in s, in double; the indices are rounded outwards (the radius's
+// margin covers the float rounding of s). False when none is near.
+bool plane_range(const double* a, const double* step, const double* along, const double* fk, double w,
+                 float last, float mid, int64_t count, int64_t& lo, int64_t& hi) {
+  lo = 0;
+  hi = count - 1;
+  double N0[3], N1[3];
+  cross(a, along, N0);
+  cross(step, along, N1);
+  const double w2 = w * w, p0 = dot(fk, N0), p1 = dot(fk, N1);
+  double s0 = -INFINITY, s1 = INFINITY;
+  if (!below_zero(p1 * p1 - w2 * dot(N1, N1), p0 * p1 - w2 * dot(N0, N1), p0 * p0 - w2 * dot(N0, N0), s0, s1))
+    return false;
+  if (count == 1) return true;  // one index: the plane test decides
+  return index_range(s0, s1, last, mid, 0.0, count, lo, hi);
+}
+
+// The camera's three vectors in double.
+struct frame_vectors {
+  double c[3], h[3], v[3];
+  explicit frame_vectors(const float_scene& f) {
+    for (int i = 0; i < 3; ++i) {
+      c[i] = f.centre[i];
+      h[i] = f.horizontal[i];
+      v[i] = f.vertical[i];
+    }
+  }
+};
+
+// Per row, what the exact test of a sphere against the row's rays needs.
+struct row_test {
+  const float_scene& f;
+  double spread;
+  row_rays rr;
+  double n[3], len = 0.0, d_len = 0.0;
+  bool plane = false;
+
+  row_test(const float_scene& fs, float sv, double spread_) : f(fs), spread(spread_) {
+    // The row's plane through the camera origin, spanned by a = centre + sv *
+    // vertical (as scalar.h's direction, in double) and horizontal; n its normal.
+    for (int k = 0; k < 3; ++k) {
+      rr.a[k] = double(f.centre[k]) + double(sv) * double(f.vertical[k]);
+      rr.h[k] = double(f.horizontal[k]);
+    }
+    cross(rr.a, rr.h, n);
+    len = std::sqrt(dot(n, n));
+    plane = len > 0.0 && std::isfinite(len);  // else a degenerate row: no plane test
+    d_len = std::sqrt(dot(rr.a, rr.a)) + std::sqrt(dot(rr.h, rr.h));  // >= |d| in the row
+  }
+
+  // The columns [lo, hi] of the row whose rays may hit sphere k; false when none.
+  bool columns(uint32_t k, int64_t& lo, int64_t& hi) const {
+    const float_spheres& sp = f.spheres;
+    const double fk[3] = {sp.rec[k].fx, sp.rec[k].fy, sp.rec[k].fz};
+    // The margin (in cull_radius): 1e-5 of |f| + r, a hundred times the
+    // float intersection's rounding (and the direction's, about 1e-7 of |f|),
+    // so that leaving a sphere out never changes a pixel.
+    const double wide = widened(sp, k, spread);
+    if (plane && std::abs(dot(fk, n)) > wide * len) return false;  // NaN: kept
+    lo = 0;
+    hi = f.width - 1;
+    const double ahead_slack = (wide - std::sqrt(double(sp.rec[k].r2))) * d_len;
+    const bool outside = dot(fk, fk) > sp.cull_radius[k] * sp.cull_radius[k];
+    return columns_near(f, rr, fk, wide, outside, ahead_slack, lo, hi);
+  }
+};
+
+// The index keeps a sphere's column box for spheres at most this many rows
+// tall: a box wider than the sphere in its top and bottom rows costs a few
+// spare tests there, far less than an exact test per row. Taller spheres get
+// the exact test in each row they cross (row_test).
+constexpr int64_t boxed_rows = 64;
+
+// A sphere's place in the frame: its rows and, for a short one, its columns.
+struct frame_box {
+  int32_t r_lo = 1, r_hi = 0;  // rows, top-down (r = H - 1 - j); empty when r_lo > r_hi
+  int32_t c_lo = -1, c_hi = -1;  // columns; -1: tested per row
+};
+
+frame_box box_of(const float_scene& f, const frame_vectors& fv, uint32_t k, double spread) {
+  frame_box box;
+  int64_t j_lo = 0, j_hi = 0;
+  if (!sphere_rows(f, k, j_lo, j_hi, spread)) return box;
+  const float_spheres& sp = f.spheres;
+  const double fk[3] = {sp.rec[k].fx, sp.rec[k].fy, sp.rec[k].fz};
+  const double wide = widened(sp, k, spread), r = std::sqrt(double(sp.rec[k].r2));
+  // A sphere the camera is outside of is hit only ahead, f.d < 0; f.d is
+  // linear over the viewport, so its least value is at a corner (rays that
+  // stray a pixel are covered by the slack, as in columns_near).
+  if (dot(fk, fk) > sp.cull_radius[k] * sp.cull_radius[k]) {
+    const double least = dot(fk, fv.c) - 0.5 * std::abs(dot(fk, fv.h)) - 0.5 * std::abs(dot(fk, fv.v));
+    const double d_len = std::sqrt(dot(fv.c, fv.c)) + std::sqrt(dot(fv.h, fv.h)) + std::sqrt(dot(fv.v, fv.v));
+    if (least > (wide - r) * d_len) return box;  // behind every ray: NaN kept
+  }
+  box.r_lo = int32_t(f.height - 1 - j_hi);
+  box.r_hi = int32_t(f.height - 1 - j_lo);
+  int64_t c_lo = 0, c_hi = 0;
+  if (j_hi - j_lo < boxed_rows) {
+    if (!plane_range(fv.c, fv.h, fv.v, fk, wide, f.last_col, f.mid_col, f.width, c_lo, c_hi)) {
+      box.r_lo = 1, box.r_hi = 0;  // no column's plane comes near
+      return box;
+    }
+    box.c_lo = int32_t(c_lo);
+    box.c_hi = int32_t(c_hi);
+  }
+  return box;
+}
+
+}  // namespace
+
+bool sphere_rows(const float_scene& f, uint32_t k, int64_t& j_lo, int64_t& j_hi, double spread) {
+  const float_spheres& sp = f.spheres;
+  const frame_vectors fv(f);
+  const double fk[3] = {sp.rec[k].fx, sp.rec[k].fy, sp.rec[k].fz};
+  return plane_range(fv.c, fv.v, fv.h, fk, widened(sp, k, spread), f.last_row, f.mid_row, f.height, j_lo, j_hi);
+}
+
+size_t spheres_in_row(const float_scene& f, float sv, int batch, sphere_span* out,
+                      const uint32_t* candidates, size_t n_candidates, double spread) {
+  const int64_t last_batch = (f.width - 1) / batch;
+  const row_test row(f, sv, spread);
+  size_t count = 0;
+  const size_t considered = candidates ? n_candidates : f.spheres.size();
+  for (size_t x = 0; x < considered; ++x) {
+    const uint32_t k = candidates ? candidates[x] : uint32_t(x);
+    int64_t lo = 0, hi = 0;
+    if (row.columns(k, lo, hi))
+      out[count++] = {k, int32_t(std::min(lo / batch, last_batch)), int32_t(std::min(hi / batch, last_batch))};
+  }
+  return count;
+}
+
+row_index row_index::build(const float_scene& f, double spread, int threads) {
+  const size_t n = f.spheres.size();
+  const int64_t H = f.height;
+  row_index ix;
+  ix.first.assign(size_t(H) + 1, 0);
+  if (n == 0) return ix;
+  // Below this many spheres a thread costs more than it saves.
+  const int team = n < (size_t(1) << 15) ? 1 : std::max(1, threads);
+  const frame_vectors fv(f);
+  std::vector<frame_box> box(n);
+#pragma omp parallel for schedule(static) num_threads(team)
+  for (size_t k = 0; k < n; ++k) box[k] = box_of(f, fv, uint32_t(k), spread);
+  // Counts per row from a difference array, then their prefix sums.
+  std::vector<int64_t> diff(size_t(H) + 1, 0);
+  for (const frame_box& b : box)
+    if (b.r_lo <= b.r_hi) ++diff[size_t(b.r_lo)], --diff[size_t(b.r_hi) + 1];
+  int64_t running = 0;
+  for (int64_t r = 0; r < H; ++r) {
+    running += diff[size_t(r)];
+    ix.most = std::max(ix.most, size_t(running));
+    ix.first[size_t(r) + 1] = ix.first[size_t(r)] + uint64_t(running);
+  }
+  ix.list.resize(ix.first.back());
+  // Filled in scene order by row blocks: each thread owns rows [r0, r1), scans
+  // every sphere's rows and writes only its own rows' entries, so the bytes
+  // do not depend on the team and no two threads write the same row.
+#pragma omp parallel num_threads(team)
+  {
+    const int t = omp_get_thread_num(), p = omp_get_num_threads();
+    const int64_t r0 = H * t / p, r1 = H * (t + 1) / p;
+    std::vector<uint64_t> cursor(ix.first.begin() + r0, ix.first.begin() + r1);
+    for (size_t k = 0; k < n; ++k) {
+      const frame_box& b = box[k];
+      const int64_t lo = std::max<int64_t>(b.r_lo, r0), hi = std::min<int64_t>(b.r_hi, r1 - 1);
+      for (int64_t r = lo; r <= hi; ++r) ix.list[cursor[size_t(r - r0)]++] = {uint32_t(k), b.c_lo, b.c_hi};
+    }
+  }
+  return ix;
+}
+
+batch_culler::batch_culler(const float_scene& f, size_t most, int batch, double spread)
+    : f_(f), batch_(batch), spread_(spread), batches_((f.width + batch - 1) / batch) {
+  spans_ = static_cast<sphere_span*>(std::malloc(most * sizeof(sphere_span) + 1));
+  capacity_ = std::max(4 * most, budget);
+  list_ = static_cast<uint32_t*>(std::malloc(capacity_ * sizeof(uint32_t)));
+  first_ = static_cast<uint32_t*>(std::malloc(size_t(batches_ + 1) * sizeof(uint32_t)));
+  fill_ = static_cast<uint32_t*>(std::malloc(size_t(batches_ + 1) * sizeof(uint32_t)));
+  if (!spans_ || !list_ || !first_ || !fill_) release();
+}
+
+batch_culler::~batch_culler() { release(); }
+
+void batch_culler::release() {
+  std::free(spans_);
+  std::free(list_);
+  std::free(first_);
+  std::free(fill_);
+  spans_ = nullptr;
+  list_ = first_ = fill_ = nullptr;
+}
+
+size_t batch_culler::row(float sv, const sphere_span* entries, size_t count) {
+  const int64_t last_batch = batches_ - 1;
+  kept_ = 0;
+  entries_ = 0;
+  const auto keep = [&](uint32_t k, int64_t lo, int64_t hi) {
+    const int32_t a = int32_t(std::min(lo / batch_, last_batch)), b = int32_t(std::min(hi / batch_, last_batch));
+    spans_[kept_++] = {k, a, b};
+    entries_ += size_t(b - a + 1);
+  };
+  std::optional<row_test> exact;  // for the tall spheres, made at the first
+  for (size_t x = 0; x < count; ++x) {
+    const sphere_span& e = entries[x];
+    if (e.lo >= 0) {
+      keep(e.sphere, e.lo, e.hi);
+      continue;
+    }
+    if (!exact) exact.emplace(f_, sv, spread_);
+    int64_t lo = 0, hi = 0;
+    if (exact->columns(e.sphere, lo, hi)) keep(e.sphere, lo, hi);
+  }
+  return kept_;
+}
+
+int64_t batch_culler::run_length() const {
+  if (entries_ <= capacity_) return batches_;  // the whole row at once
+  const int64_t most = int64_t(capacity_ / kept_);
+  return std::clamp<int64_t>(most, 1, batches_);
+}
+
+void batch_culler::build(int64_t b0, int64_t b1) {
+  b0_ = b0;
+  if (kept_ == 0) return;
+  const int64_t n = b1 - b0;
+  std::fill(fill_, fill_ + n + 1, 0u);
+  // A span's batches within the run, as [a, b].
+  const auto clip = [b0, b1](const sphere_span& s, int64_t& a, int64_t& b) {
+    a = std::max<int64_t>(s.lo, b0);
+    b = std::min<int64_t>(s.hi, b1 - 1);
+  };
+  for (size_t x = 0; x < kept_; ++x) {
+    int64_t a = 0, b = 0;
+    clip(spans_[x], a, b);
+    for (int64_t i = a; i <= b; ++i) ++fill_[i - b0 + 1];
+  }
+  first_[0] = 0;
+  for (int64_t i = 0; i < n; ++i) {
+    first_[i + 1] = first_[i] + fill_[i + 1];
+    fill_[i] = first_[i];
+  }
+  for (size_t x = 0; x < kept_; ++x) {
+    int64_t a = 0, b = 0;
+    clip(spans_[x], a, b);
+    for (int64_t i = a; i <= b; ++i) list_[fill_[i - b0]++] = spans_[x].sphere;
+  }
+}
+
+}  // namespace raycast
