@@ -39,8 +39,9 @@ double seconds_since(steady::time_point t0) {
 
 benchmark::Counter per_iteration(double v) { return {v, benchmark::Counter::kAvgIterations}; }
 
-// Each iteration: make() builds the renderer (timed as prepare), draw(it,
-// band) renders one frame into the shared buffer; it is freed untimed.
+// Each iteration: make() builds the renderer (timed as prepare; null after
+// SkipWithError when it cannot), draw(it, band) renders one frame into the
+// shared buffer; it is freed untimed.
 template <class Make, class Draw>
 void time_frames(benchmark::State& state, const scene& s, const char* prepare, Make make, Draw draw) {
   const int64_t w = s.cam.image_width, h = s.cam.image_height;
@@ -50,10 +51,7 @@ void time_frames(benchmark::State& state, const scene& s, const char* prepare, M
     const steady::time_point t0 = steady::now();
     auto r = make();
     prep += seconds_since(t0);
-    if (!r) {
-      state.SkipWithError("Embree could not build the scene");
-      return;
-    }
+    if (!r) return;  // make() said why (SkipWithError)
     const steady::time_point t1 = steady::now();
     draw(*r, band);
     benchmark::ClobberMemory();
@@ -83,7 +81,10 @@ void bench_embree(benchmark::State& state, int64_t n, bool all) {
       state, s, "build_s",
       [&] {
         auto peer = std::make_unique<embree_peer>(s, threads_of(all));
-        if (!peer->error().empty()) peer.reset();
+        if (!peer->error().empty()) {
+          state.SkipWithError(peer->error().c_str());
+          peer.reset();
+        }
         return peer;
       },
       [](const embree_peer& p, const image_band& band) { p.render(band, embree_peer::mode::packet16); });
@@ -128,9 +129,10 @@ std::string ms(std::optional<double> s) {
   const double v = *s * 1e3;
   return strf(v < 10 ? "%8.3f" : v < 100 ? "%8.2f" : v < 1e4 ? "%8.1f" : "%8.0f", v);
 }
-std::string ratio(std::optional<double> a, std::optional<double> b, const char* fmt = "%7.2fx") {
+std::string ratio(std::optional<double> a, std::optional<double> b) {
   if (!a || !b || !(*b > 0)) return "        ";
-  return strf(fmt, *a / *b);
+  const double x = *a / *b;
+  return strf(x < 100 ? " %6.2fx" : " %6.0fx", x);
 }
 
 }  // namespace
