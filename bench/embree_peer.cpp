@@ -39,6 +39,7 @@ struct float3 {
 
 struct embree_peer::impl {
   const scene& s;
+  int threads;
   std::string error;
   RTCDevice device = nullptr;
   RTCScene rtc_scene = nullptr;
@@ -48,8 +49,8 @@ struct embree_peer::impl {
   std::vector<vec3> column;      // u_of(i) horizontal, per column: no division per pixel
   float3 origin{}, bottom{}, top{}, lo{}, hi{};
 
-  explicit impl(const scene& sc) : s(sc) {
-    device = rtcNewDevice("threads=1,verbose=0");
+  impl(const scene& sc, int n) : s(sc), threads(n) {
+    device = rtcNewDevice(("threads=" + std::to_string(threads) + ",verbose=0").c_str());
     if (!device) {
       error = "rtcNewDevice failed (Embree error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")";
       return;
@@ -220,15 +221,23 @@ struct embree_peer::impl {
   }
 };
 
-embree_peer::embree_peer(const scene& s) : impl_(std::make_unique<impl>(s)) {}
+embree_peer::embree_peer(const scene& s, int threads) : impl_(std::make_unique<impl>(s, threads)) {}
 embree_peer::~embree_peer() = default;
 const std::string& embree_peer::error() const { return impl_->error; }
 
 void embree_peer::render(const image_band& band, mode m) const {
   if (!impl_->error.empty()) return;
-  const ftz_daz guard;
-  if (m == mode::packet16) impl_->render16(band);
-  else impl_->render1(band);
+  const int64_t parts = (band.row_end - band.row_begin + 15) / 16;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(impl_->threads) if (impl_->threads > 1)
+  for (int64_t k = 0; k < parts; ++k) {
+    image_band part = band;
+    part.row_begin = band.row_begin + 16 * k;
+    part.row_end = std::min(band.row_end, part.row_begin + 16);
+    part.data = band.row(part.row_begin);
+    const ftz_daz guard;  // each thread has its own MXCSR
+    if (m == mode::packet16) impl_->render16(part);
+    else impl_->render1(part);
+  }
 }
 
 embree_peer::hit embree_peer::trace(int64_t i, int64_t j) const {

@@ -20,9 +20,9 @@ class embree_peer {
  public:
   enum class mode { packet16, single };
 
-  // Builds the device and the committed scene (Embree's errors are kept, not
-  // printed: see error()). s must outlive this.
-  explicit embree_peer(const scene& s);
+  // Builds the device (`threads=N`) and the committed scene (Embree's errors
+  // are kept, not printed: see error()). s must outlive this.
+  explicit embree_peer(const scene& s, int threads = 1);
   ~embree_peer();
   embree_peer(const embree_peer&) = delete;
   embree_peer& operator=(const embree_peer&) = delete;
@@ -30,7 +30,8 @@ class embree_peer {
   // Empty when the device and scene were built; otherwise Embree's message.
   const std::string& error() const;
 
-  // Renders rows [band.row_begin, band.row_end), rgb8 or rgb_f32, on this thread.
+  // Renders rows [band.row_begin, band.row_end), rgb8 or rgb_f32, on the
+  // constructor's number of threads.
   void render(const image_band& band, mode m) const;
 
   // What the ray of pixel column i, row j (0 at the bottom) hits, traced with

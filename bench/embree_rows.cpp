@@ -9,7 +9,6 @@
 #include <optional>
 #include <memory>
 #include <ostream>
-#include <random>
 #include <string>
 #include <tuple>
 
@@ -19,16 +18,6 @@
 
 namespace raycast::bench {
 namespace {
-
-constexpr int full_counts[] = {1, 4, 16, 64, 256, 1024, 4096};
-constexpr int quick_counts[] = {1, 64, 1024};
-constexpr std::pair<int64_t, int64_t> full_scaling_size{1920, 1080};
-constexpr std::pair<int64_t, int64_t> quick_scaling_size{400, 225};
-
-std::vector<int> scaling_counts(bool quick) {
-  if (quick) return {std::begin(quick_counts), std::end(quick_counts)};
-  return {std::begin(full_counts), std::end(full_counts)};
-}
 
 // Our fastest backend for spheres: the last core path in available_paths()'
 // order (sse2, avx2, avx512), exact (fast renders spheres as exact does).
@@ -49,8 +38,6 @@ const char* mode_name(embree_peer::mode m) {
 scene builtin_scene(const std::string& name, int64_t w, int64_t h) {
   return make_scene(sized(w, h), {}, *builtin_spheres(name));
 }
-
-scene random_scene(int n, int64_t w, int64_t h) { return make_scene(sized(w, h), {}, random_spheres(n)); }
 
 // Embree's errors against the double reference, both modes, measured band by
 // band (float colours and bytes), once per scene and size.
@@ -109,74 +96,15 @@ void bench_embree(benchmark::State& state, std::string name, int64_t w, int64_t 
   state.counters["lsb_mismatch"] = err.lsb_mismatch();
 }
 
-// Scaling rows: time only (the double reference over 4096 spheres would take
-// longer than the whole bench).
-void bench_scaling_ours(benchmark::State& state, int n, int64_t w, int64_t h) {
-  const scene s = random_scene(n, w, h);
-  const painter paint(best_path(), s, 1);
-  const size_t stride = size_t(w) * 3;
-  const image_band band{scratch(stride * size_t(h)), stride, pixel_format::rgb8, 0, h};
-  for (auto _ : state) {
-    paint.render(band);
-    benchmark::ClobberMemory();
-  }
-  state.counters["spheres"] = n;
-}
-
-void bench_scaling_embree(benchmark::State& state, int n, int64_t w, int64_t h) {
-  const scene s = random_scene(n, w, h);
-  const embree_peer peer(s);
-  if (!peer.error().empty()) {
-    state.SkipWithError(peer.error().c_str());
-    return;
-  }
-  const size_t stride = size_t(w) * 3;
-  const image_band band{scratch(stride * size_t(h)), stride, pixel_format::rgb8, 0, h};
-  for (auto _ : state) {
-    peer.render(band, embree_peer::mode::packet16);
-    benchmark::ClobberMemory();
-  }
-  state.counters["spheres"] = n;
-}
-
-std::string random_name(int n) { return "random-" + std::to_string(n); }
-
 std::optional<double> ns_per_px(const run_table& t, const std::string& row, int64_t w, int64_t h) {
   const auto s = t.seconds(row + "|");
   if (!s) return std::nullopt;
   return *s * 1e9 / (double(w) * double(h));
 }
 
-std::string cell(std::optional<double> v, const char* fmt = "%10.2f") {
-  char buf[32];
-  if (!v) return "         -";
-  std::snprintf(buf, sizeof buf, fmt, *v);
-  return buf;
-}
-
 }  // namespace
 
-std::vector<sphere> random_spheres(int n) {
-  std::mt19937 gen(20261122u);
-  // [0, 1) from the top 24 bits of one word: exact in float and double.
-  auto unit = [&gen] { return double(gen() >> 8) * 0x1p-24; };
-  std::vector<sphere> out;
-  out.reserve(size_t(n));
-  for (int k = 0; k < n; ++k) {
-    const double depth = 2.0 + 6.0 * unit();
-    const double x = (2.0 * unit() - 1.0) * 0.9 * (16.0 / 9.0) * depth;
-    const double y = (2.0 * unit() - 1.0) * 0.9 * depth;
-    const double r = 0.05 + 0.1 * unit();
-    sphere s;
-    s.center = point3(x, y, -depth);
-    s.radius = r;
-    s.shade = shading::normal;
-    out.push_back(s);
-  }
-  return out;
-}
-
-void register_embree_rows(const std::vector<std::pair<int64_t, int64_t>>& sizes, bool quick) {
+void register_embree_rows(const std::vector<std::pair<int64_t, int64_t>>& sizes) {
   for (std::string_view sv : builtin_scene_names()) {
     const std::string name(sv);
     if (builtin_spheres(name)->empty()) continue;
@@ -186,20 +114,9 @@ void register_embree_rows(const std::vector<std::pair<int64_t, int64_t>>& sizes,
                                      bench_embree, name, w, h, m)
             ->Unit(benchmark::kMicrosecond);
   }
-  const auto [w, h] = quick ? quick_scaling_size : full_scaling_size;
-  for (int n : scaling_counts(quick)) {
-    const path& best = best_path();
-    benchmark::RegisterBenchmark(
-        scene_row_name(best.backend, to_string(best.prec), random_name(n), w, h, 1, "rgb8").c_str(),
-        bench_scaling_ours, n, w, h)
-        ->Unit(benchmark::kMicrosecond);
-    benchmark::RegisterBenchmark(scene_row_name("embree16", "float", random_name(n), w, h, 1, "rgb8").c_str(),
-                                 bench_scaling_embree, n, w, h)
-        ->Unit(benchmark::kMicrosecond);
-  }
 }
 
-void print_embree_summary(std::ostream& os, const run_table& table, int64_t w, int64_t h, bool quick) {
+void print_embree_summary(std::ostream& os, const run_table& table, int64_t w, int64_t h) {
   const path& best = best_path();
   const std::string ours_label = best.backend + "/" + std::string(to_string(best.prec));
   const std::string prec(to_string(best.prec));
@@ -225,38 +142,6 @@ void print_embree_summary(std::ostream& os, const run_table& table, int64_t w, i
   peer_line("embree16 (rtcIntersect16)", e16);
   peer_line("embree1 (rtcIntersect1)", e1);
   peer_line("book (double, virtual)", book);
-
-  const auto [sw, sh] = quick ? quick_scaling_size : full_scaling_size;
-  std::map<int, std::optional<double>> ours_at, embree_at;
-  bool any_scaling = false;
-  for (int n : scaling_counts(quick)) {
-    ours_at[n] = ns_per_px(table, scene_row_name(best.backend, prec, random_name(n), sw, sh, 1, "rgb8"), sw, sh);
-    embree_at[n] = ns_per_px(table, scene_row_name("embree16", "float", random_name(n), sw, sh, 1, "rgb8"), sw, sh);
-    any_scaling = any_scaling || ours_at[n] || embree_at[n];
-  }
-  if (!any_scaling) return;
-  os << "\nScaling: N random spheres (random_spheres), " << sw << "x" << sh
-     << ", 1 thread, rgb8, ns/px\n";
-  std::snprintf(line, sizeof line, "  %6s %14s %10s %12s\n", "N", ours_label.c_str(), "embree16",
-                "ours/embree");
-  os << line;
-  for (int n : scaling_counts(quick)) {
-    std::optional<double> ratio;
-    if (ours_at[n] && embree_at[n]) ratio = *ours_at[n] / *embree_at[n];
-    std::snprintf(line, sizeof line, "  %6d %14s %10s %12s\n", n, cell(ours_at[n]).c_str(),
-                  cell(embree_at[n]).c_str(), cell(ratio, "%11.2fx").c_str());
-    os << line;
-  }
-  auto growth = [&](std::map<int, std::optional<double>>& m, int a, int b) -> std::optional<double> {
-    if (!m.count(a) || !m.count(b) || !m[a] || !m[b]) return std::nullopt;
-    return *m[b] / *m[a];
-  };
-  const int from = quick ? 1 : 16, to = 1024;
-  const auto g_ours = growth(ours_at, from, to), g_embree = growth(embree_at, from, to);
-  if (g_ours || g_embree) {
-    os << "  growth N=" << from << " -> " << to << ": ours" << cell(g_ours, "%7.1fx") << ", embree16"
-       << cell(g_embree, "%7.1fx") << (quick ? "  (--quick has no N=16)" : "") << "\n";
-  }
 }
 
 }  // namespace raycast::bench

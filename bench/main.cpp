@@ -19,6 +19,7 @@
 #include "errors.h"
 #include "gbench_flags.h"
 #include "report.h"
+#include "scale_rows.h"
 #include "spheres.h"
 #include "sphere_numerics.h"
 
@@ -305,7 +306,8 @@ int run(int argc, char** argv) {
   register_sphere_rows(scene_sizes, threads);
   const aa_config aa = aa_config_for(opt.quick, opt.aa_reference_dir);
   register_aa_rows(aa);
-  register_embree_rows(scene_sizes, opt.quick);
+  register_embree_rows(scene_sizes);
+  register_scale_rows(opt.quick);
 
   run_table table;
   run_rows(table);
@@ -338,7 +340,8 @@ int run(int argc, char** argv) {
   std::vector<std::string> names;
   for (const shortcut_set& v : shortcut_sets()) names.push_back(v.name);
   print_shortcuts(os, table, names);
-  print_embree_summary(os, table, so.width, so.height, opt.quick);
+  print_embree_summary(os, table, so.width, so.height);
+  print_scale_summary(os, table, opt.quick);
   print_stiff(os, paths(), run_stiff_cases());
   print_sphere_stiff(os, run_sphere_stiff_cases());
   os.flush();

@@ -149,25 +149,41 @@ std::optional<double> run_table::seconds(const std::string& name) const {
   return it->second;
 }
 
+std::optional<double> run_table::counter(const std::string& row, const std::string& name) const {
+  const auto it = counters_.find(row + "|" + name);
+  if (it == counters_.end()) return std::nullopt;
+  return it->second;
+}
+
 void run_table::fill(std::vector<Run>& runs) {
   if (runs.empty()) return;
   const std::string fn = runs.front().run_name.function_name;
   // A row's time is the median of its repetitions: on a machine shared with
   // other work, a repetition that lost the CPU for a while moves the mean but
   // not the median.
+  auto median_of = [](std::vector<double>& v) {
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+  };
   std::vector<double> times;
+  std::map<std::string, std::vector<double>> counter_values;
   for (const Run& r : runs) {
     if (!has_time(r)) continue;
-    if (r.run_type == Run::RT_Aggregate) seconds_[fn + "|" + r.aggregate_name] = run_seconds(r);
-    else times.push_back(run_seconds(r));
+    if (r.run_type == Run::RT_Aggregate) {
+      seconds_[fn + "|" + r.aggregate_name] = run_seconds(r);
+      // Only aggregates reported (--benchmark_report_aggregates_only): theirs.
+      if (r.aggregate_name == "median")
+        for (const auto& [k, c] : r.counters) counters_[fn + "|" + k] = c.value;
+      continue;
+    }
+    times.push_back(run_seconds(r));
+    for (const auto& [k, c] : r.counters) counter_values[k].push_back(c.value);
   }
   const size_t n = times.size();
   double median = 0;
-  if (n > 0) {
-    std::sort(times.begin(), times.end());
-    median = n % 2 ? times[n / 2] : 0.5 * (times[n / 2 - 1] + times[n / 2]);
-    seconds_[fn + "|"] = median;
-  }
+  if (n > 0) seconds_[fn + "|"] = median = median_of(times);
+  for (auto& [k, v] : counter_values) counters_[fn + "|" + k] = median_of(v);
 
   const std::optional<row_name> name = parse_row_name(fn);
   if (!name) return;
@@ -240,8 +256,8 @@ std::vector<summary_row> summary_rows(const run_table& table, const summary_opti
     if (n.width != opt.width || n.height != opt.height || n.threads != opt.threads ||
         n.out != opt.out)
       continue;
-    // Rows whose error was not measured (the random-sphere scaling rows) have
-    // no place in an error-vs-time summary.
+    // Rows whose error was not measured have no place in an error-vs-time
+    // summary.
     if (!m.counters.count("max_abs_err") && !m.counters.count("max_lsb")) continue;
     summary_row s;
     s.scene = n.scene;

@@ -62,10 +62,13 @@ class run_table {
   void fill(std::vector<benchmark::BenchmarkReporter::Run>& runs);
   const std::map<std::string, measured_row>& rows() const { return rows_; }
   std::optional<double> seconds(const std::string& name) const;
+  // The median over a row's repetitions of a counter its benchmark set.
+  std::optional<double> counter(const std::string& row, const std::string& name) const;
   const std::map<std::string, double>& all_seconds() const { return seconds_; }
 
  private:
   std::map<std::string, double> seconds_;  // "name|aggregate" -> seconds per iteration
+  std::map<std::string, double> counters_;  // "name|counter" -> median
   std::map<std::string, measured_row> rows_;
 };
 

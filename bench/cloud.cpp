@@ -1,0 +1,88 @@
+#include "cloud.h"
+
+#include <charconv>
+#include <cmath>
+#include <numbers>
+#include <random>
+
+namespace raycast::bench {
+namespace {
+
+constexpr double near_depth = 2.0, far_depth = 12.0, vfov_degrees = 50.0, coverage = 1.5;
+constexpr int64_t width = 1920, height = 1080;
+
+// The viewport at distance 1: vh = 2 tan(vfov / 2), vw = vh * 16 / 9.
+double view_height() { return 2.0 * std::tan(vfov_degrees * std::numbers::pi / 360.0); }
+double view_width() { return view_height() * double(width) / double(height); }
+
+// Appends x as the JSON writes it: the centres fixed with 6 decimals, the
+// radius with 5 significant digits.
+void append(std::string& out, double x, bool radius) {
+  char buf[40];
+  const auto r = radius ? std::to_chars(buf, buf + sizeof buf, x, std::chars_format::scientific, 4)
+                        : std::to_chars(buf, buf + sizeof buf, x, std::chars_format::fixed, 6);
+  out.append(buf, r.ptr);
+}
+
+}  // namespace
+
+// A sphere at depth d covers pi r^2 / d^2 of the viewport at distance 1
+// (vw * vh): small spheres, ignoring the frame's edges and overlaps. With
+// centres uniform in the frustum's volume the depth's density is 3 d^2 /
+// (b^3 - a^3) on [a, b], so E[1 / d^2] = 3 (b - a) / (b^3 - a^3), and the
+// expected coverage n pi r^2 E[1 / d^2] / (vw vh) is `coverage` when
+//   r = sqrt(coverage vw vh (b^3 - a^3) / (3 pi (b - a) n))   (about 6.5 / sqrt(n)).
+double cloud_radius(int64_t n) {
+  const double a = near_depth, b = far_depth;
+  const double r = std::sqrt(coverage * view_width() * view_height() * (b * b * b - a * a * a) /
+                             (3.0 * std::numbers::pi * (b - a) * double(n)));
+  std::string text;
+  append(text, r, true);
+  double rounded = r;
+  std::from_chars(text.data(), text.data() + text.size(), rounded);
+  return rounded;
+}
+
+scene_params particle_cloud(int64_t n) {
+  scene_params p;
+  p.camera.image_width = width;
+  p.camera.image_height = height;
+  p.camera.vfov_degrees = vfov_degrees;
+  std::mt19937 gen(20261122u);
+  // [0, 1) from the top 24 bits of one word: exact in float and double.
+  auto unit = [&gen] { return double(gen() >> 8) * 0x1p-24; };
+  auto micro = [](double x) { return std::round(x * 1e6) / 1e6; };
+  const double a3 = near_depth * near_depth * near_depth, b3 = far_depth * far_depth * far_depth;
+  const double hw = 0.5 * view_width(), hh = 0.5 * view_height(), r = cloud_radius(n);
+  p.spheres.resize(size_t(n));
+  for (sphere& s : p.spheres) {
+    const double d = std::cbrt(a3 + unit() * (b3 - a3));
+    const double x = (2.0 * unit() - 1.0) * hw * d;
+    const double y = (2.0 * unit() - 1.0) * hh * d;
+    s.center = point3(micro(x), micro(y), micro(-d));
+    s.radius = r;
+  }
+  return p;
+}
+
+std::string cloud_json(const scene_params& p) {
+  std::string out = "{\"camera\": {\"width\": " + std::to_string(p.camera.image_width) +
+                    ", \"height\": " + std::to_string(p.camera.image_height.value_or(0)) +
+                    ", \"vfov\": " + std::to_string(p.camera.vfov_degrees.value_or(90.0)) +
+                    "},\n \"spheres\": [";
+  out.reserve(out.size() + p.spheres.size() * 90 + 8);
+  for (size_t k = 0; k < p.spheres.size(); ++k) {
+    const sphere& s = p.spheres[k];
+    out += k ? ",\n  {\"center\": [" : "\n  {\"center\": [";
+    for (int c = 0; c < 3; ++c) {
+      if (c) out += ", ";
+      append(out, s.center[c], false);
+    }
+    out += "], \"radius\": ";
+    append(out, s.radius, true);
+    out += ", \"shade\": \"normal\"}";
+  }
+  return out + "]}\n";
+}
+
+}  // namespace raycast::bench

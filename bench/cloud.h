@@ -1,0 +1,29 @@
+// raycast-bench's particle cloud: n normal-shaded spheres of one radius
+// filling the view of a fixed camera, their total projected area (the
+// coverage) the same for every n, and the same cloud as scene-file JSON.
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "scene/scene.h"
+
+namespace raycast::bench {
+
+// The camera at the origin looking down -z (the lesson's frame), vfov 50
+// degrees, 1920x1080. Centres uniform in the volume of the view's frustum
+// between depths 2 and 12; std::mt19937 with a fixed seed (its output is
+// specified by the standard) and explicit arithmetic on its words, so the
+// cloud is the same everywhere. Every coordinate is rounded to 1e-6 and the
+// radius to 5 significant digits as the JSON writes them, so parsing
+// cloud_json(n) gives exactly these spheres. Below n = 20 or so the radius
+// exceeds the nearest depth (the camera may sit inside a sphere): the rows
+// are about large n.
+scene_params particle_cloud(int64_t n);
+
+// The radius that keeps the cloud's coverage at 1.5 image areas (cloud.cpp).
+double cloud_radius(int64_t n);
+
+// p as scene-file text (scene/scene_file.h), about 85 bytes a sphere.
+std::string cloud_json(const scene_params& p);
+
+}  // namespace raycast::bench
