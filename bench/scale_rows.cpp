@@ -17,6 +17,8 @@
 
 namespace raycast::bench {
 namespace {
+using raycast_test::cloud_json;
+using raycast_test::particle_cloud;
 
 std::vector<int64_t> counts(bool quick) {
   if (quick) return {1, 1000, 10000};
@@ -168,7 +170,7 @@ void print_scale_summary(std::ostream& os, const run_table& table, bool quick) {
           table.seconds(load_row(n) + "|");
   if (!any) return;
   const cells ours_base = at("ours", "prepare_s", 1000), embree_base = at("embree", "build_s", 1000);
-  os << "\nScale: particle clouds (bench/cloud.h, coverage 1.5), 1920x1080, rgb8; ms (medians); tall = "
+  os << "\nScale: particle clouds (tests/support/cloud.h, coverage 1.5), 1920x1080, rgb8; ms (medians); tall = "
      << available_cores() << " threads\n"
      << "                  ours t1           ours      embree t1         embree  embree  speedup "
         "tall   ns/px vs 1e3  load ns/sphere\n"

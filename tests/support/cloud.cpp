@@ -5,7 +5,8 @@
 #include <numbers>
 #include <random>
 
-namespace raycast::bench {
+namespace raycast_test {
+using namespace raycast;
 namespace {
 
 constexpr double near_depth = 2.0, far_depth = 12.0, vfov_degrees = 50.0, coverage = 1.5;
@@ -85,4 +86,4 @@ std::string cloud_json(const scene_params& p) {
   return out + "]}\n";
 }
 
-}  // namespace raycast::bench
+}  // namespace raycast_test

@@ -1,4 +1,4 @@
-// raycast-bench's particle cloud: n normal-shaded spheres of one radius
+// The particle cloud of the tests and raycast-bench: n normal-shaded spheres of one radius
 // filling the view of a fixed camera, their total projected area (the
 // coverage) the same for every n, and the same cloud as scene-file JSON.
 #pragma once
@@ -7,7 +7,8 @@
 
 #include "scene/scene.h"
 
-namespace raycast::bench {
+namespace raycast_test {
+using namespace raycast;
 
 // The camera at the origin looking down -z (the lesson's frame), vfov 50
 // degrees, 1920x1080. Centres uniform in the volume of the view's frustum
@@ -26,4 +27,4 @@ double cloud_radius(int64_t n);
 // p as scene-file text (scene/scene_file.h), about 85 bytes a sphere.
 std::string cloud_json(const scene_params& p);
 
-}  // namespace raycast::bench
+}  // namespace raycast_test

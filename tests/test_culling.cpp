@@ -1,0 +1,216 @@
+// The culling structure (kernels/culling.h): every sphere a ray can hit is
+// in its batch's list; the row index is the same bytes for any thread count;
+// renders of clouds past the lists' budgets, over bands and threads, are the
+// scalar renderer's bytes.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "cloud.h"
+#include "kernels/culling.h"
+#include "render/render.h"
+#include "render_support.h"
+
+namespace {
+
+using namespace raycast;
+using raycast_test::image;
+
+// Whether the float contract (kernels/float_spheres.h) finds a hit of sphere
+// k in front of the camera for direction d, at any distance.
+bool float_hit(const float_spheres& sp, size_t k, const float d[3]) {
+  const sphere_record& e = sp.rec[k];
+  const float n2 = (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2];
+  const float b = (e.fx * d[0] + e.fy * d[1]) + e.fz * d[2];
+  float disc;
+  if (e.near) {
+    disc = b * b - n2 * e.c;
+  } else {
+    const float kb = b * (1.0f / n2);
+    const float vx = e.fx - kb * d[0], vy = e.fy - kb * d[1], vz = e.fz - kb * d[2];
+    disc = n2 * (e.r2 - ((vx * vx + vy * vy) + vz * vz));
+  }
+  if (!(disc >= 0.0f)) return false;
+  const float q = -(b + std::copysign(std::sqrt(disc), b));
+  const float s0 = e.c / q;
+  const float s = s0 >= 0.0f || !e.inside ? s0 : q / n2;
+  return s >= 0.0f;
+}
+
+// Spheres of every kind culling handles: small ones in view, tall ones (the
+// exact test per row), some behind the camera, across the image's edges,
+// one around the camera, in a tilted view.
+scene_params mixed_scene(int64_t w, int64_t h, int n, unsigned seed) {
+  scene_params p;
+  p.camera.image_width = w;
+  p.camera.image_height = h;
+  p.camera.origin = vec3(0.3, -0.2, 0.1);
+  p.camera.lookat = vec3(1.0, 0.5, -4.0);
+  p.camera.vfov_degrees = 60.0;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int k = 0; k < n; ++k) {
+    sphere s;
+    s.center = vec3(6.0 * u(rng), 4.0 * u(rng), -5.0 + 6.0 * u(rng));  // some behind (z > 0.1)
+    s.radius = k % 50 == 0 ? 0.8 + 0.5 * u(rng) : 0.02 + 0.015 * u(rng);
+    p.spheres.push_back(s);
+  }
+  sphere around;  // holds the camera
+  around.center = vec3(0.0, 0.0, 0.0);
+  around.radius = 30.0;
+  p.spheres.push_back(around);
+  return p;
+}
+
+// Every sphere the float contract hits through a pixel's ray is in the list
+// of the pixel's batch, for batches of 8 and 16 (odd sizes: edges inside
+// batches; one row; one column).
+TEST(Culling, EveryHitIsListed) {
+  for (const auto& [w, h] : std::vector<std::pair<int64_t, int64_t>>{{97, 61}, {40, 1}, {1, 30}, {160, 90}}) {
+    const float_scene f = prepare_float_scene(make_scene(mixed_scene(w, h, 1500, unsigned(w * h))));
+    const row_index ix = row_index::build(f, 0.0, 2);
+    for (int batch : {8, 16}) {
+      batch_culler lists(f, ix.most, batch, 0.0);
+      ASSERT_TRUE(lists.ok());
+      size_t hits = 0;
+      for (int64_t r = 0; r < f.height; ++r) {
+        const int64_t j = f.height - 1 - r;
+        const float sv = f.height == 1 ? 0.0f : (float(j) - f.mid_row) / f.last_row;  // scalar.h
+        lists.row(sv, ix.list.data() + ix.first[size_t(r)], size_t(ix.first[size_t(r) + 1] - ix.first[size_t(r)]));
+        const int64_t batches = (f.width + batch - 1) / batch;
+        ASSERT_EQ(lists.run_length(), batches);  // these rows fit one run
+        lists.build(0, batches);
+        for (int64_t i = 0; i < f.width; ++i) {
+          const float su = f.width == 1 ? 0.0f : (float(i) - f.mid_col) / f.last_col;
+          float d[3];
+          for (int k = 0; k < 3; ++k) d[k] = (f.centre[k] + su * f.horizontal[k]) + sv * f.vertical[k];
+          const int64_t b = i / batch;
+          const uint32_t* list = lists.list(b);
+          const size_t count = lists.tests(b);
+          for (size_t k = 0; k < f.spheres.size(); ++k) {
+            if (!float_hit(f.spheres, k, d)) continue;
+            ++hits;
+            ASSERT_NE(std::find(list, list + count, uint32_t(k)), list + count)
+                << w << "x" << h << " batch " << batch << ": sphere " << k << " hit at row " << r << " column " << i
+                << " is not listed";
+          }
+        }
+      }
+      EXPECT_GT(hits, size_t(f.width * f.height));  // the sphere around the camera, and more
+    }
+  }
+}
+
+// The index culls: a sphere behind every ray is in no row, and a small sphere
+// in view is in a few rows only, with a column box.
+TEST(Culling, IndexLeavesOutWhatNoRayReaches) {
+  scene_params p;
+  p.camera.image_width = 200;
+  p.camera.image_height = 100;
+  sphere behind, small;
+  behind.center = vec3(0.0, 0.0, 5.0);
+  behind.radius = 1.0;
+  small.center = vec3(0.0, 0.0, -10.0);
+  small.radius = 0.05;
+  p.spheres = {behind, small};
+  const float_scene f = prepare_float_scene(make_scene(p));
+  const row_index ix = row_index::build(f, 0.0, 1);
+  size_t rows_with_small = 0;
+  for (const sphere_span& e : ix.list) {
+    EXPECT_EQ(e.sphere, 1u) << "the sphere behind the camera is listed";
+    EXPECT_GE(e.lo, 0);  // boxed
+    EXPECT_LE(e.hi - e.lo, 4);
+    ++rows_with_small;
+  }
+  EXPECT_GE(rows_with_small, 1u);
+  EXPECT_LE(rows_with_small, 4u);
+}
+
+// The index's bytes do not depend on the threads that build it (clouds past
+// the size where it goes parallel), nor does the prepared scene's.
+TEST(Culling, SameBytesForAnyThreadCount) {
+  scene_params p = raycast_test::particle_cloud(100000);
+  p.camera.image_width = 480;
+  p.camera.image_height = 270;
+  const scene s = make_scene(p);
+  const float_scene one = prepare_float_scene(s, 1);
+  const row_index want = row_index::build(one, 0.0, 1);
+  ASSERT_GT(want.list.size(), size_t(100000));
+  for (int threads : {2, 3, 8}) {
+    const float_scene f = prepare_float_scene(s, threads);
+    ASSERT_EQ(0, std::memcmp(f.spheres.rec.data(), one.spheres.rec.data(), one.spheres.rec.size() * sizeof(sphere_record)));
+    const row_index ix = row_index::build(f, 0.0, threads);
+    ASSERT_EQ(ix.first, want.first) << threads << " threads";
+    ASSERT_EQ(ix.most, want.most);
+    ASSERT_EQ(0, std::memcmp(ix.list.data(), want.list.data(), want.list.size() * sizeof(sphere_span)))
+        << threads << " threads";
+  }
+}
+
+// Renders over bands of odd heights and any thread count, exact mode, every
+// SIMD backend this CPU runs: the scalar renderer's bytes.
+void expect_scalar_bytes(const scene& s, const char* what) {
+  const image want = raycast_test::render_with_scalar(s, precision::exact, pixel_format::rgb8);
+  for (backend b : available_backends()) {
+    if (b == backend::reference || b == backend::scalar) continue;
+    for (int threads : {1, 2, 3}) {
+      render_options o;
+      o.which = b;
+      o.threads = threads;
+      const renderer r(s, o);
+      image got(s.cam.image_width, s.cam.image_height, pixel_format::rgb8);
+      for (int64_t y0 = 0, band = 7; y0 < got.height; y0 += band, band = band * 2 + 1) {
+        const int64_t y1 = std::min(got.height, y0 + band);
+        r.render(image_band{got.bytes.data() + size_t(y0) * got.stride(), got.stride(), got.format, y0, y1});
+      }
+      const raycast_test::difference d = raycast_test::compare(got, want);
+      EXPECT_EQ(d.max, 0) << what << ": " << to_string(b) << ", " << threads << " threads: " << d.where();
+    }
+  }
+}
+
+// A random cloud of 10^4 spheres: every backend bit-identical to the scalar
+// renderer, and within one 8-bit step of the double reference.
+TEST(Culling, CloudMatchesScalarAndReference) {
+  scene_params p = raycast_test::particle_cloud(10000);
+  p.camera.image_width = 192;
+  p.camera.image_height = 108;
+  const scene s = make_scene(p);
+  expect_scalar_bytes(s, "cloud of 10^4");
+  const image ref = raycast_test::render_with_reference(s, pixel_format::rgb8);
+  const image got = raycast_test::render_with_scalar(s, precision::exact, pixel_format::rgb8);
+  EXPECT_LE(raycast_test::compare(got, ref).max, 1);
+}
+
+// Thousands of large spheres over every column of a row: the row's batch
+// lists exceed one run's memory (runs of fewer batches), and each row's
+// candidates the old per-run budget of 2^16 entries.
+TEST(Culling, ListsPastTheBudgetMatchScalar) {
+  scene_params p;
+  p.camera.image_width = 640;
+  p.camera.image_height = 24;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int k = 0; k < 4000; ++k) {
+    sphere s;
+    s.center = vec3(0.3 * u(rng), 0.2 * u(rng), -40.0 + 10.0 * u(rng));
+    s.radius = 30.0 + 3.0 * u(rng);  // each covers the whole frame
+    s.shade = k % 3 == 0 ? shading::flat : shading::normal;
+    s.flat_color = color(0.5 + 0.5 * u(rng), 0.5, 0.2);
+    p.spheres.push_back(s);
+  }
+  const scene s = make_scene(p);
+  const float_scene f = prepare_float_scene(s);
+  const row_index ix = row_index::build(f, 0.0, 1);
+  batch_culler lists(f, ix.most, 16, 0.0);
+  lists.row(0.0f, ix.list.data() + ix.first[12], size_t(ix.first[13] - ix.first[12]));
+  ASSERT_LT(lists.run_length(), 40) << "the row should not fit one run";
+  expect_scalar_bytes(s, "4000 large spheres");
+}
+
+}  // namespace
