@@ -94,7 +94,7 @@ TEST(SceneFile, ErrorsNameTheJsonPath) {
       {R"({"lights": []})", "lights"},
       {R"([1, 2, 3])", "(file)"},
       {R"({"camera": {"width": 400,}})", "(file)"},
-      {R"({"spheres": [{"center": [0,0,1e999], "radius": 1}]})", "(file)"},
+      {R"({"spheres": [{"center": [0,0,1e999], "radius": 1}]})", "spheres[0].center[2]"},
       {R"({"spheres": [{"center": [0,0,NaN], "radius": 1}]})", "(file)"},
   };
   for (const auto& [text, want] : cases) EXPECT_EQ(error_path(text), want) << text;
