@@ -87,17 +87,10 @@ class padded_text {
   size_t capacity_ = 0;
 };
 
-std::string bytes_text(uint64_t n) {
-  if (n >= (uint64_t(1) << 30)) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.1f GiB", double(n) / double(uint64_t(1) << 30));
-    return buf;
-  }
-  return std::to_string(n) + " bytes";
-}
+std::string bytes_text(uint64_t n) { return std::to_string(n) + " bytes"; }
 
 scene_file_error too_large(uint64_t n) {
-  return {"", "is " + bytes_text(n) + ", more than a scene file may be (" + bytes_text(max_scene_file_bytes) + ")"};
+  return {"", "is " + bytes_text(n) + "; a scene file may be at most 4 GiB - 1 (" + bytes_text(max_scene_file_bytes) + ")"};
 }
 
 // A short quote of the input at a place: the token there (a number, string or
