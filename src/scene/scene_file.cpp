@@ -5,9 +5,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <array>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <memory>
 #include <new>
@@ -25,9 +25,11 @@ using simdjson::error_code;
 // simdjson's On-Demand parser indexes the input with 32-bit offsets.
 static_assert(max_scene_file_bytes <= simdjson::SIMDJSON_MAXSIZE_BYTES);
 
-// A scene nests four levels deep ({"spheres": [{"center": [...]}]}); the
-// reader refuses anything deeper at the first level the format does not have,
-// so this bound is simdjson's, for whatever it would track.
+// A scene nests four levels deep ({"spheres": [{"center": [...]}]}). The
+// reader refuses deeper input itself, at the first level the format does not
+// have (a value of the wrong type), so nesting costs nothing however deep;
+// simdjson is given a small bound as well (its On-Demand front end checks it
+// only in development builds).
 constexpr size_t max_depth = 32;
 
 // How much of the offending input an error quotes.
@@ -189,6 +191,18 @@ class reader {
     return obj;
   }
 
+  // v as an array, or the error why (naming path).
+  template <class Path>
+  od::array array(od::value& v, const Path& path, const char* why) {
+    const char* start = at(v);
+    od::array arr;
+    if (error_code e = v.get_array().get(arr)) {
+      if (e == simdjson::INCORRECT_TYPE) fail(path(), why, start);
+      fail_json(e, start);
+    }
+    return arr;
+  }
+
   // Calls f(index of the key in known, its value) for each field of obj,
   // refusing unknown and repeated keys.
   template <class Path, class F>
@@ -198,8 +212,8 @@ class reader {
       od::field fld;
       if (error_code e = std::move(result).get(fld)) fail_json(e, here());
       const char* key_at = fld.key().raw() - 1;  // the opening quote
-      // A key without escapes is its raw text (stage one found its closing
-      // quote, and the padding ends the scan); only others are unescaped.
+      // A key without escapes is its raw text (stage one checked that a
+      // closing quote exists); only others are unescaped.
       std::string_view key(key_at + 1, 0);
       while (key.data()[key.size()] != '"' && key.data()[key.size()] != '\\') key = {key.data(), key.size() + 1};
       if (key.data()[key.size()] == '\\')
@@ -240,11 +254,7 @@ class reader {
   template <class Path>
   vec3 triple(od::value& v, const Path& path) {
     const char* start = at(v);
-    od::array arr;
-    if (error_code e = v.get_array().get(arr)) {
-      if (e == simdjson::INCORRECT_TYPE) fail(path(), "must be an array of 3 numbers", start);
-      fail_json(e, start);
-    }
+    od::array arr = array(v, path, "must be an array of 3 numbers");
     vec3 r(0.0);
     int n = 0;
     for (auto result : arr) {
@@ -350,12 +360,7 @@ void reader::read_sky(od::value& v, sky& s) {
 }
 
 void reader::read_spheres(od::value& v, std::vector<sphere>& out) {
-  const char* start = at(v);
-  od::array list;
-  if (error_code e = v.get_array().get(list)) {
-    if (e == simdjson::INCORRECT_TYPE) fail("spheres", "must be an array", start);
-    fail_json(e, start);
-  }
+  od::array list = array(v, [] { return std::string("spheres"); }, "must be an array");
   // Exactly the spheres there are (a pass over the index, not the text); a
   // malformed array is reported by the loop below.
   size_t count = 0;
@@ -369,20 +374,18 @@ void reader::read_spheres(od::value& v, std::vector<sphere>& out) {
     if (error_code e = std::move(result).get(item)) fail_json(e, here());
     const auto at_k = [&k] { return "spheres[" + std::to_string(k) + "]"; };
     const char* sphere_at = at(item);
+    // Where each value is (nullptr: not given), for the errors about it.
     const char *center_at = nullptr, *radius_at = nullptr, *color_at = nullptr;
-    bool has_center = false, has_radius = false, has_color = false;
     sphere sp;
     fields(object(item, at_k), at_k, {"center", "radius", "shade", "color"}, [&](int key, od::value value) {
       switch (key) {
         case 0:
           center_at = at(value);
           sp.center = triple(value, [&] { return at_k() + ".center"; });
-          has_center = true;
           break;
         case 1:
           radius_at = at(value);
           sp.radius = number(value, [&] { return at_k() + ".radius"; });
-          has_radius = true;
           break;
         case 2: {
           const char* shade_at = at(value);
@@ -397,13 +400,12 @@ void reader::read_spheres(od::value& v, std::vector<sphere>& out) {
         case 3:
           color_at = at(value);
           sp.flat_color = triple(value, [&] { return at_k() + ".color"; });
-          has_color = true;
           break;
       }
     });
-    if (!has_center) fail(at_k() + ".center", "is required", sphere_at);
-    if (!has_radius) fail(at_k() + ".radius", "is required", sphere_at);
-    if (sp.shade == shading::flat && !has_color) fail(at_k() + ".color", "is required for flat shading", sphere_at);
+    if (!center_at) fail(at_k() + ".center", "is required", sphere_at);
+    if (!radius_at) fail(at_k() + ".radius", "is required", sphere_at);
+    if (sp.shade == shading::flat && !color_at) fail(at_k() + ".color", "is required for flat shading", sphere_at);
     if (auto e = validate(sp, k)) {
       const char* blame = e->field == scene_field::sphere_center   ? center_at
                           : e->field == scene_field::sphere_radius ? radius_at
