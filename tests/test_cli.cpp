@@ -9,7 +9,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <map>
 #include <ostream>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -469,6 +471,79 @@ TEST_F(Cli, SceneFileErrorsNameTheJsonPath) {
   EXPECT_EQ(r.exit_code, 2);
   expect_one_error_line(r, "--scene: missing.json: No such file or directory");
   EXPECT_EQ(box.entries(), std::vector<std::string>{"bad.json"});
+}
+
+// Hostile scene paths: each a one-line usage error, exit 2, nothing written,
+// and nothing that blocks (a FIFO with no writer) or reads without end.
+TEST_F(Cli, SceneFilesThatAreNotRegularFilesAreRefused) {
+  fs::create_directory(box.work() / "dir.json");
+  ASSERT_EQ(mkfifo((box.work() / "fifo.json").c_str(), 0600), 0);
+  const std::pair<std::string, std::string> cases[] = {
+      {"dir.json", "--scene: dir.json: is a directory"},
+      {"fifo.json", "--scene: fifo.json: is a FIFO"},
+      {"/dev/null/x.json", "--scene: /dev/null/x.json: Not a directory"},
+  };
+  for (const auto& [name, want] : cases) {
+    const run_result r = box.run({"--scene", name, "-o", "a.ppm"});
+    EXPECT_EQ(r.exit_code, 2) << name;
+    expect_one_error_line(r, want);
+  }
+  // /dev/zero never ends; it is refused as a device. Its name lacks ".json", so
+  // reach it through a link that has it.
+  fs::create_symlink("/dev/zero", box.work() / "zero.json");
+  const run_result r = box.run({"--scene", "zero.json", "-o", "a.ppm"});
+  EXPECT_EQ(r.exit_code, 2);
+  expect_one_error_line(r, "--scene: zero.json: is a character device");
+  EXPECT_EQ(box.entries(), (std::vector<std::string>{"dir.json", "fifo.json", "zero.json"}));
+}
+
+TEST_F(Cli, SceneFileSyntaxErrorsSayWhere) {
+  write_file(box.work() / "dup.json", "{\"camera\": {\"width\": 64,\n  \"width\": 32}}");
+  run_result r = box.run({"--scene", "dup.json", "-o", "a.ppm"});
+  EXPECT_EQ(r.exit_code, 2);
+  expect_one_error_line(r, "--scene: dup.json: camera.width: duplicate key (at line 2, column 3: \"width\")");
+  write_file(box.work() / "far.json", R"({"spheres": [{"center": [0, 0, -2e38], "radius": 1}]})");
+  r = box.run({"--scene", "far.json", "-o", "a.ppm"});
+  EXPECT_EQ(r.exit_code, 2);
+  expect_one_error_line(r, "--scene: far.json: spheres[0].center: sphere centre must be within 1e37");
+  EXPECT_EQ(box.entries(), (std::vector<std::string>{"dup.json", "far.json"}));
+}
+
+// --stats: a short block on standard error after the run, stable labels,
+// numbers that parse.
+TEST_F(Cli, StatsPrintsTimingsRaysAndMemory) {
+  write_file(box.work() / "s.json", R"({"camera": {"width": 32, "height": 18},
+      "spheres": [{"center": [0, 0, -1], "radius": 0.5}, {"center": [0, -100.5, -1], "radius": 100}]})");
+  const run_result r = box.run({"--scene", "s.json", "--samples", "4", "-q", "--stats", "-o", "a.ppm"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.out.empty());
+  std::istringstream in(r.err);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "raycast stats:");
+  std::map<std::string, double> value;
+  while (std::getline(in, line)) {
+    std::istringstream fields(line);
+    std::string label, number, unit;
+    fields >> label;
+    if (label == "peak") fields >> label, label = "peak " + label;
+    fields >> number >> unit;
+    size_t used = 0;
+    value[label] = std::stod(number, &used);
+    EXPECT_EQ(used, number.size()) << line;
+  }
+  for (const char* label : {"load", "prepare", "render", "write", "total", "rays/s", "spheres", "peak RSS"})
+    EXPECT_EQ(value.count(label), 1u) << label << " in:\n" << r.err;
+  EXPECT_LE(count_lines(r.err), 9u) << r.err;
+  EXPECT_EQ(value["spheres"], 2.0);
+  EXPECT_GT(value["rays/s"], 0.0);
+  EXPECT_GT(value["peak RSS"], 0.0);
+  for (const char* label : {"load", "prepare", "render", "write"}) {
+    EXPECT_GE(value[label], 0.0) << label;
+    EXPECT_LE(value[label], value["total"]) << label;
+  }
+  // 32 x 18 pixels, 4 samples each.
+  EXPECT_NE(r.err.find("(2304 rays)"), std::string::npos) << r.err;
 }
 
 // Flags take no value: given twice they mean the same as once.

@@ -1,7 +1,17 @@
 // Scene files (--scene FILE.json, scene/scene_file.h): every key, the
 // defaults, errors naming the JSON path, and a file of 100,000 spheres.
+#include <fcntl.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/un.h>
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <variant>
 
@@ -19,6 +29,12 @@ scene_params parsed(const std::string& text) {
     return {};
   }
   return std::get<scene_params>(r);
+}
+
+scene_file_error error_of(const std::variant<scene_params, scene_file_error>& r) {
+  if (auto* e = std::get_if<scene_file_error>(&r)) return *e;
+  ADD_FAILURE() << "no error";
+  return {};
 }
 
 std::string error_path(const std::string& text) {
@@ -94,10 +110,139 @@ TEST(SceneFile, ErrorsNameTheJsonPath) {
       {R"({"lights": []})", "lights"},
       {R"([1, 2, 3])", "(file)"},
       {R"({"camera": {"width": 400,}})", "(file)"},
-      {R"({"spheres": [{"center": [0,0,1e999], "radius": 1}]})", "(file)"},
+      {R"({"spheres": [{"center": [0,0,1e999], "radius": 1}]})", "spheres[0].center[2]"},
       {R"({"spheres": [{"center": [0,0,NaN], "radius": 1}]})", "(file)"},
   };
   for (const auto& [text, want] : cases) EXPECT_EQ(error_path(text), want) << text;
+}
+
+TEST(SceneFile, DuplicateKeysAreErrors) {
+  EXPECT_EQ(error_path(R"({"camera": {"width": 400, "width": 200}})"), "camera.width");
+  EXPECT_EQ(error_of(parse_scene_file(R"({"camera": {"width": 400, "width": 200}})")).message.rfind("duplicate key", 0),
+            0u);
+  EXPECT_EQ(error_path(R"({"spheres": [{"center": [0,0,-1], "radius": 1, "radius": 2}]})"), "spheres[0].radius");
+  EXPECT_EQ(error_path(R"({"sky": {}, "sky": {}})"), "sky");
+  // An escaped spelling is the same key.
+  EXPECT_EQ(error_path(R"({"camera": {"width": 400, "w\u0069dth": 200}})"), "camera.width");
+}
+
+// Errors say where: line and column of the offending token, quoted shortly.
+TEST(SceneFile, ErrorsSayWhereWithAShortQuote) {
+  const scene_file_error e = error_of(parse_scene_file("{\"spheres\": [\n  {\"center\": [0, 0, -1], \"radius\": 1},\n"
+                                                        "  {\"center\": [0, 0, -1], \"radius\": -0.5}]}"));
+  EXPECT_EQ(e.path, "spheres[1].radius");
+  EXPECT_NE(e.message.find("line 3, column 36: -0.5)"), std::string::npos) << e.message;
+  const scene_file_error syntax = error_of(parse_scene_file("{\"camera\": {\"width\": 400,}}"));
+  EXPECT_EQ(syntax.path, "");
+  EXPECT_NE(syntax.message.find("line 1, column 26"), std::string::npos) << syntax.message;
+}
+
+// Numbers and nesting far beyond any scene: refused quickly, with a quote of
+// 32 bytes and "…", never the whole token.
+TEST(SceneFile, HugeTokensAndDeepNestingGiveShortErrors) {
+  const std::string digits(1000000, '7');
+  const std::string cases[] = {
+      R"({"spheres": [{"center": [0, 0, )" + digits + R"(], "radius": 1}]})",
+      R"({"spheres": [{"center": [0, 0, -1], "radius": 1e999}]})",
+      R"({"camera": {"width": )" + digits + "}}",
+      R"({"camera": {"height": 18446744073709551616}})",
+      R"({"camera": {"width": -9223372036854775809}})",
+      R"({"camera": {"lookfrom": )" + std::string(100000, '[') + std::string(100000, ']') + "}}",
+      R"({"spheres": )" + std::string(100000, '[') + std::string(100000, ']') + "}",
+      "{\"" + std::string(100000, 'k') + "\": 1}",
+      R"({"spheres": [{"center": [0, 0, -1], "radius": 1, "shade": ")" + std::string(100000, 'x') + R"("}]})",
+  };
+  const char* paths[] = {"spheres[0].center[2]", "spheres[0].radius", "camera.width", "camera.height",
+                         "camera.width", "camera.lookfrom[0]", "spheres[0]", "", "spheres[0].shade"};
+  for (size_t k = 0; k < std::size(cases); ++k) {
+    const scene_file_error e = error_of(parse_scene_file(cases[k]));
+    if (k == 7) {
+      EXPECT_EQ(e.path.size(), 32 + std::string_view("\u2026").size()) << e.path;
+    } else {
+      EXPECT_EQ(e.path, paths[k]) << k;
+    }
+    EXPECT_LT(e.message.size(), 200u) << e.message;
+  }
+}
+
+TEST(SceneFile, SpheresBeyondTheFloatRangeAreRefused) {
+  EXPECT_EQ(error_path(R"({"spheres": [{"center": [0, 0, -2e38], "radius": 1e38}]})"), "spheres[0].radius");
+  EXPECT_EQ(error_path(R"({"spheres": [{"center": [0, 0, -1], "radius": 1}, {"center": [0, 0, -2e38], "radius": 1}]})"),
+            "spheres[1].center");
+  // From the camera, not the origin of the world: far away but near the camera is fine.
+  EXPECT_EQ(error_path(R"({"camera": {"lookfrom": [0, 0, 3e37]}, "spheres": [{"center": [0, 0, 2.5e37], "radius": 1e36}]})"),
+            "(none)");
+  EXPECT_EQ(error_path(R"({"spheres": [{"center": [1e30, 0, -1e30], "radius": 1e30}]})"), "(none)");
+}
+
+// Files: only regular ones are read, nothing blocks, nothing is read whole
+// before its size is checked.
+class SceneFileLoad : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    char templ[] = "/tmp/raycast-scene-XXXXXX";
+    ASSERT_NE(mkdtemp(templ), nullptr);
+    dir_ = templ;
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::string at(const std::string& name) const { return (dir_ / name).string(); }
+  std::filesystem::path dir_;
+};
+
+TEST_F(SceneFileLoad, ReadsARegularFile) {
+  std::ofstream(at("s.json")) << R"({"spheres": [{"center": [0, 0, -1], "radius": 0.5}]})";
+  const auto r = load_scene_file(at("s.json"));
+  ASSERT_TRUE(std::holds_alternative<scene_params>(r)) << std::get<scene_file_error>(r).message;
+  EXPECT_EQ(std::get<scene_params>(r).spheres.size(), 1u);
+  EXPECT_EQ(error_of(load_scene_file(at("missing.json"))).message, "No such file or directory");
+}
+
+TEST_F(SceneFileLoad, RefusesWhatIsNotARegularFileWithoutBlocking) {
+  std::filesystem::create_directory(at("d.json"));
+  ASSERT_EQ(mkfifo(at("f.json").c_str(), 0600), 0);
+  const int sock = socket(AF_UNIX, SOCK_STREAM, 0);
+  ASSERT_GE(sock, 0);
+  sockaddr_un addr{};
+  addr.sun_family = AF_UNIX;
+  const std::string sock_path = at("s.json");
+  ASSERT_LT(sock_path.size(), sizeof addr.sun_path);
+  sock_path.copy(addr.sun_path, sock_path.size());
+  ASSERT_EQ(bind(sock, reinterpret_cast<const sockaddr*>(&addr), sizeof addr), 0);
+  const std::pair<std::string, std::string> cases[] = {
+      {at("d.json"), "is a directory"},     {at("f.json"), "is a FIFO"},
+      {sock_path, "is a socket"},           {"/dev/null", "is a character device"},
+      {"/dev/zero", "is a character device"},
+  };
+  for (const auto& [name, want] : cases) {
+    const auto start = std::chrono::steady_clock::now();
+    const scene_file_error e = error_of(load_scene_file(name));
+    EXPECT_EQ(e.path, "");
+    EXPECT_EQ(e.message.rfind(want, 0), 0u) << name << ": " << e.message;
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5)) << name;
+  }
+  close(sock);
+}
+
+TEST_F(SceneFileLoad, RefusesAFileLargerThanTheCapWithoutReadingIt) {
+  {
+    const int fd = open(at("big.json").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    ASSERT_GE(fd, 0);
+    // Sparse: no disk, and a read of it would take seconds.
+    ASSERT_EQ(ftruncate(fd, off_t(max_scene_file_bytes) + 1), 0);
+    close(fd);
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const scene_file_error e = error_of(load_scene_file(at("big.json")));
+  EXPECT_EQ(e.message, "is 4294967296 bytes; a scene file may be at most 4 GiB - 1 (4294967295 bytes)");
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(1));
+}
+
+// A file with more bytes than fstat said (one that grew, here one of /proc's,
+// whose size reads 0) is refused at the first byte beyond: the buffer never
+// outgrows the size that was checked.
+TEST_F(SceneFileLoad, RefusesAFileThatGrowsWhileRead) {
+  const scene_file_error e = error_of(load_scene_file("/proc/self/status"));
+  EXPECT_EQ(e.message, "grew while being read (was 0 bytes)");
 }
 
 // 100,000 spheres (the issue's "up to at least"): parsed, and rendered by a

@@ -1,8 +1,10 @@
 // raycast: parse, render in bands of rows, hand each band to the sink.
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
@@ -10,6 +12,8 @@
 #include <new>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "io/image_sink.h"
 #include "io/signals.h"
@@ -54,8 +58,25 @@ class progress {
   int64_t rows_;
 };
 
-int run(const cli::job& j) {
+using clock = std::chrono::steady_clock;
+
+double seconds_since(clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); }
+
+// What --stats reports, besides the job's load time.
+struct run_stats {
+  double prepare = 0, render = 0, write = 0;  // seconds
+  uint64_t rays = 0;                          // pixels x samples
+  size_t spheres = 0;
+};
+
+int run(cli::job& j, run_stats& st) {
+  auto t = clock::now();
   const renderer r(j.sc, j.render);
+  st.prepare = seconds_since(t);
+  // The renderer keeps its own copy of the scene: the job's spheres (a scene
+  // file's millions) are not needed any more.
+  st.spheres = j.sc.spheres.size();
+  std::vector<sphere>().swap(j.sc.spheres);
   // The output is the region (the whole image unless --region): its rows and
   // columns of the image, rendered in bands of whole region rows.
   const cli::pixel_region& reg = j.region;
@@ -78,12 +99,38 @@ int run(const cli::job& j) {
   for (int64_t y0 = 0; y0 < H; y0 += band_rows) {
     const int64_t y1 = std::min(H, y0 + band_rows);
     bar.show(y0, "rendering");
+    t = clock::now();
     r.render(image_band{buffer.get(), stride, fmt, reg.y0 + y0, reg.y0 + y1, reg.x0, reg.x1});
+    st.render += seconds_since(t);
     bar.show(y0, "writing");
+    t = clock::now();
     sink->write_rows(y0, y1, buffer.get(), stride);
+    st.write += seconds_since(t);
   }
+  t = clock::now();
   sink->finish();
+  st.write += seconds_since(t);
+  st.rays = uint64_t(W) * uint64_t(H) * r.samples();
   return 0;
+}
+
+// --stats: a short block with stable labels (tests read it), like pbrt's.
+void print_stats(const cli::job& j, const run_stats& st, double total) {
+  rusage ru{};
+  getrusage(RUSAGE_SELF, &ru);
+  const double rays_per_second = st.render > 0 ? double(st.rays) / st.render : 0.0;
+  std::fprintf(stderr,
+               "raycast stats:\n"
+               "  load      %10.4f s\n"
+               "  prepare   %10.4f s\n"
+               "  render    %10.4f s\n"
+               "  write     %10.4f s\n"
+               "  total     %10.4f s\n"
+               "  rays/s    %10.4g  (%llu rays)\n"
+               "  spheres   %10zu\n"
+               "  peak RSS  %10.1f MB\n",
+               j.load_seconds, st.prepare, st.render, st.write, total, rays_per_second,
+               static_cast<unsigned long long>(st.rays), st.spheres, double(ru.ru_maxrss) * 1024.0 / 1e6);
 }
 
 
@@ -105,6 +152,7 @@ bool standard_output_flushed() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  const auto start = clock::now();
   io::reserve_standard_streams();
   io::install_signal_handlers();
   cli::parse_result parsed = cli::parse_args(argc, argv, std::cout, std::cerr);
@@ -123,7 +171,10 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    return run(*parsed.run);
+    run_stats st;
+    const int code = run(*parsed.run, st);
+    if (parsed.run->stats) print_stats(*parsed.run, st, seconds_since(start));
+    return code;
   } catch (const io::io_error& e) {
     print_error(e.what());
   } catch (const unsupported_backend& e) {

@@ -9,10 +9,8 @@
 #include <array>
 #include <cerrno>
 #include <charconv>
+#include <chrono>
 #include <cstdlib>
-#include <cstring>
-#include <fstream>
-#include <sstream>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -180,7 +178,7 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
   std::string output, width_s, height_s, aspect_s, vh_s, focal_s, origin_s, bottom_s, top_s, format_s;
   std::string backend_s, precision_s, threads_s, lookfrom_s, lookat_s, vup_s, vfov_s, scene_s;
   std::string samples_s, sampler_s, seed_s, region_s;
-  bool quiet = false, version = false;
+  bool quiet = false, version = false, stats = false;
 
   app.add_option("-o,--output", output, "Output file; '-' writes binary PPM to standard output")
       ->type_name("FILE");
@@ -228,6 +226,9 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
                  "the top row), the same bytes as those of the whole image [the whole image]")
       ->type_name("X0,Y0,X1,Y1");
   app.add_flag("-q,--quiet", quiet, "No progress on standard error");
+  app.add_flag("--stats", stats,
+               "After the run, print on standard error the seconds to load, prepare, render and write, "
+               "rays per second, spheres and peak memory");
   app.add_flag("--version", version, "Print the version and the backend auto picks here");
 
   try {
@@ -274,11 +275,9 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
     if (auto spheres = builtin_spheres(scene_s)) {
       sp.spheres = std::move(*spheres);
     } else if (scene_s.size() > 5 && lower(scene_s.substr(scene_s.size() - 5)) == ".json") {
-      std::ifstream in(scene_s, std::ios::binary);
-      std::ostringstream text;
-      if (in) text << in.rdbuf();
-      if (!in || in.bad()) return usage("--scene", scene_s + ": " + std::strerror(errno));
-      auto parsed = parse_scene_file(text.str());
+      const auto start = std::chrono::steady_clock::now();
+      auto parsed = load_scene_file(scene_s);
+      j.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       if (auto* e = std::get_if<scene_file_error>(&parsed))
         return usage("--scene", scene_s + ": " + (e->path.empty() ? "" : e->path + ": ") + e->message);
       sp = std::move(std::get<scene_params>(parsed));
@@ -397,7 +396,8 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
   if (given("--seed"))
     if (auto e = parse_seed(seed_s, j.render.seed)) return usage("--seed", *e);
   j.quiet = quiet;
-  j.sc = make_scene(sp);
+  j.stats = stats;
+  j.sc = make_scene(std::move(sp));  // moves the spheres; the camera parameters (cp) stay
   if (given("--region")) {
     if (auto e = parse_region(region_s, j.sc.cam.image_width, j.sc.cam.image_height, j.region))
       return usage("--region", *e);

@@ -1,5 +1,5 @@
 // Command-line arguments -> a validated job. Every usage error is one line
-// naming the option and why; nothing here touches the file system.
+// naming the option and why; the only file touched is a --scene file, read.
 #pragma once
 #include <iosfwd>
 #include <optional>
@@ -29,6 +29,8 @@ struct job {
   render_options render;
   pixel_region region;  // the whole image unless --region
   bool quiet = false;
+  bool stats = false;         // --stats: timings and memory on standard error after the run
+  double load_seconds = 0.0;  // reading and parsing the scene file, if any
 };
 
 // Either a job to run, or the exit code to leave with: 0 after --help or

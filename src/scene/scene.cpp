@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 
 namespace raycast {
 
@@ -45,6 +46,8 @@ std::optional<invalid_field> validate(const sphere& s, size_t index) {
     if (!std::isfinite(s.center[k])) return bad(scene_field::sphere_center, "sphere centre must be finite");
   if (!(std::isfinite(s.radius) && s.radius > 0.0))
     return bad(scene_field::sphere_radius, "sphere radius must be a positive finite number");
+  if (s.radius > max_sphere_extent)
+    return bad(scene_field::sphere_radius, "sphere radius must be at most 1e37 (the float renderers' range)");
   if (s.shade == shading::flat)
     for (int k = 0; k < 3; ++k)
       if (!(std::abs(s.flat_color[k]) <= max_colour))
@@ -55,11 +58,21 @@ std::optional<invalid_field> validate(const sphere& s, size_t index) {
 std::optional<invalid_field> validate(const scene_params& p) {
   if (auto e = validate(p.camera)) return e;
   if (auto e = validate(p.sky)) return e;
-  for (size_t k = 0; k < p.spheres.size(); ++k)
-    if (auto e = validate(p.spheres[k], k)) return e;
+  for (size_t k = 0; k < p.spheres.size(); ++k) {
+    const sphere& s = p.spheres[k];
+    if (auto e = validate(s, k)) return e;
+    for (int c = 0; c < 3; ++c)
+      if (!(std::abs(p.camera.origin[c] - s.center[c]) <= max_sphere_extent))
+        return invalid_field{scene_field::sphere_center,
+                             "sphere centre must be within 1e37 of the camera (lookfrom) in each coordinate "
+                             "(the float renderers' range)",
+                             k};
+  }
   return std::nullopt;
 }
 
 scene make_scene(const scene_params& p) { return scene{make_camera(p.camera), p.sky, p.spheres}; }
+
+scene make_scene(scene_params&& p) { return scene{make_camera(p.camera), p.sky, std::move(p.spheres)}; }
 
 }  // namespace raycast

@@ -1,151 +1,518 @@
 #include "scene/scene_file.h"
 
-#include <cmath>
-#include <initializer_list>
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
-#include <nlohmann/json.hpp>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <memory>
+#include <new>
+#include <optional>
+#include <utility>
+
+#include <simdjson.h>
 
 namespace raycast {
 namespace {
 
-using json = nlohmann::json;
+namespace od = simdjson::ondemand;
+using simdjson::error_code;
 
-// Thrown inside the parser only; parse_scene_file turns it into its result.
+// simdjson's On-Demand parser indexes the input with 32-bit offsets.
+static_assert(max_scene_file_bytes <= simdjson::SIMDJSON_MAXSIZE_BYTES);
+
+// A scene nests four levels deep ({"spheres": [{"center": [...]}]}). The
+// reader refuses deeper input itself, at the first level the format does not
+// have (a value of the wrong type), so nesting costs nothing however deep;
+// simdjson is given a small bound as well (its On-Demand front end checks it
+// only in development builds).
+constexpr size_t max_depth = 32;
+
+// How much of the offending input an error quotes.
+constexpr size_t excerpt_bytes = 32;
+
+// Thrown inside the reader only; the public functions turn it into their result.
 struct failure {
   scene_file_error e;
 };
 
-[[noreturn]] void fail(const std::string& path, const std::string& why) { throw failure{{path, why}}; }
+// Asks the kernel for transparent huge pages over [p, p + n) (the 2 MiB
+// pages inside it): a 90 MB buffer then costs tens of page faults instead of
+// tens of thousands, which on some virtual machines take longer than the
+// parse. Advice only; nothing changes where it is not taken.
+void advise_huge_pages(void* p, size_t n) {
+  constexpr uintptr_t huge = uintptr_t(2) << 20;
+  const uintptr_t begin = (reinterpret_cast<uintptr_t>(p) + huge - 1) & ~(huge - 1);
+  const uintptr_t end = (reinterpret_cast<uintptr_t>(p) + n) & ~(huge - 1);
+  if (end > begin) ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+}
 
-void only_keys(const json& obj, const std::string& path, std::initializer_list<std::string_view> keys) {
-  if (!obj.is_object()) fail(path, "must be an object");
-  for (const auto& [k, v] : obj.items()) {
-    bool known = false;
-    for (std::string_view key : keys) known = known || k == key;
-    if (!known) {
-      std::string list;
-      for (std::string_view key : keys) list += (list.empty() ? "" : ", ") + std::string(key);
-      fail(path.empty() ? k : path + "." + k, "unknown key (known here: " + list + ")");
-    }
+// The input, padded as simdjson needs (SIMDJSON_PADDING readable bytes after
+// the text), unmapped when the parse returns. Mapped rather than allocated so
+// that its pages stay untouched until the text is read into them.
+class padded_text {
+ public:
+  // Room for n bytes and the padding, or nullopt.
+  static std::optional<padded_text> allocate(size_t n) {
+    padded_text t;
+    t.capacity_ = n + simdjson::SIMDJSON_PADDING;
+    void* p = ::mmap(nullptr, t.capacity_, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (p == MAP_FAILED) return std::nullopt;
+    advise_huge_pages(p, t.capacity_);
+    t.data_ = static_cast<char*>(p);
+    return t;
+  }
+  padded_text(padded_text&& o) noexcept
+      : data_(std::exchange(o.data_, nullptr)), size_(o.size_), capacity_(o.capacity_) {}
+  padded_text& operator=(padded_text&&) = delete;
+  ~padded_text() {
+    if (data_) ::munmap(data_, capacity_);
+  }
+
+  char* data() const { return data_; }
+  size_t size() const { return size_; }
+  size_t capacity() const { return capacity_; }
+  // The text is the first n bytes; the padding after it is zeros.
+  void finish(size_t n) {
+    size_ = n;
+    std::memset(data_ + n, 0, capacity_ - n);
+  }
+
+ private:
+  padded_text() = default;
+  char* data_ = nullptr;
+  size_t size_ = 0;
+  size_t capacity_ = 0;
+};
+
+std::string bytes_text(uint64_t n) { return std::to_string(n) + " bytes"; }
+
+scene_file_error too_large(uint64_t n) {
+  return {"", "is " + bytes_text(n) + "; a scene file may be at most 4 GiB - 1 (" + bytes_text(max_scene_file_bytes) + ")"};
+}
+
+// A short quote of the input at a place: the token there (a number, string or
+// word), or the rest of the line from an object or array, cut at a character
+// boundary with "…" when longer than excerpt_bytes.
+std::string excerpt(std::string_view rest) {
+  size_t n = 0;
+  const bool container = !rest.empty() && std::string_view("{[,:]}").find(rest[0]) != std::string_view::npos;
+  const bool string = !rest.empty() && rest[0] == '"';
+  const auto token_end = [&](size_t k) {
+    if (container) return false;
+    if (string) return k > 0 && rest[k - 1] == '"' && (k > 1 && rest[k - 2] != '\\');
+    return std::string_view(",:]} \t").find(rest[k]) != std::string_view::npos;
+  };
+  while (n < rest.size() && n <= excerpt_bytes && rest[n] != '\n' && rest[n] != '\r' && !token_end(n)) ++n;
+  if (n <= excerpt_bytes) return std::string(rest.substr(0, n));
+  n = excerpt_bytes;
+  while (n > 0 && (static_cast<unsigned char>(rest[n]) & 0xc0) == 0x80) --n;  // not inside a UTF-8 sequence
+  return std::string(rest.substr(0, n)) + "\u2026";
+}
+
+std::string json_error(error_code e) {
+  switch (e) {
+    case simdjson::TAPE_ERROR: return "a missing or extra comma, colon, brace, bracket or key";
+    case simdjson::INCOMPLETE_ARRAY_OR_OBJECT: return "an object or array is not closed";
+    case simdjson::TRAILING_CONTENT: return "more after the scene's object";
+    case simdjson::UNCLOSED_STRING: return "a string is not closed";
+    case simdjson::STRING_ERROR: return "a string has a bad escape or an unescaped control character";
+    case simdjson::UNESCAPED_CHARS: return "a string has an unescaped control character";
+    case simdjson::UTF8_ERROR: return "not UTF-8";
+    case simdjson::T_ATOM_ERROR:
+    case simdjson::F_ATOM_ERROR:
+    case simdjson::N_ATOM_ERROR: return "a word that is not true, false or null";
+    case simdjson::EMPTY: return "no JSON value, the file is empty";
+    case simdjson::DEPTH_ERROR: return "nested deeper than " + std::to_string(max_depth) + " levels";
+    case simdjson::MEMALLOC: return "out of memory";
+    default: return simdjson::error_message(e);
   }
 }
 
-double number(const json& v, const std::string& path) {
-  if (!v.is_number()) fail(path, "must be a number");
-  const double x = v.get<double>();
-  if (!std::isfinite(x)) fail(path, "must be finite");
-  return x;
-}
+class reader {
+ public:
+  reader(const char* text, size_t size, od::document& doc) : text_(text), size_(size), doc_(doc) {}
 
-vec3 triple(const json& v, const std::string& path) {
-  if (!v.is_array() || v.size() != 3) fail(path, "must be an array of 3 numbers");
-  vec3 r;
-  for (int k = 0; k < 3; ++k) r[k] = number(v[size_t(k)], path + "[" + std::to_string(k) + "]");
-  return r;
-}
+  scene_params read();
 
-int64_t integer(const json& v, const std::string& path) {
-  if (!v.is_number_integer()) fail(path, "must be an integer");
-  if (v.is_number_unsigned() && v.get<uint64_t>() > uint64_t(INT64_MAX)) fail(path, "is out of range");
-  return v.get<int64_t>();
-}
+ private:
+  using keys = std::initializer_list<std::string_view>;
 
-double aspect(const json& v, const std::string& path) {
-  if (v.is_string()) {
-    const std::string s = v.get<std::string>();
+  // " (at line L, column C: excerpt)" for a place in the text; columns count bytes.
+  std::string where(const char* at) const {
+    if (at == nullptr || at < text_ || at > text_ + size_) return "";
+    size_t line = 1;
+    const char* line_start = text_;
+    for (const char* p = text_; (p = static_cast<const char*>(std::memchr(p, '\n', size_t(at - p)))); ++p) {
+      ++line;
+      line_start = p + 1;
+    }
+    std::string r = " (at line " + std::to_string(line) + ", column " + std::to_string(at - line_start + 1);
+    std::string quote = excerpt(std::string_view(at, size_t(text_ + size_ - at)));
+    while (!quote.empty() && (quote.back() == ' ' || quote.back() == '\t')) quote.pop_back();
+    if (!quote.empty()) r += ": " + quote;
+    return r + ")";
+  }
+
+  // Where the iterator stands, for errors simdjson reports without a value.
+  const char* here() {
+    const char* at = nullptr;
+    if (doc_.current_location().get(at) != simdjson::SUCCESS) return nullptr;
+    return at;
+  }
+
+  [[noreturn]] void fail(std::string path, const std::string& why, const char* at) const {
+    throw failure{{std::move(path), why + where(at)}};
+  }
+
+  // Input simdjson refuses: a file error (empty path), as the JSON is not a scene at all.
+  [[noreturn]] void fail_json(error_code e, const char* at) const {
+    fail_json(json_error(e), at);
+  }
+  [[noreturn]] void fail_json(const std::string& why, const char* at) const {
+    throw failure{{"", "not valid JSON: " + why + where(at)}};
+  }
+
+  const char* at(od::value& v) { return v.raw_json_token().data(); }
+
+  // v as an object, or an error naming path.
+  template <class Path>
+  od::object object(od::value& v, const Path& path) {
+    const char* start = at(v);
+    od::object obj;
+    if (error_code e = v.get_object().get(obj)) {
+      if (e == simdjson::INCORRECT_TYPE) fail(path(), "must be an object", start);
+      fail_json(e, start);
+    }
+    return obj;
+  }
+
+  // v as an array, or the error why (naming path).
+  template <class Path>
+  od::array array(od::value& v, const Path& path, const char* why) {
+    const char* start = at(v);
+    od::array arr;
+    if (error_code e = v.get_array().get(arr)) {
+      if (e == simdjson::INCORRECT_TYPE) fail(path(), why, start);
+      fail_json(e, start);
+    }
+    return arr;
+  }
+
+  // Calls f(index of the key in known, its value) for each field of obj,
+  // refusing unknown and repeated keys.
+  template <class Path, class F>
+  void fields(od::object obj, const Path& path, keys known, F&& f) {
+    uint32_t seen = 0;
+    for (auto result : obj) {
+      od::field fld;
+      if (error_code e = std::move(result).get(fld)) fail_json(e, here());
+      const char* key_at = fld.key().raw() - 1;  // the opening quote
+      // A key without escapes is its raw text (stage one checked that a
+      // closing quote exists); only others are unescaped.
+      std::string_view key(key_at + 1, 0);
+      while (key.data()[key.size()] != '"' && key.data()[key.size()] != '\\') key = {key.data(), key.size() + 1};
+      if (key.data()[key.size()] == '\\')
+        if (error_code e = fld.unescaped_key().get(key)) fail_json(e, key_at);
+      int index = 0;
+      for (std::string_view k : known) {
+        if (k == key) break;
+        ++index;
+      }
+      if (index == int(known.size())) {
+        std::string list;
+        for (std::string_view k : known) list += (list.empty() ? "" : ", ") + std::string(k);
+        fail(child(path(), excerpt(key)), "unknown key (known here: " + list + ")", key_at);
+      }
+      if (seen & (1u << index)) fail(child(path(), key), "duplicate key", key_at);
+      seen |= 1u << index;
+      f(index, fld.value());
+    }
+  }
+
+  static std::string child(const std::string& parent, std::string_view key) {
+    return parent.empty() ? std::string(key) : parent + "." + std::string(key);
+  }
+
+  template <class Path>
+  double number(od::value& v, const Path& path) {
+    double x = 0;
+    if (error_code e = v.get_double().get(x)) {
+      const char* where_at = at(v);
+      od::json_type t;
+      if (v.type().get(t) != simdjson::SUCCESS) fail_json("not a JSON value", where_at);
+      if (t != od::json_type::number) fail(path(), "must be a number", where_at);
+      fail(path(), "is not a JSON number within a double's range (about +-1.8e308)", where_at);
+    }
+    return x;  // JSON has no infinities or NaN
+  }
+
+  template <class Path>
+  vec3 triple(od::value& v, const Path& path) {
+    const char* start = at(v);
+    od::array arr = array(v, path, "must be an array of 3 numbers");
+    vec3 r(0.0);
+    int n = 0;
+    for (auto result : arr) {
+      od::value el;
+      if (error_code e = std::move(result).get(el)) fail_json(e, here());
+      if (n == 3) fail(path(), "must be an array of 3 numbers", start);
+      r[n] = number(el, [&] { return path() + "[" + std::to_string(n) + "]"; });
+      ++n;
+    }
+    if (n != 3) fail(path(), "must be an array of 3 numbers", start);
+    return r;
+  }
+
+  template <class Path>
+  int64_t integer(od::value& v, const Path& path) {
+    const char* start = at(v);
+    od::number_type t;
+    if (error_code e = v.get_number_type().get(t)) {
+      od::json_type jt;
+      if (v.type().get(jt) != simdjson::SUCCESS) fail_json("not a JSON value", start);
+      if (jt != od::json_type::number) fail(path(), "must be an integer", start);
+      fail(path(), "is out of range", start);
+    }
+    if (t == od::number_type::floating_point_number) fail(path(), "must be an integer", start);
+    int64_t x = 0;
+    if (t == od::number_type::unsigned_integer || v.get_int64().get(x) != simdjson::SUCCESS)
+      fail(path(), "is out of range", start);
+    return x;
+  }
+
+  template <class Path>
+  double aspect(od::value& v, const Path& path) {
+    const char* start = at(v);
+    od::json_type t;
+    if (v.type().get(t) != simdjson::SUCCESS) fail_json("not a JSON value", start);
+    if (t != od::json_type::string) return number(v, path);
+    std::string_view s;
+    if (error_code e = v.get_string().get(s)) fail_json(e, start);
     const size_t colon = s.find(':');
     size_t used_w = 0, used_h = 0;
     try {
-      if (colon == std::string::npos) throw std::invalid_argument("no colon");
-      const double w = std::stod(s.substr(0, colon), &used_w);
-      const double h = std::stod(s.substr(colon + 1), &used_h);
-      if (used_w != colon || used_h != s.size() - colon - 1 || !(w > 0 && h > 0) || !std::isfinite(w / h))
+      if (colon == std::string::npos || s.size() > 64) throw std::invalid_argument("no colon");
+      const std::string w_text(s.substr(0, colon)), h_text(s.substr(colon + 1));
+      const double w = std::stod(w_text, &used_w);
+      const double h = std::stod(h_text, &used_h);
+      if (used_w != w_text.size() || used_h != h_text.size() || !(w > 0 && h > 0) || !std::isfinite(w / h))
         throw std::invalid_argument("bad");
       return w / h;
     } catch (const std::exception&) {
-      fail(path, "must be a number or \"W:H\" with positive W and H");
+      fail(path(), "must be a number or \"W:H\" with positive W and H", start);
     }
   }
-  return number(v, path);
+
+  void read_camera(od::value& v, camera_params& cp);
+  void read_sky(od::value& v, sky& s);
+  void read_spheres(od::value& v, std::vector<sphere>& out);
+
+  const char* text_;
+  size_t size_;
+  od::document& doc_;
+};
+
+void reader::read_camera(od::value& v, camera_params& cp) {
+  std::optional<vec3> vup;
+  const char* viewport_at = nullptr;
+  std::optional<double> viewport_height;
+  const auto camera_path = [] { return std::string("camera"); };
+  fields(object(v, camera_path), camera_path,
+         {"width", "height", "aspect", "lookfrom", "lookat", "vup", "vfov", "viewport_height", "focal_length"},
+         [&](int key, od::value value) {
+           switch (key) {
+             case 0: cp.image_width = integer(value, [] { return std::string("camera.width"); }); break;
+             case 1: cp.image_height = integer(value, [] { return std::string("camera.height"); }); break;
+             case 2: cp.aspect_ratio = aspect(value, [] { return std::string("camera.aspect"); }); break;
+             case 3: cp.origin = triple(value, [] { return std::string("camera.lookfrom"); }); break;
+             case 4: cp.lookat = triple(value, [] { return std::string("camera.lookat"); }); break;
+             case 5: vup = triple(value, [] { return std::string("camera.vup"); }); break;
+             case 6: cp.vfov_degrees = number(value, [] { return std::string("camera.vfov"); }); break;
+             case 7:
+               viewport_at = at(value);
+               viewport_height = number(value, [] { return std::string("camera.viewport_height"); });
+               break;
+             case 8: cp.focal_length = number(value, [] { return std::string("camera.focal_length"); }); break;
+           }
+         });
+  // Applied in this order whatever the order of the keys.
+  if (vup) {
+    cp.vup = *vup;
+    if (!cp.lookat) cp.lookat = cp.origin + vec3(0.0, 0.0, -1.0);  // the lesson's view, as the CLI
+  }
+  if (viewport_height) {
+    if (cp.vfov_degrees) fail("camera.viewport_height", "give vfov or viewport_height, not both", viewport_at);
+    cp.viewport_height = *viewport_height;
+  }
 }
 
-scene_params read(const json& root) {
-  scene_params p;
-  only_keys(root, "", {"camera", "sky", "spheres"});
-  if (root.contains("camera")) {
-    const json& c = root["camera"];
-    only_keys(c, "camera", {"width", "height", "aspect", "lookfrom", "lookat", "vup", "vfov",
-                            "viewport_height", "focal_length"});
-    camera_params& cp = p.camera;
-    if (c.contains("width")) cp.image_width = integer(c["width"], "camera.width");
-    if (c.contains("height")) cp.image_height = integer(c["height"], "camera.height");
-    if (c.contains("aspect")) cp.aspect_ratio = aspect(c["aspect"], "camera.aspect");
-    if (c.contains("lookfrom")) cp.origin = triple(c["lookfrom"], "camera.lookfrom");
-    if (c.contains("lookat")) cp.lookat = triple(c["lookat"], "camera.lookat");
-    if (c.contains("vup")) {
-      cp.vup = triple(c["vup"], "camera.vup");
-      if (!cp.lookat) cp.lookat = cp.origin + vec3(0.0, 0.0, -1.0);  // the lesson's view, as the CLI
-    }
-    if (c.contains("vfov")) cp.vfov_degrees = number(c["vfov"], "camera.vfov");
-    if (c.contains("viewport_height")) {
-      if (cp.vfov_degrees) fail("camera.viewport_height", "give vfov or viewport_height, not both");
-      cp.viewport_height = number(c["viewport_height"], "camera.viewport_height");
-    }
-    if (c.contains("focal_length")) cp.focal_length = number(c["focal_length"], "camera.focal_length");
+void reader::read_sky(od::value& v, sky& s) {
+  const auto sky_path = [] { return std::string("sky"); };
+  fields(object(v, sky_path), sky_path, {"bottom", "top"}, [&](int key, od::value value) {
+    if (key == 0) s.bottom = triple(value, [] { return std::string("sky.bottom"); });
+    if (key == 1) s.top = triple(value, [] { return std::string("sky.top"); });
+  });
+}
+
+void reader::read_spheres(od::value& v, std::vector<sphere>& out) {
+  od::array list = array(v, [] { return std::string("spheres"); }, "must be an array");
+  // Exactly the spheres there are (a pass over the index, not the text); a
+  // malformed array is reported by the loop below.
+  size_t count = 0;
+  if (list.count_elements().get(count) == simdjson::SUCCESS) {
+    out.reserve(count);
+    advise_huge_pages(out.data(), out.capacity() * sizeof(sphere));
   }
-  if (root.contains("sky")) {
-    const json& s = root["sky"];
-    only_keys(s, "sky", {"bottom", "top"});
-    if (s.contains("bottom")) p.sky.bottom = triple(s["bottom"], "sky.bottom");
-    if (s.contains("top")) p.sky.top = triple(s["top"], "sky.top");
-  }
-  if (root.contains("spheres")) {
-    const json& list = root["spheres"];
-    if (!list.is_array()) fail("spheres", "must be an array");
-    p.spheres.reserve(list.size());
-    for (size_t k = 0; k < list.size(); ++k) {
-      const std::string at = "spheres[" + std::to_string(k) + "]";
-      const json& s = list[k];
-      only_keys(s, at, {"center", "radius", "shade", "color"});
-      sphere sp;
-      if (!s.contains("center")) fail(at + ".center", "is required");
-      if (!s.contains("radius")) fail(at + ".radius", "is required");
-      sp.center = triple(s["center"], at + ".center");
-      sp.radius = number(s["radius"], at + ".radius");
-      if (s.contains("shade")) {
-        const json& sh = s["shade"];
-        if (!sh.is_string() || (sh != "normal" && sh != "flat"))
-          fail(at + ".shade", "must be \"normal\" or \"flat\"");
-        sp.shade = sh == "flat" ? shading::flat : shading::normal;
+  size_t k = 0;
+  for (auto result : list) {
+    od::value item;
+    if (error_code e = std::move(result).get(item)) fail_json(e, here());
+    const auto at_k = [&k] { return "spheres[" + std::to_string(k) + "]"; };
+    const char* sphere_at = at(item);
+    // Where each value is (nullptr: not given), for the errors about it.
+    const char *center_at = nullptr, *radius_at = nullptr, *color_at = nullptr;
+    sphere sp;
+    fields(object(item, at_k), at_k, {"center", "radius", "shade", "color"}, [&](int key, od::value value) {
+      switch (key) {
+        case 0:
+          center_at = at(value);
+          sp.center = triple(value, [&] { return at_k() + ".center"; });
+          break;
+        case 1:
+          radius_at = at(value);
+          sp.radius = number(value, [&] { return at_k() + ".radius"; });
+          break;
+        case 2: {
+          const char* shade_at = at(value);
+          std::string_view s;
+          const error_code e = value.get_string().get(s);
+          if (e != simdjson::SUCCESS && e != simdjson::INCORRECT_TYPE) fail_json(e, shade_at);
+          if (e != simdjson::SUCCESS || (s != "normal" && s != "flat"))
+            fail(at_k() + ".shade", "must be \"normal\" or \"flat\"", shade_at);
+          sp.shade = s == "flat" ? shading::flat : shading::normal;
+          break;
+        }
+        case 3:
+          color_at = at(value);
+          sp.flat_color = triple(value, [&] { return at_k() + ".color"; });
+          break;
       }
-      if (sp.shade == shading::flat && !s.contains("color")) fail(at + ".color", "is required for flat shading");
-      if (s.contains("color")) sp.flat_color = triple(s["color"], at + ".color");
-      p.spheres.push_back(sp);
+    });
+    if (!center_at) fail(at_k() + ".center", "is required", sphere_at);
+    if (!radius_at) fail(at_k() + ".radius", "is required", sphere_at);
+    if (sp.shade == shading::flat && !color_at) fail(at_k() + ".color", "is required for flat shading", sphere_at);
+    if (auto e = validate(sp, k)) {
+      const char* blame = e->field == scene_field::sphere_center   ? center_at
+                          : e->field == scene_field::sphere_radius ? radius_at
+                                                                   : color_at;
+      fail(path(*e), e->message, blame);
     }
+    out.push_back(sp);
+    ++k;
   }
+}
+
+scene_params reader::read() {
+  scene_params p;
+  od::object root;
+  if (error_code e = doc_.get_object().get(root)) {
+    if (e == simdjson::INCORRECT_TYPE) fail("", "must be an object", here());
+    fail_json(e, here());
+  }
+  fields(root, [] { return std::string(); }, {"camera", "sky", "spheres"}, [&](int key, od::value value) {
+    if (key == 0) read_camera(value, p.camera);
+    if (key == 1) read_sky(value, p.sky);
+    if (key == 2) read_spheres(value, p.spheres);
+  });
+  // At the end, the document has no current location.
+  const char* rest = nullptr;
+  if (doc_.current_location().get(rest) == simdjson::SUCCESS) fail_json(simdjson::TRAILING_CONTENT, rest);
   return p;
 }
+
+std::variant<scene_params, scene_file_error> parse_padded(const padded_text& t) {
+  od::parser parser(max_scene_file_bytes);
+  if (error_code e = parser.allocate(std::max<size_t>(t.size(), 1), max_depth))
+    return scene_file_error{"", (e == simdjson::MEMALLOC ? "out of memory indexing " + bytes_text(t.size())
+                                                         : "cannot index: " + json_error(e))};
+  od::document doc;
+  // Stage one (the index of the whole text) says nothing of where.
+  if (error_code e = parser.iterate(t.data(), t.size(), t.capacity()).get(doc))
+    return scene_file_error{"", "not valid JSON: " + json_error(e)};
+  try {
+    return reader(t.data(), t.size(), doc).read();
+  } catch (const failure& x) {
+    return x.e;
+  } catch (const std::bad_alloc&) {
+    return scene_file_error{"", "out of memory"};
+  }
+}
+
+std::string describe(mode_t mode) {
+  if (S_ISDIR(mode)) return "is a directory, not a scene file";
+  if (S_ISCHR(mode)) return "is a character device, not a regular file";
+  if (S_ISBLK(mode)) return "is a block device, not a regular file";
+  if (S_ISFIFO(mode)) return "is a FIFO (named pipe), not a regular file";
+  if (S_ISSOCK(mode)) return "is a socket, not a regular file";
+  return "is not a regular file";
+}
+
+struct fd_closer {
+  int fd;
+  ~fd_closer() {
+    if (fd >= 0) ::close(fd);
+  }
+};
 
 }  // namespace
 
 std::variant<scene_params, scene_file_error> parse_scene_file(std::string_view text) {
-  json root;
-  try {
-    root = json::parse(text.begin(), text.end());
-  } catch (const json::parse_error& e) {
-    return scene_file_error{"", "not valid JSON (at byte " + std::to_string(e.byte) + ")"};
-  } catch (const json::exception& e) {  // a number beyond a double: "number overflow parsing '1e999'"
-    const std::string what = e.what();
-    return scene_file_error{"", "not valid JSON: " + what.substr(what.find(']') + 2)};
+  if (text.size() > max_scene_file_bytes) return too_large(text.size());
+  auto t = padded_text::allocate(text.size());
+  if (!t) return scene_file_error{"", "out of memory copying " + bytes_text(text.size())};
+  std::memcpy(t->data(), text.data(), text.size());
+  t->finish(text.size());
+  return parse_padded(*t);
+}
+
+std::variant<scene_params, scene_file_error> load_scene_file(const std::string& path) {
+  const auto error = [](std::string why) { return scene_file_error{"", std::move(why)}; };
+  // stat first: it neither blocks on a FIFO nor opens a device.
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return error(std::strerror(errno));
+  if (!S_ISREG(st.st_mode)) return error(describe(st.st_mode));
+  // O_NONBLOCK: should the name have become a FIFO since, open returns at once
+  // and fstat refuses it.
+  fd_closer f{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY)};
+  if (f.fd < 0) return error(std::strerror(errno));
+  if (::fstat(f.fd, &st) != 0) return error(std::strerror(errno));
+  if (!S_ISREG(st.st_mode)) return error(describe(st.st_mode));
+  if (st.st_size < 0 || uint64_t(st.st_size) > max_scene_file_bytes) return too_large(uint64_t(st.st_size));
+  const size_t size = size_t(st.st_size);
+  // Room for the size fstat gave and one byte more: a file that grows while
+  // read is refused at that byte, so memory never exceeds what was checked.
+  auto t = padded_text::allocate(size);
+  if (!t) return error("out of memory reading " + bytes_text(size));
+  size_t got = 0;
+  while (got <= size) {
+    const ssize_t n = ::read(f.fd, t->data() + got, size + 1 - got);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return error(std::strerror(errno));
+    }
+    if (n == 0) break;
+    got += size_t(n);
   }
-  try {
-    scene_params p = read(root);
-    for (size_t k = 0; k < p.spheres.size(); ++k)
-      if (auto e = validate(p.spheres[k], k)) return scene_file_error{path(*e), e->message};
-    return p;
-  } catch (const failure& x) {
-    return x.e;
-  }
+  if (got > size) return error("grew while being read (was " + bytes_text(size) + ")");
+  ::close(f.fd);
+  f.fd = -1;
+  t->finish(got);
+  return parse_padded(*t);
 }
 
 }  // namespace raycast

@@ -8,12 +8,19 @@
 //                {"center": [x,y,z], "radius": r, "shade": "flat", "color": [r,g,b]}]}
 //
 // Every key is optional (the lesson's defaults; "shade" defaults to "normal",
-// "color" is required for "flat"). Unknown keys, wrong types, non-finite
-// numbers and invalid spheres are errors naming the JSON path
-// ("spheres[3].radius"). The camera and sky are checked by validate() after a
-// caller has applied its overrides (the CLI's options); path() of its error
-// is the JSON path too.
+// "color" is required for "flat"). Unknown keys, duplicate keys, wrong types,
+// numbers beyond a double and invalid spheres are errors naming the JSON path
+// ("spheres[3].radius"), with where in the text ("at line 4, column 17") and
+// a short quote of it (at most 32 bytes, "…" when cut). Text that is not JSON
+// is an error of the whole file (empty path), with the same place when known.
+// The camera and sky are checked by validate() after a caller has applied its
+// overrides (the CLI's options); path() of its error is the JSON path too.
+//
+// The text is streamed with simdjson's On-Demand API straight into
+// scene_params: no document tree; while parsing, memory is the text (padded)
+// and simdjson's index of it, both freed before returning.
 #pragma once
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -27,8 +34,22 @@ struct scene_file_error {
   std::string message;  // why
 };
 
+// The largest scene file (4 GiB - 1 byte; simdjson indexes with 32-bit
+// offsets): about 45 million spheres at 90 bytes each. Larger files are
+// refused before any is read.
+inline constexpr uint64_t max_scene_file_bytes = (uint64_t(1) << 32) - 1;
+
 // Parses the text of a scene file and validates its spheres. As on the command line, a
-// "vup" without "lookat" looks down -z from "lookfrom".
+// "vup" without "lookat" looks down -z from "lookfrom". The text is copied
+// into a padded buffer first.
 std::variant<scene_params, scene_file_error> parse_scene_file(std::string_view text);
+
+// Reads the file and parses it as parse_scene_file does. Only a regular file
+// is read: a directory, device, FIFO or socket is refused without blocking
+// (stat, then open with O_NONBLOCK and fstat), as is a file larger than
+// max_scene_file_bytes or one that grows while it is read (memory stays at
+// the size fstat gave). Errors of the file itself have an empty path and
+// strerror's text ("No such file or directory") or the reason.
+std::variant<scene_params, scene_file_error> load_scene_file(const std::string& path);
 
 }  // namespace raycast
