@@ -13,10 +13,10 @@
 // kernels/float_spheres.h's operations in its order, so the output is
 // bit-identical to render_scalar.
 //
-// Left out where the scene does not need it: each band lists, per row, the
-// spheres whose rows' planes may come near (sphere_rows); each row asks spheres_in_row
-// (kernels/float_scene.h) which spheres its rays can come near and in which
-// batches, and a batch tests only those (a list per batch, built per row); a
+// Left out where the scene does not need it: the frame's row index lists,
+// per row, the spheres that may come near it (kernels/culling.h, built once
+// by the renderer); each row turns its entries into a list per batch
+// (batch_culler, compiled once), and a batch tests only those; a
 // batch with none computes the sky alone, with no division but the sky's; a
 // sphere that no lane of the batch can hit (every disc < 0) costs no square
 // root or division; a batch where every lane hit something computes no sky; a

@@ -97,12 +97,15 @@ int preparation_threads(const scene& s, int threads) {
 }  // namespace
 
 renderer::renderer(const scene& s, const render_options& opts)
-    : scene_(s),
+    : scene_{s.cam, s.sky, {}},
       fscene_(prepare_float_scene(s, preparation_threads(s, opts.threads))),
       which_(opts.which == backend::automatic ? best_backend() : opts.which),
       prec_(opts.prec),
       threads_(opts.threads > 0 ? opts.threads : available_cores()) {
   if (auto why = backend_unavailable(which_)) throw unsupported_backend(*why);
+  // Only the double reference renders from the scene's own spheres; the
+  // others read the prepared float scene and keep no second copy of them.
+  if (which_ == backend::reference) scene_.spheres = s.spheres;
   if (opts.samples < 1 || opts.samples > max_samples)
     throw std::invalid_argument("samples per pixel must be 1 to " + std::to_string(max_samples));
   if (opts.samples > 1) samples_.emplace(opts.sampler, opts.samples, opts.seed);

@@ -44,7 +44,7 @@ class renderer {
   precision prec() const { return prec_; }
   int threads() const { return threads_; }
   uint32_t samples() const { return samples_ ? samples_->plan().count : 1; }
-  const scene& scene_ref() const { return scene_; }
+  const camera& cam() const { return scene_.cam; }
 
   // Fills the band's pixels (any rows of the image, and any column window:
   // image_band), the same bytes whatever the thread count, band or window.
@@ -53,7 +53,7 @@ class renderer {
  private:
   void render_rows(const image_band& band, int64_t r0, int64_t r1, bool paired) const;
 
-  scene scene_;
+  scene scene_;  // the spheres only for the reference backend
   float_scene fscene_;
   backend which_;
   precision prec_;

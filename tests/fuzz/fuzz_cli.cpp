@@ -45,7 +45,7 @@ struct rendered {
 
 // Rows [r0, r1) of the scene with the given options, in format f.
 rendered render_rows(const renderer& r, pixel_format f, int64_t r0, int64_t r1) {
-  const size_t stride = size_t(r.scene_ref().cam.image_width) * bytes_per_pixel(f);
+  const size_t stride = size_t(r.cam().image_width) * bytes_per_pixel(f);
   rendered out;
   out.bytes.assign(stride * size_t(r1 - r0), 0xCD);
   r.render(image_band{out.bytes.data(), stride, f, r0, r1});

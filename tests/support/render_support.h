@@ -55,7 +55,7 @@ struct image {
 };
 
 inline image render_with(const raycast::renderer& r, raycast::pixel_format f) {
-  const raycast::camera& c = r.scene_ref().cam;
+  const raycast::camera& c = r.cam();
   image img(c.image_width, c.image_height, f);
   r.render(img.band());
   return img;
