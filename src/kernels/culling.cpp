@@ -236,7 +236,7 @@ row_index row_index::build(const float_scene& f, double spread, int threads) {
   // Below this many spheres a thread costs more than it saves.
   const int team = n < (size_t(1) << 15) ? 1 : std::max(1, threads);
   const frame_vectors fv(f);
-  std::vector<frame_box> box(n);
+  std::vector<frame_box, huge_page_allocator<frame_box>> box(n);
 #pragma omp parallel for schedule(static) num_threads(team)
   for (size_t k = 0; k < n; ++k) box[k] = box_of(f, fv, uint32_t(k), spread);
   // Counts per row from a difference array, then their prefix sums.

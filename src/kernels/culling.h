@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "kernels/float_scene.h"
+#include "scene/huge_pages.h"
 
 namespace raycast {
 
@@ -65,8 +66,8 @@ bool sphere_rows(const float_scene& f, uint32_t k, int64_t& j_lo, int64_t& j_hi,
 // rows); a taller one has lo = hi = -1 and is tested exactly in each row. A
 // sphere every ray passes behind is in no row.
 struct row_index {
-  std::vector<uint64_t> first;    // list[first[r] .. first[r + 1]) for row r
-  std::vector<sphere_span> list;  // 12 bytes per entry
+  std::vector<uint64_t> first;  // list[first[r] .. first[r + 1]) for row r
+  std::vector<sphere_span, huge_page_allocator<sphere_span>> list;  // 12 bytes per entry
   size_t most = 0;                // the longest row's count
 
   // Built with up to `threads` threads; the same bytes for any count.

@@ -72,6 +72,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "scene/huge_pages.h"
+
 namespace raycast {
 
 // What the intersection reads of one sphere, in one record of half a cache
@@ -90,13 +92,15 @@ struct alignas(32) sphere_record {
 
 // One record per sphere in scene order, and what shading reads of a hit.
 struct float_spheres {
-  std::vector<sphere_record> rec;
-  std::vector<float> red, green, blue;  // flat colour (0 for normal-shaded spheres)
-  std::vector<float> flat;        // 1 for flat-shaded spheres, 0 for normal-shaded
+  template <class T>
+  using array = std::vector<T, huge_page_allocator<T>>;  // scene/huge_pages.h
+  array<sphere_record> rec;
+  array<float> red, green, blue;  // flat colour (0 for normal-shaded spheres)
+  array<float> flat;              // 1 for flat-shaded spheres, 0 for normal-shaded
   bool any_flat = false, any_normal = false, any_inside = false;
   // For culling (kernels/culling.h), in the sphere's unit: the radius
   // widened by a margin far above float's rounding, 1e-5 (|f| + r).
-  std::vector<float> cull_radius;
+  array<float> cull_radius;
 
   size_t size() const { return rec.size(); }
   bool empty() const { return rec.empty(); }

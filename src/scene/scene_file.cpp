@@ -16,6 +16,8 @@
 
 #include <simdjson.h>
 
+#include "scene/huge_pages.h"
+
 namespace raycast {
 namespace {
 
@@ -39,17 +41,6 @@ constexpr size_t excerpt_bytes = 32;
 struct failure {
   scene_file_error e;
 };
-
-// Asks the kernel for transparent huge pages over [p, p + n) (the 2 MiB
-// pages inside it): a 90 MB buffer then costs tens of page faults instead of
-// tens of thousands, which on some virtual machines take longer than the
-// parse. Advice only; nothing changes where it is not taken.
-void advise_huge_pages(void* p, size_t n) {
-  constexpr uintptr_t huge = uintptr_t(2) << 20;
-  const uintptr_t begin = (reinterpret_cast<uintptr_t>(p) + huge - 1) & ~(huge - 1);
-  const uintptr_t end = (reinterpret_cast<uintptr_t>(p) + n) & ~(huge - 1);
-  if (end > begin) ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
-}
 
 // The input, padded as simdjson needs (SIMDJSON_PADDING readable bytes after
 // the text), unmapped when the parse returns. Mapped rather than allocated so
