@@ -162,6 +162,15 @@ const std::vector<aa_case>& aa_cases() {
     v.push_back({"tilted_world", *builtin_spheres("world"), tilted});
     v.push_back({"camera_inside", {{{0.1, -0.2, 0.0}, 2.0, shading::normal}, {{0, 0, -1}, 0.5, shading::normal}}, {}});
     v.push_back({"dust", dust(), {}});
+    // Lit, flat and normal spheres together (the general path), one lit
+    // around the camera.
+    v.push_back({"lit_mixed",
+                 {{{0.0, 0.0, -1.0}, 0.5, shading::lit, {1.0, 0.55, 0.1}},
+                  {{0.0, -100.5, -1.0}, 100.0, shading::normal},
+                  {{0.7, 0.1, -1.3}, 0.3, shading::flat, {0.2, 0.9, 0.3}},
+                  {{-0.6, 0.0, -1.1}, 0.25, shading::lit, {0.3, 0.3, 1.5}},
+                  {{0.0, 0.0, 0.0}, 20.0, shading::lit, {0.5, 0.5, 0.5}}},
+                 {}});
     return v;
   }();
   return all;

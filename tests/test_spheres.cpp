@@ -167,6 +167,15 @@ const std::vector<sphere_case>& sphere_cases() {
   mixed.push_back({{-0.5, 0.2, -0.9}, 0.3, shading::flat, {1.5, -0.25, 0.5}});  // outside [0, 1]
   mixed.push_back({{0, 0, 3}, 1.0, shading::normal});                       // behind the camera
   v.push_back({"mixed_overlapping", mixed, {}});
+  // Lit spheres among the others (the kernels' general path), and the
+  // camera inside a lit sphere (its inward normals face the headlight).
+  std::vector<sphere> mixed_lit = mixed;
+  mixed_lit.push_back({{0.3, -0.3, -0.7}, 0.15, shading::lit, {0.9, 0.4, 0.8}});
+  mixed_lit.push_back({{-0.9, -0.1, -1.6}, 0.5, shading::lit, {2.0, 0.5, -0.1}});  // outside [0, 1]
+  v.push_back({"mixed_lit", mixed_lit, {}});
+  v.push_back({"lit_camera_inside",
+               {{{0.1, -0.2, 0.0}, 2.0, shading::lit, {0.5, 0.8, 1.0}}, {{0, 0, -1}, 0.5, shading::lit, {1, 1, 1}}},
+               {}});
   v.push_back({"camera_inside", {{{0.1, -0.2, 0.0}, 2.0, shading::normal}, {{0, 0, -1}, 0.5, shading::normal}}, {}});
   camera_params tilted;
   tilted.origin = {-2, 2, 1};
@@ -507,10 +516,10 @@ TEST(SphereStiffCases, SimdBitIdenticalToScalar) {
 TEST(Scenes, BuiltInNames) {
   std::vector<std::string> names;
   for (std::string_view n : builtin_scene_names()) names.emplace_back(n);
-  EXPECT_EQ(names, (std::vector<std::string>{"sky", "red-sphere", "normals", "world"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"sky", "red-sphere", "normals", "world", "lit-world"}));
   EXPECT_TRUE(builtin_spheres("sky")->empty());
   EXPECT_FALSE(builtin_spheres("cornell-box"));
-  EXPECT_EQ(builtin_scene_list(), "sky, red-sphere, normals, world");
+  EXPECT_EQ(builtin_scene_list(), "sky, red-sphere, normals, world, lit-world");
 }
 
 TEST(Scenes, InvalidSpheresNameTheirPath) {

@@ -66,10 +66,10 @@ float_scene prepare_float_scene(const scene& s, int threads) {
   sp.red.resize(n);
   sp.green.resize(n);
   sp.blue.resize(n);
-  sp.flat.resize(n);
+  sp.kind.resize(n);
   const int team = n < (size_t(1) << 15) ? 1 : std::max(1, threads);
-  bool any_inside = false, any_flat = false, any_normal = false;
-#pragma omp parallel for schedule(static) num_threads(team) reduction(|| : any_inside, any_flat, any_normal)
+  bool any_inside = false, any_flat = false, any_normal = false, any_lit = false;
+#pragma omp parallel for schedule(static) num_threads(team) reduction(|| : any_inside, any_flat, any_normal, any_lit)
   for (size_t k = 0; k < n; ++k) {
     const sphere& b = s.spheres[k];
     const vec3 fo = c.origin - b.center;
@@ -101,17 +101,19 @@ float_scene prepare_float_scene(const scene& s, int threads) {
       sp.cull_radius[k] = std::nextafter(float(wide), INFINITY);
     }
     any_inside = any_inside || e.inside;
-    const bool flat = b.shade == shading::flat;
-    sp.red[k] = flat ? flush(b.flat_color.r) + 0.0f : 0.0f;
-    sp.green[k] = flat ? flush(b.flat_color.g) + 0.0f : 0.0f;
-    sp.blue[k] = flat ? flush(b.flat_color.b) + 0.0f : 0.0f;
-    sp.flat[k] = flat ? 1.0f : 0.0f;
+    const bool flat = b.shade == shading::flat, lit = b.shade == shading::lit, coloured = flat || lit;
+    sp.red[k] = coloured ? flush(b.flat_color.r) + 0.0f : 0.0f;
+    sp.green[k] = coloured ? flush(b.flat_color.g) + 0.0f : 0.0f;
+    sp.blue[k] = coloured ? flush(b.flat_color.b) + 0.0f : 0.0f;
+    sp.kind[k] = flat ? shading_kind::flat : lit ? shading_kind::lit : shading_kind::normal;
     any_flat = any_flat || flat;
-    any_normal = any_normal || !flat;
+    any_lit = any_lit || lit;
+    any_normal = any_normal || !coloured;
   }
   sp.any_inside = any_inside;
   sp.any_flat = any_flat;
   sp.any_normal = any_normal;
+  sp.any_lit = any_lit;
   return f;
 }
 

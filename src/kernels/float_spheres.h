@@ -34,6 +34,9 @@
 //        hittable_list; closest starts at FLT_MAX, so no infinite or NaN t hits)
 // Shading of the closest hit (its s, f, inv_r), per channel k:
 //   flat:   the sphere's colour
+//   lit:    with N as for normal (below), facing the ray,
+//           light = lit_ambient + lit_diffuse max(-((N_0 d_0 + N_1 d_1) + N_2 d_2) / sqrt(n2), 0)
+//           colour_k = colour_k light          (scene/sphere.h: 0.2 and 0.8)
 //   normal: n_k = (f_k + s d_k) inv_r                    the outward normal
 //           n = -n where inside and (n_0 d_0 + n_1 d_1) + n_2 d_2 >= 0
 //                the book's set_face_normal: the normal faces the ray. From
@@ -76,6 +79,11 @@
 
 namespace raycast {
 
+// A sphere's shading, as float_spheres::kind holds it.
+namespace shading_kind {
+inline constexpr float normal = 0.0f, flat = 1.0f, lit = 2.0f;
+}
+
 // What the intersection reads of one sphere, in one record of half a cache
 // line: a ray batch tests spheres in scene order, which in a large scene
 // jumps about memory, so each test costs one cache line rather than one per
@@ -96,8 +104,8 @@ struct float_spheres {
   using array = std::vector<T, huge_page_allocator<T>>;  // scene/huge_pages.h
   array<sphere_record> rec;
   array<float> red, green, blue;  // flat colour (0 for normal-shaded spheres)
-  array<float> flat;              // 1 for flat-shaded spheres, 0 for normal-shaded
-  bool any_flat = false, any_normal = false, any_inside = false;
+  array<float> kind;              // shading_kind: 0 normal, 1 flat, 2 lit
+  bool any_flat = false, any_normal = false, any_lit = false, any_inside = false;
   // For culling (kernels/culling.h), in the sphere's unit: the radius
   // widened by a margin far above float's rounding, 1e-5 (|f| + r).
   array<float> cull_radius;
@@ -112,14 +120,14 @@ struct float_spheres {
 // others). The plan (render/plan.cpp) fills it.
 struct sphere_arrays {
   const sphere_record* rec = nullptr;
-  const float *red = nullptr, *green = nullptr, *blue = nullptr, *flat = nullptr;
+  const float *red = nullptr, *green = nullptr, *blue = nullptr, *kind = nullptr;
   size_t n = 0;
-  bool any_flat = false, any_normal = false, any_inside = false;
+  bool any_flat = false, any_normal = false, any_lit = false, any_inside = false;
 };
 
 inline sphere_arrays arrays_of(const float_spheres& s) {
-  return {s.rec.data(), s.red.data(), s.green.data(), s.blue.data(), s.flat.data(),
-          s.size(), s.any_flat, s.any_normal, s.any_inside};
+  return {s.rec.data(), s.red.data(), s.green.data(), s.blue.data(), s.kind.data(),
+          s.size(), s.any_flat, s.any_normal, s.any_lit, s.any_inside};
 }
 
 }  // namespace raycast

@@ -124,18 +124,24 @@ void hit_normal(const float_scene& f, const traced& tr, float n[3]) {
     for (int k = 0; k < 3; ++k) n[k] = -n[k];
 }
 
-// The colour of a hit (tr.hit < the sphere count): flat, or 0.5 (N + 1).
+// The colour of a hit (tr.hit < the sphere count): flat, lit, or 0.5 (N + 1).
 void hit_colour(const float_scene& f, const traced& tr, float out[3]) {
   const float_spheres& sp = f.spheres;
   const size_t hit = tr.hit;
-  if (sp.flat[hit] == 1.0f) {
-    out[0] = sp.red[hit];
-    out[1] = sp.green[hit];
-    out[2] = sp.blue[hit];
+  const float albedo[3] = {sp.red[hit], sp.green[hit], sp.blue[hit]};
+  if (sp.kind[hit] == shading_kind::flat) {
+    for (int k = 0; k < 3; ++k) out[k] = albedo[k];
     return;
   }
   float n[3];
   hit_normal(f, tr, n);
+  if (sp.kind[hit] == shading_kind::lit) {
+    const float* d = tr.d;
+    const float facing = -((n[0] * d[0] + n[1] * d[1]) + n[2] * d[2]) / std::sqrt(tr.n2);
+    const float light = lit_ambient + lit_diffuse * vmax(facing, 0.0f);
+    for (int k = 0; k < 3; ++k) out[k] = albedo[k] * light;
+    return;
+  }
   for (int k = 0; k < 3; ++k) out[k] = (n[k] + 1.0f) * 0.5f;
 }
 
@@ -203,9 +209,9 @@ void scalar_pixel_samples(const float_scene& f, const sampling::sample_plan& sp,
     if (tr.hit == spheres.size()) {
       sky_sum = sky_sum + sampled::sky_u<float, uint32_t>(tr.d[1], tr.n2);
       sky_count = sky_count + 1.0f;
-    } else if (spheres.flat[tr.hit] == 1.0f) {
+    } else if (spheres.kind[tr.hit] != shading_kind::normal) {
       float c[3];
-      hit_colour(f, tr, c);  // the flat colour
+      hit_colour(f, tr, c);  // the flat or lit colour
       for (int k = 0; k < 3; ++k) flat[k] = flat[k] + c[k];
     } else {
       float n[3];

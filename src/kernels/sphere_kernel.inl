@@ -50,9 +50,15 @@ constexpr int N = vfloat::size;
 #endif
 constexpr int samples_per_pass = RAYCAST_SAMPLES_PER_PASS;
 
-// Which shadings the scene's spheres use (bit 0: normal, bit 1: flat).
+// Which shadings the scene's spheres use (bit 0: normal, bit 1: flat, bit 2:
+// lit). A scene with lit spheres runs the general path, all three.
 constexpr int normal_shading = 1;
 constexpr int flat_shading = 2;
+constexpr int lit_shading = 4;
+constexpr int all_shadings = normal_shading | flat_shading | lit_shading;
+// More than one shading: each hit carries its sphere's kind.
+template <int Shades>
+constexpr bool mixed = Shades != normal_shading && Shades != flat_shading;
 
 // The closest hit per lane, and what shading reads of its sphere.
 template <int Shades>
@@ -62,7 +68,8 @@ struct closest_hit {
   vfloat s = 0.0f;             // the hit's s, in its sphere's unit
   vfloat fx = 0.0f, fy = 0.0f, fz = 0.0f, inv_r = 0.0f;  // normal shading
   vfloat inside = 0.0f;  // 1 where the camera is inside the hit sphere (scenes with such a sphere)
-  vfloat red = 0.0f, green = 0.0f, blue = 0.0f, flat = 0.0f;  // flat shading
+  vfloat red = 0.0f, green = 0.0f, blue = 0.0f;  // flat and lit shading
+  vfloat kind = 0.0f;  // float_spheres::kind, for mixed scenes
 };
 
 // The batch's rays: d and what every sphere reads of it.
@@ -101,7 +108,7 @@ RAYCAST_INLINE void record(const sphere_arrays& sp, size_t k, vmask m, vfloat s,
       h.red = sp.red[k];
       h.green = sp.green[k];
       h.blue = sp.blue[k];
-      if constexpr (Shades == (normal_shading | flat_shading)) h.flat = sp.flat[k];
+      if constexpr (mixed<Shades>) h.kind = sp.kind[k];
     }
     return;
   }
@@ -118,7 +125,7 @@ RAYCAST_INLINE void record(const sphere_arrays& sp, size_t k, vmask m, vfloat s,
     h.red = select(m, vfloat(sp.red[k]), h.red);
     h.green = select(m, vfloat(sp.green[k]), h.green);
     h.blue = select(m, vfloat(sp.blue[k]), h.blue);
-    if constexpr (Shades == (normal_shading | flat_shading)) h.flat = select(m, vfloat(sp.flat[k]), h.flat);
+    if constexpr (mixed<Shades>) h.kind = select(m, vfloat(sp.kind[k]), h.kind);
   }
 }
 
@@ -251,25 +258,33 @@ RAYCAST_INLINE void hit_normal(const sphere_arrays& sp, const closest_hit<Shades
   }
 }
 
-// The hit colour of each lane that hit (float_spheres.h): 0.5 (N + 1), or
-// the sphere's flat colour.
+// The headlight of lit spheres (float_spheres.h): lit_ambient + lit_diffuse
+// max(-(N . d) / sqrt(n2), 0).
+RAYCAST_INLINE vfloat headlight(const vfloat n[3], const vfloat d[3], vfloat n2) {
+  const vfloat facing = -((n[0] * d[0] + n[1] * d[1]) + n[2] * d[2]) / sqrt(n2);
+  return vfloat(lit_ambient) + vfloat(lit_diffuse) * max(facing, 0.0f);
+}
+
+// The hit colour of each lane that hit (float_spheres.h): 0.5 (N + 1), the
+// sphere's flat colour, or its lit colour.
 template <int Shades>
 RAYCAST_INLINE void hit_colour(const sphere_arrays& sp, const closest_hit<Shades>& h, const rays& r,
                                vfloat out[3]) {
+  vfloat n[3];
   if constexpr ((Shades & normal_shading) != 0) {
-    vfloat n[3];
     hit_normal(sp, h, r, n);
     for (int k = 0; k < 3; ++k) out[k] = (n[k] + 1.0f) * 0.5f;
   }
+  const vfloat albedo[3] = {h.red, h.green, h.blue};
   if constexpr (Shades == flat_shading) {
-    out[0] = h.red;
-    out[1] = h.green;
-    out[2] = h.blue;
+    for (int k = 0; k < 3; ++k) out[k] = albedo[k];
   } else if constexpr (Shades == (normal_shading | flat_shading)) {
-    const vmask flat = h.flat == 1.0f;
-    out[0] = select(flat, h.red, out[0]);
-    out[1] = select(flat, h.green, out[1]);
-    out[2] = select(flat, h.blue, out[2]);
+    const vmask flat = h.kind == shading_kind::flat;
+    for (int k = 0; k < 3; ++k) out[k] = select(flat, albedo[k], out[k]);
+  } else if constexpr (Shades == all_shadings) {
+    const vmask flat = h.kind == shading_kind::flat, lit = h.kind == shading_kind::lit;
+    const vfloat light = any(lit) ? headlight(n, r.d, r.n2) : vfloat(0.0f);
+    for (int k = 0; k < 3; ++k) out[k] = select(flat, albedo[k], select(lit, albedo[k] * light, out[k]));
   }
 }
 
@@ -531,10 +546,10 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
           for (int u = 0; u < M; ++u) {
             if (any(h[u].hit)) {
               const bool every = all(h[u].hit);
+              vfloat n[3];
               if constexpr ((Shades & normal_shading) != 0) {
                 vmask normal = h[u].hit;
-                if constexpr ((Shades & flat_shading) != 0) normal = normal & !(h[u].flat == 1.0f);
-                vfloat n[3];
+                if constexpr (mixed<Shades>) normal = normal & (h[u].kind == shading_kind::normal);
                 hit_normal(sp, h[u], ry[u], n);
                 if constexpr (Shades == normal_shading) {
                   for (int k = 0; k < 3; ++k) normals[k] = normals[k] + (every ? n[k] : select(normal, n[k], 0.0f));
@@ -543,11 +558,18 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
                   normal_count = normal_count + select(normal, 1.0f, 0.0f);
                 }
               }
-              if constexpr ((Shades & flat_shading) != 0) {
-                vmask flat_hit = h[u].hit;
-                if constexpr (Shades != flat_shading) flat_hit = flat_hit & (h[u].flat == 1.0f);
-                const vfloat c[3] = {h[u].red, h[u].green, h[u].blue};
-                for (int k = 0; k < 3; ++k) flat[k] = flat[k] + select(flat_hit, c[k], 0.0f);
+              if constexpr ((Shades & flat_shading) != 0) {  // flat and lit colours
+                vmask coloured = h[u].hit;
+                if constexpr (mixed<Shades>) coloured = coloured & !(h[u].kind == shading_kind::normal);
+                vfloat c[3] = {h[u].red, h[u].green, h[u].blue};
+                if constexpr (Shades == all_shadings) {
+                  const vmask lit = h[u].hit & (h[u].kind == shading_kind::lit);
+                  if (any(lit)) {
+                    const vfloat light = headlight(n, ry[u].d, ry[u].n2);
+                    for (int k = 0; k < 3; ++k) c[k] = select(lit, c[k] * light, c[k]);
+                  }
+                }
+                for (int k = 0; k < 3; ++k) flat[k] = flat[k] + select(coloured, c[k], 0.0f);
               }
               if (every) continue;
             }
@@ -597,7 +619,8 @@ void render_shades(const kernel_args& a, const image_band& band, int64_t r0, int
 
 void render_sphere_rows(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1, bool) {
   const sphere_arrays& sp = a.spheres;
-  if (!sp.any_flat) render_shades<normal_shading>(a, band, r0, r1);
+  if (sp.any_lit) render_shades<all_shadings>(a, band, r0, r1);
+  else if (!sp.any_flat) render_shades<normal_shading>(a, band, r0, r1);
   else if (!sp.any_normal) render_shades<flat_shading>(a, band, r0, r1);
   else render_shades<normal_shading | flat_shading>(a, band, r0, r1);
 }

@@ -1,5 +1,6 @@
 #include "reference/reference.h"
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <cstring>
@@ -23,6 +24,10 @@ color trace(const scene& s, const ray& r) {
   hit_record rec;
   if (!hit_world(s.spheres, r, 0.0, INFINITY, rec)) return ray_color(r, s.sky);
   if (rec.object->shade == shading::flat) return rec.object->flat_color;
+  if (rec.object->shade == shading::lit) {  // scene/sphere.h's headlight
+    const double facing = -glm::dot(rec.normal, glm::normalize(r.direction()));
+    return rec.object->flat_color * (double(lit_ambient) + double(lit_diffuse) * std::max(facing, 0.0));
+  }
   return 0.5 * (rec.normal + color(1.0, 1.0, 1.0));
 }
 

@@ -6,7 +6,7 @@
 namespace raycast {
 
 namespace {
-constexpr std::array<std::string_view, 4> names = {"sky", "red-sphere", "normals", "world"};
+constexpr std::array<std::string_view, 5> names = {"sky", "red-sphere", "normals", "world", "lit-world"};
 }  // namespace
 
 std::span<const std::string_view> builtin_scene_names() { return names; }
@@ -22,6 +22,9 @@ std::optional<std::vector<sphere>> builtin_spheres(std::string_view name) {
   }
   if (name == "normals") return std::vector<sphere>{small};
   if (name == "world") return std::vector<sphere>{small, {{0.0, -100.5, -1.0}, 100.0, shading::normal}};
+  if (name == "lit-world")  // the world under a headlight: an orange sphere on a grey ground
+    return std::vector<sphere>{{{0.0, 0.0, -1.0}, 0.5, shading::lit, {1.0, 0.55, 0.1}},
+                               {{0.0, -100.5, -1.0}, 100.0, shading::lit, {0.7, 0.7, 0.7}}};
   return std::nullopt;
 }
 

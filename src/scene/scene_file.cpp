@@ -383,9 +383,9 @@ void reader::read_spheres(od::value& v, std::vector<sphere>& out) {
           std::string_view s;
           const error_code e = value.get_string().get(s);
           if (e != simdjson::SUCCESS && e != simdjson::INCORRECT_TYPE) fail_json(e, shade_at);
-          if (e != simdjson::SUCCESS || (s != "normal" && s != "flat"))
-            fail(at_k() + ".shade", "must be \"normal\" or \"flat\"", shade_at);
-          sp.shade = s == "flat" ? shading::flat : shading::normal;
+          if (e != simdjson::SUCCESS || (s != "normal" && s != "flat" && s != "lit"))
+            fail(at_k() + ".shade", "must be \"normal\", \"flat\" or \"lit\"", shade_at);
+          sp.shade = s == "flat" ? shading::flat : s == "lit" ? shading::lit : shading::normal;
           break;
         }
         case 3:
@@ -396,7 +396,9 @@ void reader::read_spheres(od::value& v, std::vector<sphere>& out) {
     });
     if (!center_at) fail(at_k() + ".center", "is required", sphere_at);
     if (!radius_at) fail(at_k() + ".radius", "is required", sphere_at);
-    if (sp.shade == shading::flat && !color_at) fail(at_k() + ".color", "is required for flat shading", sphere_at);
+    if (sp.shade != shading::normal && !color_at)
+      fail(at_k() + ".color", sp.shade == shading::flat ? "is required for flat shading" : "is required for lit shading",
+           sphere_at);
     if (auto e = validate(sp, k)) {
       const char* blame = e->field == scene_field::sphere_center   ? center_at
                           : e->field == scene_field::sphere_radius ? radius_at
