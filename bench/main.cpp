@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <unistd.h>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -26,12 +27,28 @@
 namespace raycast::bench {
 namespace {
 
+// Where the aa/ rows' references are cached unless --aa-reference-dir says:
+// the build tree's bench-cache for the raycast-bench built there, else (an
+// installed one, which must not write into a build tree) the XDG cache,
+// $XDG_CACHE_HOME/raycast or ~/.cache/raycast; '' (not cached) without either.
+std::string default_cache_dir() {
+  char buf[4096];
+  const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
+  if (n > 0) {
+    const std::string exe(buf, size_t(n));
+    if (exe.substr(0, exe.find_last_of('/')) == RAYCAST_BENCH_BUILD_BIN_DIR) return RAYCAST_BENCH_CACHE_DIR;
+  }
+  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && x[0] == '/') return std::string(x) + "/raycast";
+  if (const char* h = std::getenv("HOME"); h && h[0] == '/') return std::string(h) + "/.cache/raycast";
+  return "";
+}
+
 struct options {
   bool quick = false;
   std::string plot;
   std::optional<std::pair<int64_t, int64_t>> summary_size;
   int summary_threads = 1;
-  std::string aa_reference_dir = RAYCAST_BENCH_CACHE_DIR;
+  std::string aa_reference_dir = default_cache_dir();
 };
 
 struct size2 {
@@ -150,8 +167,9 @@ void print_help() {
       "                          --quick: 1920x1080)\n"
       "  --summary-threads N     threads of the summary table (default 1)\n"
       "  --aa-reference-dir DIR  where the aa/ rows' converged references are cached\n"
-      "                          (default " RAYCAST_BENCH_CACHE_DIR "; '' : not cached)\n"
-      "Google Benchmark's flags:\n");
+      "                          (default %s; '' : not cached)\n"
+      "Google Benchmark's flags:\n",
+      default_cache_dir().c_str());
   benchmark::PrintDefaultHelp();
 }
 

@@ -21,20 +21,13 @@
 #include "io/signals.h"
 #include "io/timestamp.h"
 #include "options.h"
+#include "raycast/bands.h"
 #include "render/render.h"
 #include "simd/cpu.h"
 
 namespace {
 
 using namespace raycast;
-
-// About a million pixels per band: large enough that threads and writes run
-// long, small enough that memory does not grow with the image.
-constexpr int64_t band_pixels = int64_t{1} << 20;
-
-struct aligned_free {
-  void operator()(unsigned char* p) const { std::free(p); }
-};
 
 // The lesson's "Scanlines remaining" with a bar and the phase (rendering or
 // writing a band), shown only to a person at a terminal.
@@ -79,39 +72,17 @@ int run(cli::job& j, run_stats& st) {
   // file's millions) are not needed any more.
   st.spheres = j.sc.spheres.size();
   std::vector<sphere>().swap(j.sc.spheres);
-  // The output is the region (the whole image unless --region): its rows and
-  // columns of the image, rendered in bands of whole region rows.
+  // The output is the region (the whole image unless --region), rendered
+  // and written in bands of whole region rows (raycast/bands.h).
   const cli::pixel_region& reg = j.region;
   const int64_t W = reg.width(), H = reg.height();
-  const pixel_format fmt = io::pixel_format_for(j.format);
-  const size_t stride = size_t(W) * bytes_per_pixel(fmt);
-  // Many samples per pixel: fewer pixels per band, so that a band's work
-  // (and the progress between two updates) stays about the same.
-  const int64_t pixels = std::max<int64_t>(1, std::min<int64_t>(band_pixels, (band_pixels << 2) / r.samples()));
-  const int64_t band_rows = std::clamp<int64_t>(pixels / W, 1, H);
-
-  std::unique_ptr<unsigned char, aligned_free> buffer(
-      static_cast<unsigned char*>(std::aligned_alloc(64, (stride * size_t(band_rows) + 63) / 64 * 64)));
-  if (!buffer)
-    throw io::io_error(j.output + ": cannot allocate " + std::to_string(stride * size_t(band_rows)) +
-                        " bytes for a band of rows");
-
   auto sink = j.output == "-" ? io::open_stdout_sink(W, H) : io::open_file_sink(j.output, j.format, W, H);
   progress bar(!j.quiet && isatty(STDERR_FILENO), H);
-  for (int64_t y0 = 0; y0 < H; y0 += band_rows) {
-    const int64_t y1 = std::min(H, y0 + band_rows);
-    bar.show(y0, "rendering");
-    t = clock::now();
-    r.render(image_band{buffer.get(), stride, fmt, reg.y0 + y0, reg.y0 + y1, reg.x0, reg.x1});
-    st.render += seconds_since(t);
-    bar.show(y0, "writing");
-    t = clock::now();
-    sink->write_rows(y0, y1, buffer.get(), stride);
-    st.write += seconds_since(t);
-  }
-  t = clock::now();
-  sink->finish();
-  st.write += seconds_since(t);
+  const band_timings bt =
+      render_to_sink(r, pixel_rect{reg.x0, reg.y0, reg.x1, reg.y1}, io::pixel_format_for(j.format), *sink, j.output,
+                     [&bar](int64_t rows_done, const char* phase) { bar.show(rows_done, phase); });
+  st.render = bt.render;
+  st.write = bt.write;
   st.rays = uint64_t(W) * uint64_t(H) * r.samples();
   return 0;
 }

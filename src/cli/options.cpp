@@ -20,23 +20,13 @@ namespace raycast::cli {
 
 namespace {
 
-constexpr std::string_view supported_extensions = ".png, .ppm, .pnm, .jpg, .jpeg, .tif, .tiff, .exr";
-
 std::string lower(std::string_view s) {
   std::string r(s);
   std::transform(r.begin(), r.end(), r.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   return r;
 }
 
-std::optional<file_format> format_from_name(std::string_view name) {
-  const std::string n = lower(name);
-  if (n == "png") return file_format::png;
-  if (n == "ppm" || n == "pnm") return file_format::ppm;
-  if (n == "jpg" || n == "jpeg") return file_format::jpg;
-  if (n == "tif" || n == "tiff") return file_format::tif;
-  if (n == "exr") return file_format::exr;
-  return std::nullopt;
-}
+using io::format_from_name;
 
 std::string in_quotes(std::string_view s) { return "'" + std::string(s) + "'"; }
 
@@ -350,16 +340,7 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
   } else if (output == "-") {
     j.format = file_format::ppm;
   } else {
-    const size_t slash = output.find_last_of('/');
-    const size_t dot = output.find_last_of('.');
-    if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
-      return usage("--output", in_quotes(output) + " has no extension; supported: " +
-                                   std::string(supported_extensions) + " (or use --format)");
-    auto f = format_from_name(std::string_view(output).substr(dot + 1));
-    if (!f)
-      return usage("--output", "unknown extension " + in_quotes(output.substr(dot)) +
-                                   "; supported: " + std::string(supported_extensions));
-    j.format = *f;
+    if (auto why = io::format_from_path(output, j.format)) return usage("--output", *why);
   }
   if (output == "-" && j.format != file_format::ppm)
     return usage("--format", "standard output takes ppm only, got " + std::string(to_string(j.format)));

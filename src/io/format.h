@@ -1,6 +1,7 @@
 // The image file formats raycast writes, and the pixels each one takes.
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -11,6 +12,14 @@ namespace raycast::io {
 enum class file_format { png, ppm, jpg, tif, exr };
 
 std::string_view to_string(file_format f);  // "png", "ppm", "jpg", "tif", "exr"
+// The format a name or file extension means, any case: png, ppm/pnm,
+// jpg/jpeg, tif/tiff, exr; nullopt for another.
+std::optional<file_format> format_from_name(std::string_view name);
+// The format a file name's extension gives, or why there is none (no
+// extension, an unknown one); the reason is a sentence for "--output: ".
+std::optional<std::string> format_from_path(const std::string& path, file_format& format);
+// What a file name's extension supports, for messages.
+inline constexpr std::string_view supported_extensions = ".png, .ppm, .pnm, .jpg, .jpeg, .tif, .tiff, .exr";
 bool is_float_format(file_format f);        // EXR carries linear 32-bit float
 pixel_format pixel_format_for(file_format f);
 std::string_view display_name(file_format f);  // "PNG", "JPEG", "TIFF", ... for messages

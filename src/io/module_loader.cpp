@@ -5,6 +5,7 @@
 
 #include <pthread.h>
 
+#include <algorithm>
 #include <chrono>
 #include <climits>
 #include <condition_variable>
@@ -13,6 +14,7 @@
 #include <string>
 #include <system_error>
 #include <thread>
+#include <vector>
 
 #include "io/io_error.h"
 #include "io/signals.h"
@@ -73,7 +75,17 @@ class load_watchdog {
   std::thread thread_;
 };
 
+std::vector<std::string>& extra_dirs() {
+  static std::vector<std::string> dirs;
+  return dirs;
+}
+
 }  // namespace
+
+void add_image_module_dir(const std::string& dir) {
+  auto& dirs = extra_dirs();
+  if (std::find(dirs.begin(), dirs.end(), dir) == dirs.end()) dirs.push_back(dir);
+}
 
 const raycast_image_module* load_image_module(const std::string& for_file) {
   static const raycast_image_module* cached = nullptr;
@@ -84,8 +96,11 @@ const raycast_image_module* load_image_module(const std::string& for_file) {
   // else that of the first candidate ("cannot open shared object file").
   std::string first_error, first_present_error;
   const std::string what = for_file + ": cannot load the image module";
-  for (const std::string& candidate :
-       {dir + "/raycast_oiio.so", dir + "/" RAYCAST_MODULE_RELDIR "/raycast_oiio.so"}) {
+  std::vector<std::string> candidates;
+  for (const std::string& d : extra_dirs()) candidates.push_back(d + "/raycast_oiio.so");
+  candidates.push_back(dir + "/raycast_oiio.so");
+  candidates.push_back(dir + "/" RAYCAST_MODULE_RELDIR "/raycast_oiio.so");
+  for (const std::string& candidate : candidates) {
     std::string error;
     {
       // dlopen runs the static constructors of OpenImageIO's libraries, which

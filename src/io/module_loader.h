@@ -12,4 +12,9 @@ namespace raycast::io {
 // module (<loader error>)").
 const raycast_image_module* load_image_module(const std::string& for_file);
 
+// One more folder to look in, before the executable's (a library's users:
+// the Python module beside its package, a program linking the installed
+// library). Call before the first load.
+void add_image_module_dir(const std::string& dir);
+
 }  // namespace raycast::io

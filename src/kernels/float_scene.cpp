@@ -60,7 +60,7 @@ float_scene prepare_float_scene(const scene& s, int threads) {
   // (kernels/float_spheres.h); in parallel for large scenes (each sphere's
   // are its own, so the bytes do not depend on the threads).
   float_spheres& sp = f.spheres;
-  const size_t n = s.spheres.size();
+  const size_t n = s.sphere_count();
   sp.rec.resize(n);
   sp.cull_radius.resize(n);
   sp.red.resize(n);
@@ -71,7 +71,7 @@ float_scene prepare_float_scene(const scene& s, int threads) {
   bool any_inside = false, any_flat = false, any_normal = false, any_lit = false;
 #pragma omp parallel for schedule(static) num_threads(team) reduction(|| : any_inside, any_flat, any_normal, any_lit)
   for (size_t k = 0; k < n; ++k) {
-    const sphere& b = s.spheres[k];
+    const sphere b = s.sphere_at(k);  // a vector's, or a caller's arrays'
     const vec3 fo = c.origin - b.center;
     // The sphere's own unit, 2^e: max(|f|, r) 2^-e in [0.5, 1) (exact in
     // double for every finite scene; the float constants then neither

@@ -90,22 +90,23 @@ int threads_that_start(int wanted) {
 // Threads for preparing a scene (kernels/float_scene.h, kernels/culling.h):
 // only large scenes use more than one.
 int preparation_threads(const scene& s, int threads) {
-  if (s.spheres.size() < (size_t(1) << 15)) return 1;
+  if (s.sphere_count() < (size_t(1) << 15)) return 1;
   return threads_that_start(threads > 0 ? threads : available_cores());
 }
 
 }  // namespace
 
 renderer::renderer(const scene& s, const render_options& opts)
-    : scene_{s.cam, s.sky, {}},
+    : scene_{s.cam, s.sky, {}, std::nullopt},
       fscene_(prepare_float_scene(s, preparation_threads(s, opts.threads))),
       which_(opts.which == backend::automatic ? best_backend() : opts.which),
       prec_(opts.prec),
       threads_(opts.threads > 0 ? opts.threads : available_cores()) {
   if (auto why = backend_unavailable(which_)) throw unsupported_backend(*why);
   // Only the double reference renders from the scene's own spheres; the
-  // others read the prepared float scene and keep no second copy of them.
-  if (which_ == backend::reference) scene_.spheres = s.spheres;
+  // others read the prepared float scene and keep no second copy of them
+  // (a caller's arrays become a vector here, for the reference only).
+  if (which_ == backend::reference) scene_.spheres = sphere_vector(s);
   if (opts.samples < 1 || opts.samples > max_samples)
     throw std::invalid_argument("samples per pixel must be 1 to " + std::to_string(max_samples));
   if (opts.samples > 1) samples_.emplace(opts.sampler, opts.samples, opts.seed);

@@ -55,11 +55,19 @@ std::optional<invalid_field> validate(const sphere& s, size_t index) {
   return std::nullopt;
 }
 
+std::vector<sphere> sphere_vector(const scene& s) {
+  if (!s.arrays) return s.spheres;
+  std::vector<sphere> v(s.arrays->count);
+  for (size_t k = 0; k < v.size(); ++k) v[k] = s.arrays->at(k);
+  return v;
+}
+
 std::optional<invalid_field> validate(const scene_params& p) {
   if (auto e = validate(p.camera)) return e;
   if (auto e = validate(p.sky)) return e;
-  for (size_t k = 0; k < p.spheres.size(); ++k) {
-    const sphere& s = p.spheres[k];
+  const size_t n = p.arrays ? p.arrays->count : p.spheres.size();
+  for (size_t k = 0; k < n; ++k) {
+    const sphere s = p.arrays ? p.arrays->at(k) : p.spheres[k];
     if (auto e = validate(s, k)) return e;
     for (int c = 0; c < 3; ++c)
       if (!(std::abs(p.camera.origin[c] - s.center[c]) <= max_sphere_extent))
@@ -71,8 +79,10 @@ std::optional<invalid_field> validate(const scene_params& p) {
   return std::nullopt;
 }
 
-scene make_scene(const scene_params& p) { return scene{make_camera(p.camera), p.sky, p.spheres}; }
+scene make_scene(const scene_params& p) { return scene{make_camera(p.camera), p.sky, p.spheres, p.arrays}; }
 
-scene make_scene(scene_params&& p) { return scene{make_camera(p.camera), p.sky, std::move(p.spheres)}; }
+scene make_scene(scene_params&& p) {
+  return scene{make_camera(p.camera), p.sky, std::move(p.spheres), p.arrays};
+}
 
 }  // namespace raycast

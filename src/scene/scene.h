@@ -2,6 +2,9 @@
 // front of the sky (none: the lesson's picture). A job builds its
 // scene_params, validates them once here, and renders the scene they make.
 #pragma once
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
 #include <optional>
 #include <vector>
 
@@ -12,17 +15,70 @@
 
 namespace raycast {
 
+// Spheres in a caller's arrays, read in place (no copy): a library user's
+// NumPy arrays or std::vector<float>s. Each array is float or double; byte
+// strides between spheres and between components (xyz, rgb) let any strided
+// layout through. Not owned: the arrays must outlive the renderer's
+// construction (the reference backend copies them then, the others prepare
+// their float scene from them).
+struct sphere_view {
+  enum class element : uint8_t { f32, f64 };
+  struct column {
+    const void* data = nullptr;
+    element type = element::f64;
+    ptrdiff_t stride = 0;            // bytes from one sphere to the next
+    ptrdiff_t component_stride = 0;  // bytes from x to y to z (r g b); unused for radii
+
+    double get(size_t k, int c = 0) const {
+      const auto* p = static_cast<const unsigned char*>(data) + ptrdiff_t(k) * stride + c * component_stride;
+      if (type == element::f32) {
+        float v;
+        std::memcpy(&v, p, sizeof v);
+        return v;
+      }
+      double v;
+      std::memcpy(&v, p, sizeof v);
+      return v;
+    }
+  };
+  size_t count = 0;
+  column centers;             // N x 3
+  column radii;               // N
+  column colors;              // N x 3, or data null: flat_color's default
+  shading shade = shading::normal;   // every sphere's, unless shades is set
+  const shading* shades = nullptr;   // N, one per sphere
+
+  sphere at(size_t k) const {
+    sphere s;
+    s.center = point3(centers.get(k, 0), centers.get(k, 1), centers.get(k, 2));
+    s.radius = radii.get(k);
+    s.shade = shades ? shades[k] : shade;
+    if (colors.data) s.flat_color = color(colors.get(k, 0), colors.get(k, 1), colors.get(k, 2));
+    return s;
+  }
+};
+
 struct scene {
   camera cam;
   raycast::sky sky;
   std::vector<sphere> spheres;  // empty: the sky alone, today's kernel
+  // Instead of `spheres`, when set: spheres read from a caller's arrays.
+  std::optional<sphere_view> arrays = std::nullopt;
+
+  size_t sphere_count() const { return arrays ? arrays->count : spheres.size(); }
+  sphere sphere_at(size_t k) const { return arrays ? arrays->at(k) : spheres[k]; }
 };
+
+// The spheres as a vector: a copy of the arrays' (the double reference reads
+// a vector), or of `spheres`.
+std::vector<sphere> sphere_vector(const scene& s);
 
 // A scene as a caller describes it, before validation.
 struct scene_params {
   camera_params camera;
   raycast::sky sky;
   std::vector<sphere> spheres;
+  std::optional<sphere_view> arrays = std::nullopt;  // instead of spheres, when set
 };
 
 // The largest sphere radius, and the largest distance from the camera
