@@ -208,3 +208,21 @@ def test_render_releases_the_gil():
     # Held, the GIL would let the counter run only at the switch interval's
     # edges (a handful of times); free, it counts all along.
     assert during > 10000, (during, took)
+
+
+def test_readme_python_example_runs(tmp_path):
+    """README.md's Python example, as written, writes its 1280x720 PNG."""
+    readme = open(os.path.join(os.path.dirname(__file__), "..", "..", "..", "README.md")).read()
+    section = readme[readme.index("## Python"):]
+    block = section[section.index("```python\n") + len("```python\n"):]
+    block = block[:block.index("```")]
+    assert len(block.strip().splitlines()) <= 10
+    cwd = os.getcwd()
+    os.chdir(tmp_path)
+    try:
+        exec(compile(block, "README.md", "exec"), {})
+    finally:
+        os.chdir(cwd)
+    png = (tmp_path / "cloud.png").read_bytes()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+    assert int.from_bytes(png[16:20], "big") == 1280 and int.from_bytes(png[20:24], "big") == 720
