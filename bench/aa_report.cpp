@@ -133,7 +133,7 @@ void print_aa_summary(std::ostream& os, const run_table& table, const aa_config&
   for (const aa_point& b : pts) {
     if (!b.sampler.empty()) continue;
     os << "\nSamples to match the book's RMSE on " << b.scene << " (" << error_text(b.rmse) << " at "
-       << b.samples << " random samples):\n  N* interpolated in log-log; issue #14's goal for the "
+       << b.samples << " random samples):\n  N* interpolated in log-log; the goal for the "
        << "default sampler, " << to_string(default_sampler) << ": N*/" << b.samples << " <= 0.25\n";
     for (sampler_kind k : cfg.samplers) {
       const auto m = samples_to_match(error_curve(curve_of(pts, b.scene, std::string(to_string(k)))), b.rmse);
@@ -145,7 +145,7 @@ void print_aa_summary(std::ostream& os, const run_table& table, const aa_config&
     }
     // Per-sample speed: the book's ns/sample over ours, at our largest N (and 64).
     os << "Per-sample speed on " << b.scene << ", book7 s" << b.samples << " " << strf("%.2f", b.ns_per_sample)
-       << " ns/sample against ours (issue #14's goal: >= 50x):\n";
+       << " ns/sample against ours (goal: >= 50x):\n";
     std::vector<int64_t> at;
     for (int64_t n : {int64_t(64), cfg.samples.back()})
       if (std::count(cfg.samples.begin(), cfg.samples.end(), n) && !std::count(at.begin(), at.end(), n))

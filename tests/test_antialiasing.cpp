@@ -1,4 +1,4 @@
-// Antialiasing (the book's ch. 7; issue 14):
+// Antialiasing (the book's ch. 7):
 //  - the samplers: offsets in [0, 1), the same for the same (seed, pixel,
 //    sample) and not for another seed; stratified puts one sample in each
 //    stratum, sobol one in every elementary interval of a power-of-two net;

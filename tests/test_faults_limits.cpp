@@ -1,4 +1,4 @@
-// The fault matrix, continued (issue 11): resource limits, odd destinations,
+// The fault matrix, continued: resource limits, odd destinations,
 // format limits. Same promises as test_faults.cpp — a runtime failure is exit
 // 1 with one "raycast: error: <file>: <cause>" line, no temporary file left
 // (cli_sandbox::finish checks), the old file as it was; a usage error is exit

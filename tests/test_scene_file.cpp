@@ -245,7 +245,7 @@ TEST_F(SceneFileLoad, RefusesAFileThatGrowsWhileRead) {
   EXPECT_EQ(e.message, "grew while being read (was 0 bytes)");
 }
 
-// 100,000 spheres (the issue's "up to at least"): parsed, and rendered by a
+// 100,000 spheres : parsed, and rendered by a
 // SIMD backend exactly as by the scalar renderer at a small size.
 TEST(SceneFile, AHundredThousandSpheres) {
   std::string text = R"({"camera": {"width": 24, "height": 12}, "spheres": [)";

@@ -1,4 +1,4 @@
-// Spheres (the book's ch. 5-6; issue 13):
+// Spheres (the book's ch. 5-6):
 //  - the double reference reproduces the book's own formulas, computed here
 //    independently (ch. 5's hit_sphere, ch. 6's first normals, ch. 6's world),
 //    and a few named pixels;
@@ -439,7 +439,7 @@ TEST(SphereNumerics, WithinOneLsbOfTheReferenceAwayFromSilhouettes) {
   }
 }
 
-// Stiff cases (issue 13, "Numerics"; the start of its table): a unit sphere
+// Stiff cases (README "Numerics"; the start of its table): a unit sphere
 // far away, filling about half the image through a narrow field of view (the
 // textbook quadratic in float renders 4100 radii as a solid square); the
 // ground sphere at grazing angles; the camera inside a sphere and touching

@@ -73,7 +73,7 @@ struct sphere_metrics {
 };
 sphere_metrics measure(const traced_image& reference, const traced_image& got);
 
-// Every metric of a no larger than b's (the "no row worse than").
+// Every metric of a no larger than b's ("no row worse than").
 bool no_worse(const sphere_metrics& a, const sphere_metrics& b);
 
 }  // namespace raycast_test

@@ -1,4 +1,4 @@
-// The numerics issue's stiff and extreme inputs as a reusable list: each a
+// The stiff and extreme inputs as a reusable list: each a
 // camera and a sky the renderers must handle like the double reference does.
 // Test data: tests/test_numerics.cpp and raycast-bench's stiff section.
 #pragma once
