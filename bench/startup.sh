@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Whole-command timings of the CLI (issue: "leave out what the job does not
+# Whole-command timings of the CLI ("leave out what the job does not
 # need"): a PPM must not load OpenImageIO at all, and a PNG must cost no more
 # than a bare program that links OpenImageIO and writes the same file.
 #   usage: bench/startup.sh [build-dir]     (needs hyperfine: apt-get install hyperfine)
