@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <climits>
+#include <cstdlib>
 #include <condition_variable>
 #include <csignal>
 #include <mutex>
@@ -100,6 +101,12 @@ const raycast_image_module* load_image_module(const std::string& for_file) {
   for (const std::string& d : extra_dirs()) candidates.push_back(d + "/raycast_oiio.so");
   candidates.push_back(dir + "/raycast_oiio.so");
   candidates.push_back(dir + "/" RAYCAST_MODULE_RELDIR "/raycast_oiio.so");
+  // OpenImageIO's dependencies pull in BLAS. Where Debian's libblas.so.3 is
+  // OpenBLAS (python3-numpy may select it), it starts a thread pool as it is
+  // loaded, which prints on our stderr and stops the process when threads or
+  // memory are short. raycast never calls BLAS: one thread, unless the user
+  // chose otherwise.
+  ::setenv("OPENBLAS_NUM_THREADS", "1", 0);
   for (const std::string& candidate : candidates) {
     std::string error;
     {
