@@ -201,7 +201,7 @@ TEST_F(Cli, BandsAssembleTheWholeImage) {
       << "the banded file differs from the image rendered in one call";
 }
 
-// Issue 14's recipe (README "Rendering across machines"): a frame split into
+// The recipe of README "Rendering across machines": a frame split into
 // four regions, each rendered by its own process as a scheduler's job would
 // be, then pasted together, is the single render byte for byte -- many
 // samples, seeded, on two threads against one.

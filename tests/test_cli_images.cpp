@@ -168,7 +168,7 @@ TEST(Golden, DefaultRenderIsTheReadmePicture) {
 
 namespace {
 
-// Issue 13's "done when": `raycast --scene world -o world.png` is the book's
+// `raycast --scene world -o world.png` is the book's
 // ch. 6 picture within 1 LSB (the double reference is the book's formulas,
 // tests/test_spheres.cpp), and exactly what the renderer gives; likewise the
 // other built-in sphere scenes.

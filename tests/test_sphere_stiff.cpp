@@ -1,4 +1,4 @@
-// Issue 13, "Numerics" for spheres: every stiff case (tests/support/
+// "Numerics" for spheres: every stiff case (tests/support/
 // sphere_numerics.h) is
 //  - rendered by every SIMD backend in exact mode bit for bit as the scalar
 //    renderer (8-bit and float), so what is measured below holds for all;

@@ -1,4 +1,4 @@
-// Issue 13's stiff sphere cases and the measurement of a renderer's numerics
+// The stiff sphere cases and the measurement of a renderer's numerics
 // on them against the double reference, shared by tests/test_sphere_stiff.cpp
 // and raycast-bench's stiff section (README "Numerics").
 //
