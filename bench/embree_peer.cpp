@@ -45,7 +45,7 @@ struct embree_peer::impl {
   RTCScene rtc_scene = nullptr;
   std::vector<float3> centers;
   std::vector<float3> flat;      // the flat colour, for flat-shaded spheres
-  std::vector<char> is_flat;
+  std::vector<char> is_flat, is_lit;
   std::vector<vec3> column;      // u_of(i) horizontal, per column: no division per pixel
   float3 origin{}, bottom{}, top{}, lo{}, hi{};
 
@@ -79,6 +79,7 @@ struct embree_peer::impl {
       centers.push_back({float(sp.center.x), float(sp.center.y), float(sp.center.z)});
       flat.push_back({float(sp.flat_color.r), float(sp.flat_color.g), float(sp.flat_color.b)});
       is_flat.push_back(sp.shade == shading::flat);
+      is_lit.push_back(sp.shade == shading::lit);
     }
     const camera& cam = s.cam;
     column.resize(size_t(cam.image_width));
@@ -120,7 +121,13 @@ struct embree_peer::impl {
     float sgn = 1.0f / len;
     // Face the ray as the book's set_face_normal does: front face only where d.N < 0.
     if (!((d.x * ng.x + d.y * ng.y) + d.z * ng.z < 0.0f)) sgn = -sgn;
-    return {(ng.x * sgn + 1.0f) * 0.5f, (ng.y * sgn + 1.0f) * 0.5f, (ng.z * sgn + 1.0f) * 0.5f};
+    const float3 n{ng.x * sgn, ng.y * sgn, ng.z * sgn};
+    if (is_lit[prim]) {  // scene/sphere.h's headlight
+      const float facing = -((n.x * d.x + n.y * d.y) + n.z * d.z) / std::sqrt((d.x * d.x + d.y * d.y) + d.z * d.z);
+      const float light = lit_ambient + lit_diffuse * std::max(facing, 0.0f);
+      return {flat[prim].x * light, flat[prim].y * light, flat[prim].z * light};
+    }
+    return {(n.x + 1.0f) * 0.5f, (n.y + 1.0f) * 0.5f, (n.z + 1.0f) * 0.5f};
   }
 
   static void store(const image_band& band, unsigned char* row, int64_t i, const float3& c) {
