@@ -137,6 +137,32 @@ TEST(SceneFile, ErrorsSayWhereWithAShortQuote) {
   EXPECT_NE(syntax.message.find("line 1, column 26"), std::string::npos) << syntax.message;
 }
 
+// A file of tens of megabytes hands its text back as the spheres fill
+// memory: every sphere still arrives, and an error past the released text
+// still says its line and column (counted before the text went).
+TEST(SceneFile, ErrorsFarIntoABigFileSayTheirLine) {
+  std::string text = "{\"spheres\": [\n";
+  constexpr int n = 300000;
+  for (int k = 0; k < n; ++k)
+    text += "  {\"center\": [" + std::to_string(k % 1000) + ", " + std::to_string(k / 1000) + ", -3], \"radius\": 0.25},\n";
+  const std::string good = text.substr(0, text.size() - 2) + "\n],\n\"camera\": {\"width\": 40}}";
+  const scene_params p = parsed(good);
+  ASSERT_EQ(p.spheres.size(), size_t(n));
+  EXPECT_EQ(p.spheres.back().center, point3(999, 299, -3));
+  EXPECT_EQ(p.camera.image_width, 40);
+  // Line 1 is "{"spheres": [", sphere k is on line k + 2; the camera after them.
+  std::string late_text = good.substr(0, good.size() - 4);
+  late_text += "4.5}}";
+  const scene_file_error late = error_of(parse_scene_file(late_text));
+  EXPECT_EQ(late.path, "camera.width");
+  EXPECT_NE(late.message.find("line " + std::to_string(n + 3) + ", column 21: 4.5)"), std::string::npos) << late.message;
+  text += "  {\"center\": [0, 0, -3], \"radius\": -1}]}";
+  const scene_file_error last = error_of(parse_scene_file(text));
+  EXPECT_EQ(last.path, "spheres[" + std::to_string(n) + "].radius");
+  EXPECT_NE(last.message.find("line " + std::to_string(n + 2) + ", column 36: -1)"), std::string::npos)
+      << last.message;
+}
+
 // Numbers and nesting far beyond any scene: refused quickly, with a quote of
 // 32 bytes and "…", never the whole token.
 TEST(SceneFile, HugeTokensAndDeepNestingGiveShortErrors) {
@@ -251,8 +277,9 @@ TEST(SceneFile, AHundredThousandSpheres) {
   std::string text = R"({"camera": {"width": 24, "height": 12}, "spheres": [)";
   for (int k = 0; k < 100000; ++k) {
     const double x = double(k % 400) * 0.01 - 2.0, y = double(k / 400) * 0.01 - 1.25;
-    text += (k ? "," : "") + std::string(R"({"center": [)") + std::to_string(x) + "," + std::to_string(y) +
-            R"(,-3], "radius": 0.004)" + (k % 2 ? R"(, "shade": "flat", "color": [1, 0.5, 0]})" : "}");
+    text += k ? R"(,{"center": [)" : R"({"center": [)";
+    text += std::to_string(x) + "," + std::to_string(y) + R"(,-3], "radius": 0.004)";
+    text += k % 2 ? R"(, "shade": "flat", "color": [1, 0.5, 0]})" : "}";
   }
   text += "]}";
   const scene_params p = parsed(text);

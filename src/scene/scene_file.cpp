@@ -126,7 +126,9 @@ std::string json_error(error_code e) {
 
 class reader {
  public:
-  reader(const char* text, size_t size, od::document& doc) : text_(text), size_(size), doc_(doc) {}
+  // text: page-aligned memory of ours (padded_text), released as it is read.
+  reader(const char* text, size_t size, od::document& doc)
+      : text_(text), size_(size), doc_(doc), released_to_(text), released_line_start_(text) {}
 
   scene_params read();
 
@@ -135,10 +137,10 @@ class reader {
 
   // " (at line L, column C: excerpt)" for a place in the text; columns count bytes.
   std::string where(const char* at) const {
-    if (at == nullptr || at < text_ || at > text_ + size_) return "";
-    size_t line = 1;
-    const char* line_start = text_;
-    for (const char* p = text_; (p = static_cast<const char*>(std::memchr(p, '\n', size_t(at - p)))); ++p) {
+    if (at == nullptr || at < released_to_ || at > text_ + size_) return "";
+    size_t line = released_lines_ + 1;
+    const char* line_start = released_line_start_;
+    for (const char* p = released_to_; (p = static_cast<const char*>(std::memchr(p, '\n', size_t(at - p)))); ++p) {
       ++line;
       line_start = p + 1;
     }
@@ -147,6 +149,24 @@ class reader {
     while (!quote.empty() && (quote.back() == ' ' || quote.back() == '\t')) quote.pop_back();
     if (!quote.empty()) r += ": " + quote;
     return r + ")";
+  }
+
+  // Hands the pages of text well behind `cursor` back to the system, counting
+  // their lines first (where() needs them): the spheres then fill memory as
+  // the text they came from leaves it, and a big file's peak is its text plus
+  // simdjson's index rather than that plus every sphere. The iterator never
+  // reads text behind it again; a 1 MiB margin keeps the current token whole.
+  void release_text_before(const char* cursor) {
+    constexpr size_t page = 4096, margin = size_t(1) << 20, step = size_t(8) << 20;
+    if (cursor < released_to_ + margin + step) return;
+    const uintptr_t to = (reinterpret_cast<uintptr_t>(cursor) - margin) & ~uintptr_t(page - 1);
+    const char* end = reinterpret_cast<const char*>(to);
+    for (const char* p = released_to_; (p = static_cast<const char*>(std::memchr(p, '\n', size_t(end - p)))); ++p) {
+      ++released_lines_;
+      released_line_start_ = p + 1;
+    }
+    ::madvise(const_cast<char*>(released_to_), size_t(end - released_to_), MADV_DONTNEED);
+    released_to_ = end;
   }
 
   // Where the iterator stands, for errors simdjson reports without a value.
@@ -306,6 +326,9 @@ class reader {
   const char* text_;
   size_t size_;
   od::document& doc_;
+  const char* released_to_;          // text before this was handed back (release_text_before)
+  size_t released_lines_ = 0;        // newlines before released_to_
+  const char* released_line_start_;  // just after the last of them
 };
 
 void reader::read_camera(od::value& v, camera_params& cp) {
@@ -406,7 +429,7 @@ void reader::read_spheres(od::value& v, std::vector<sphere>& out) {
       fail(path(*e), e->message, blame);
     }
     out.push_back(sp);
-    ++k;
+    if (++k % 4096 == 0) release_text_before(sphere_at);
   }
 }
 
