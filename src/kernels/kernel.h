@@ -55,25 +55,26 @@ struct kernel_args {
   const sampling::sample_plan* samples = nullptr;
 };
 
-// Fills rows [r0, r1) of the band (its column window: image_band);
-// single-threaded. One per instruction set.
+// The sky kernel (kernels/sky_kernel.inl), one per instruction set: fills
+// rows [r0, r1) of the band (its column window: image_band); single-threaded.
 // With `paired` (shortcut `mirror` only; the band must hold both), each row r
-// also fills its mirror row H-1-r, which shares every |d| (sky_kernel.inl).
-using render_rows_fn = void (*)(const kernel_args& args, const image_band& band, int64_t r0,
-                                int64_t r1, bool paired);
+// also fills its mirror row H-1-r, which shares every |d|.
+using sky_rows_fn = void (*)(const kernel_args& args, const image_band& band, int64_t r0, int64_t r1,
+                             bool paired);
+namespace sse2 { void render_sky_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
+namespace avx2 { void render_sky_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
+namespace avx512 { void render_sky_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
+namespace neon { void render_sky_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
 
-namespace sse2 { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
-namespace avx2 { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
-namespace avx512 { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
-namespace neon { void render_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
-
-// Scenes with spheres (kernels/sphere_kernel.inl), the same signature: the
+// Scenes with spheres, and every render of many samples per pixel
+// (kernels/sphere_kernel.inl), one per instruction set: the same rows; the
 // plan builds the three per-column direction tables and takes the shortcuts
-// that apply to the sky (`channels`, `clamps`, `mirror`; `paired` is
-// ignored); both precisions give float_spheres.h's bits.
-namespace sse2 { void render_sphere_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
-namespace avx2 { void render_sphere_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
-namespace avx512 { void render_sphere_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
-namespace neon { void render_sphere_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
+// that apply to the sky (`channels`, `clamps`, `mirror`); both precisions
+// give float_spheres.h's bits.
+using sphere_rows_fn = void (*)(const kernel_args& args, const image_band& band, int64_t r0, int64_t r1);
+namespace sse2 { void render_sphere_rows(const kernel_args&, const image_band&, int64_t, int64_t); }
+namespace avx2 { void render_sphere_rows(const kernel_args&, const image_band&, int64_t, int64_t); }
+namespace avx512 { void render_sphere_rows(const kernel_args&, const image_band&, int64_t, int64_t); }
+namespace neon { void render_sphere_rows(const kernel_args&, const image_band&, int64_t, int64_t); }
 
 }  // namespace raycast::kernels

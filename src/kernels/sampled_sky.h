@@ -16,9 +16,12 @@
 #include <cstdint>
 #include <cstring>
 
-namespace raycast::sampled {
+#include "scene/sampler.h"
 
-// The scalar lane type's operations, as the vector layers spell them.
+namespace raycast::sampling {
+
+// The scalar lane type's operations, as the vector layers spell them (min:
+// scene/sampler.h).
 inline uint32_t as_uint(float x) {
   uint32_t u;
   std::memcpy(&u, &x, sizeof u);
@@ -30,7 +33,6 @@ inline float as_float(uint32_t u) {
   return x;
 }
 inline float max(float a, float b) { return a > b ? a : b; }
-inline float min(float a, float b) { return a < b ? a : b; }
 
 // 1 / sqrt(x) for a positive normal float x.
 template <class F, class U>
@@ -48,4 +50,4 @@ inline F sky_u(F dy, F n2) {
   return min(max(u, F(-1.0f)), F(1.0f));
 }
 
-}  // namespace raycast::sampled
+}  // namespace raycast::sampling

@@ -207,7 +207,7 @@ void scalar_pixel_samples(const float_scene& f, const sampling::sample_plan& sp,
     for (int k = 0; k < 3; ++k) d[k] = (base[k] + xi * step_x[k]) + eta * step_y[k];
     const traced tr = trace(f, d);
     if (tr.hit == spheres.size()) {
-      sky_sum = sky_sum + sampled::sky_u<float, uint32_t>(tr.d[1], tr.n2);
+      sky_sum = sky_sum + sampling::sky_u<float, uint32_t>(tr.d[1], tr.n2);
       sky_count = sky_count + 1.0f;
     } else if (spheres.kind[tr.hit] != shading_kind::normal) {
       float c[3];

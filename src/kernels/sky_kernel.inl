@@ -298,7 +298,7 @@ inline void with_flag(bool flag, F&& f) {
 
 }  // namespace
 
-void render_rows(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1, bool paired) {
+void render_sky_rows(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1, bool paired) {
   const bool fast = a.prec == precision::fast;
   const bool f32 = band.format == pixel_format::rgb_f32;
   // Shortcut `clamps`: float output needs only the exact lerp; 8-bit output

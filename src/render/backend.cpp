@@ -66,21 +66,21 @@ backend best_backend() {
   return backend::scalar;
 }
 
-kernels::render_rows_fn kernel_for(backend b) {
+kernels::sky_rows_fn sky_kernel_for(backend b) {
   switch (b) {
 #if RAYCAST_HAVE_X86_KERNELS
-    case backend::sse2: return kernels::sse2::render_rows;
-    case backend::avx2: return kernels::avx2::render_rows;
-    case backend::avx512: return kernels::avx512::render_rows;
+    case backend::sse2: return kernels::sse2::render_sky_rows;
+    case backend::avx2: return kernels::avx2::render_sky_rows;
+    case backend::avx512: return kernels::avx512::render_sky_rows;
 #endif
 #if RAYCAST_HAVE_NEON_KERNELS
-    case backend::neon: return kernels::neon::render_rows;
+    case backend::neon: return kernels::neon::render_sky_rows;
 #endif
     default: return nullptr;
   }
 }
 
-kernels::render_rows_fn sphere_kernel_for(backend b) {
+kernels::sphere_rows_fn sphere_kernel_for(backend b) {
   switch (b) {
 #if RAYCAST_HAVE_X86_KERNELS
     case backend::sse2: return kernels::sse2::render_sphere_rows;

@@ -50,8 +50,8 @@ struct unsupported_backend : std::runtime_error {
 
 // The SIMD kernel behind a backend; null for reference and scalar, which
 // render a pixel at a time without one (and for another architecture's).
-kernels::render_rows_fn kernel_for(backend b);
+kernels::sky_rows_fn sky_kernel_for(backend b);
 // The same for scenes with spheres (kernels/sphere_kernel.inl).
-kernels::render_rows_fn sphere_kernel_for(backend b);
+kernels::sphere_rows_fn sphere_kernel_for(backend b);
 
 }  // namespace raycast

@@ -114,8 +114,9 @@ renderer::renderer(const scene& s, const render_options& opts)
   // the sphere kernel, which takes the shortcuts that apply to its sky. Many
   // samples per pixel run the sphere kernel's sampled path, sky or not.
   const bool spheres = !fscene_.spheres.empty();
-  kernel_ = spheres || samples_ ? sphere_kernel_for(which_) : kernel_for(which_);
-  if (kernel_) {  // reference and scalar need no plan
+  if (spheres || samples_) sphere_kernel_ = sphere_kernel_for(which_);
+  else sky_kernel_ = sky_kernel_for(which_);
+  if (sky_kernel_ || sphere_kernel_) {  // reference and scalar need no plan
     plan_.emplace(fscene_, prec_, opts.shortcuts);
     if (samples_) plan_->set_samples(&samples_->plan());
     // The frame's culling (kernels/culling.h), once, shared by every thread.
@@ -127,10 +128,8 @@ renderer::renderer(const scene& s, const render_options& opts)
 }
 
 void renderer::render_rows(const image_band& band, int64_t r0, int64_t r1, bool paired) const {
-  if (kernel_) {
-    kernel_(plan_->args(), band, r0, r1, paired);
-    return;
-  }
+  if (sphere_kernel_) return sphere_kernel_(plan_->args(), band, r0, r1);
+  if (sky_kernel_) return sky_kernel_(plan_->args(), band, r0, r1, paired);
   image_band part = band;
   part.data = band.row(r0);
   part.row_begin = r0;
@@ -146,7 +145,7 @@ void renderer::render(const image_band& band) const {
   // The lesson camera's image is symmetric top to bottom: when the band holds
   // both rows of each mirrored pair, the kernel renders them together
   // (kernels/kernel.h), and the work is split over the top rows of the pairs.
-  const bool paired = kernel_ && plan_->args().mirror && fscene_.spheres.empty() && !samples_ &&
+  const bool paired = sky_kernel_ && plan_->args().mirror &&
                       band.row_begin + band.row_end == scene_.cam.image_height &&
                       band.whole_rows(scene_.cam.image_width);
   const int64_t units = paired ? (rows + 1) / 2 : rows;

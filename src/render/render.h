@@ -58,7 +58,9 @@ class renderer {
   backend which_;
   precision prec_;
   int threads_;
-  kernels::render_rows_fn kernel_ = nullptr;
+  // At most one of the two kernels: none for the reference and scalar backends.
+  kernels::sky_rows_fn sky_kernel_ = nullptr;
+  kernels::sphere_rows_fn sphere_kernel_ = nullptr;
   std::optional<plan> plan_;  // SIMD backends only
   row_index rows_;            // SIMD backends, scenes with spheres
   std::optional<sampling::sample_table> samples_;  // more than one sample

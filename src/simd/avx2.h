@@ -11,6 +11,10 @@ namespace raycast::simd::avx2 {
 // What this instruction set offers beyond the common vocabulary (README.md):
 // none. The kernel falls back to plain stores.
 
+// How many vfloats the register file holds (16 ymm registers): the sphere kernel's
+// sampled path takes two samples a pass where that is 16 or more.
+inline constexpr int vfloats_in_registers = 16;
+
 struct vmask {
   __m256 m;
 };

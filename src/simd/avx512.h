@@ -16,6 +16,10 @@
 
 namespace raycast::simd::avx512 {
 
+// How many vfloats the register file holds (32 zmm registers): the sphere kernel's
+// sampled path takes two samples a pass where that is 16 or more.
+inline constexpr int vfloats_in_registers = 32;
+
 struct vmask {
   __mmask16 m;
 };

@@ -19,6 +19,10 @@ namespace raycast::simd::neon {
 // What this instruction set offers beyond the common vocabulary (README.md):
 // none. The kernel falls back to plain stores.
 
+// How many vfloats the register file holds (32 q registers, two per vfloat): the sphere kernel's
+// sampled path takes two samples a pass where that is 16 or more.
+inline constexpr int vfloats_in_registers = 16;
+
 struct vmask {
   uint32x4_t lo, hi;
 };

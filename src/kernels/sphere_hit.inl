@@ -1,0 +1,169 @@
+// Ray-sphere intersection of the sphere kernel (sphere_kernel.inl), per
+// instruction set: the batch's rays, the closest hit per lane, and the one
+// body of float_spheres.h's intersection, for one ray batch or M at once.
+#pragma once
+#include <cfloat>
+#include <cstddef>
+#include <cstdint>
+
+#include "kernels/kernel.h"
+
+namespace raycast::kernels::RAYCAST_ISA {
+namespace {
+
+using namespace raycast::simd::RAYCAST_ISA;
+constexpr int N = vfloat::size;
+
+// Which shadings the scene's spheres use (bit 0: normal, bit 1: flat, bit 2:
+// lit). A scene with lit spheres runs the general path, all three.
+constexpr int normal_shading = 1;
+constexpr int flat_shading = 2;
+constexpr int lit_shading = 4;
+constexpr int all_shadings = normal_shading | flat_shading | lit_shading;
+// More than one shading: each hit carries its sphere's kind.
+template <int Shades>
+constexpr bool mixed = Shades != normal_shading && Shades != flat_shading;
+
+// The closest hit per lane, and what shading reads of its sphere.
+template <int Shades>
+struct closest_hit {
+  vmask hit{};                 // all false
+  vfloat t = FLT_MAX;          // float_spheres.h: closest starts at FLT_MAX
+  vfloat s = 0.0f;             // the hit's s, in its sphere's unit
+  vfloat fx = 0.0f, fy = 0.0f, fz = 0.0f, inv_r = 0.0f;  // normal shading
+  vfloat inside = 0.0f;  // 1 where the camera is inside the hit sphere (scenes with such a sphere)
+  vfloat red = 0.0f, green = 0.0f, blue = 0.0f;  // flat and lit shading
+  vfloat kind = 0.0f;  // float_spheres::kind, for mixed scenes
+};
+
+// The batch's rays: d and what every sphere reads of it.
+struct rays {
+  vfloat d[3];
+  vfloat n2;  // |d|^2 in scalar.h's order
+  // 1 / n2, computed the first time a far sphere needs it: a division is a
+  // large part of a batch's cost.
+  vfloat inv_n2() {
+    if (!have_inv_) {
+      inv_ = 1.0f / n2;
+      have_inv_ = true;
+    }
+    return inv_;
+  }
+
+ private:
+  vfloat inv_ = 0.0f;
+  bool have_inv_ = false;
+};
+
+// Records sphere k's hit where m (its s and t already chosen) in h.
+template <int Shades>
+RAYCAST_INLINE void record(const sphere_arrays& sp, size_t k, vmask m, vfloat s, closest_hit<Shades>& h) {
+  if (none(h.hit)) {  // the first sphere hit: lanes it misses never read these
+    h.hit = m;
+    if constexpr ((Shades & normal_shading) != 0) {
+      h.s = s;
+      h.fx = sp.rec[k].fx;
+      h.fy = sp.rec[k].fy;
+      h.fz = sp.rec[k].fz;
+      h.inv_r = sp.rec[k].inv_r;
+      if (sp.any_inside) h.inside = sp.rec[k].inside ? 1.0f : 0.0f;
+    }
+    if constexpr ((Shades & flat_shading) != 0) {
+      h.red = sp.red[k];
+      h.green = sp.green[k];
+      h.blue = sp.blue[k];
+      if constexpr (mixed<Shades>) h.kind = sp.kind[k];
+    }
+    return;
+  }
+  h.hit = h.hit | m;
+  if constexpr ((Shades & normal_shading) != 0) {
+    h.s = select(m, s, h.s);
+    h.fx = select(m, vfloat(sp.rec[k].fx), h.fx);
+    h.fy = select(m, vfloat(sp.rec[k].fy), h.fy);
+    h.fz = select(m, vfloat(sp.rec[k].fz), h.fz);
+    h.inv_r = select(m, vfloat(sp.rec[k].inv_r), h.inv_r);
+    if (sp.any_inside) h.inside = select(m, vfloat(sp.rec[k].inside ? 1.0f : 0.0f), h.inside);
+  }
+  if constexpr ((Shades & flat_shading) != 0) {
+    h.red = select(m, vfloat(sp.red[k]), h.red);
+    h.green = select(m, vfloat(sp.green[k]), h.green);
+    h.blue = select(m, vfloat(sp.blue[k]), h.blue);
+    if constexpr (mixed<Shades>) h.kind = select(m, vfloat(sp.kind[k]), h.kind);
+  }
+}
+
+// Sphere k's discriminant for one ray batch (float_spheres.h: the textbook
+// form for near spheres, Hearn & Baker's for far ones), from b = f . d.
+RAYCAST_INLINE vfloat discriminant(const sphere_record& e, rays& r, vfloat fx, vfloat fy, vfloat fz, vfloat b) {
+  if (e.near) return b * b - r.n2 * vfloat(e.c);
+  const vfloat kb = b * r.inv_n2();
+  const vfloat vx = fx - kb * r.d[0], vy = fy - kb * r.d[1], vz = fz - kb * r.d[2];
+  return r.n2 * (vfloat(e.r2) - ((vx * vx + vy * vy) + vz * vz));
+}
+
+// Where sphere k can hit (disc >= 0): its nearest root not behind the camera,
+// and the closest hit updated with it (t <= closest: a tie goes to the later
+// sphere). The lanes where disc < 0 are not read: no max(disc, 0) here.
+template <int Shades>
+RAYCAST_INLINE void take_nearest(const sphere_arrays& sp, size_t k, rays& r, vfloat b, vfloat disc, vmask can_hit,
+                                 closest_hit<Shades>& h) {
+  const sphere_record& e = sp.rec[k];
+  const vfloat q = -(b + copysign(sqrt(disc), b));
+  vfloat s = vfloat(e.c) / q;
+  if (e.inside) {  // the far root where the near one is behind
+    const vmask behind = can_hit & !(s >= 0.0f);
+    if (any(behind)) s = select(behind, q / r.n2, s);
+  }
+  const vfloat t = s * vfloat(e.scale);
+  const vmask m = can_hit & (s >= 0.0f) & (t <= h.t);
+  h.t = select(m, t, h.t);
+  record(sp, k, m, s, h);
+}
+
+// Tests the spheres list[0 .. count) (every sphere, 0 .. count, when list is
+// null) against M independent ray batches at once, each step for all M
+// before the next (the sampled path takes samples_per_pass samples at a
+// time: their long dependency chains overlap). fz_dz: each sphere's f.z d.z
+// where every ray's d.z is the same (the lesson's camera), else null.
+template <int Shades, int M>
+RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, size_t count, rays (&r)[M],
+                              closest_hit<Shades> (&h)[M], const float* fz_dz = nullptr) {
+  for (size_t x = 0; x < count; ++x) {
+    const size_t k = list ? list[x] : x;
+    const sphere_record& e = sp.rec[k];
+    const vfloat fx = e.fx, fy = e.fy, fz = e.fz;
+    vfloat b[M], disc[M];
+    vmask can_hit[M];
+    bool any_can = false;
+    for (int u = 0; u < M; ++u) {
+      b[u] = (fx * r[u].d[0] + fy * r[u].d[1]) + (fz_dz ? vfloat(fz_dz[k]) : fz * r[u].d[2]);
+      disc[u] = discriminant(e, r[u], fx, fy, fz, b[u]);
+      can_hit[u] = disc[u] >= 0.0f;
+      any_can = any_can || any(can_hit[u]);
+    }
+    if (!any_can) continue;  // no lane can hit it: no sqrt, no divide
+    for (int u = 0; u < M; ++u) take_nearest(sp, k, r[u], b[u], disc[u], can_hit[u], h[u]);
+  }
+}
+
+// One ray batch (the one-sample path): the same steps without arrays --
+// SSE2's two-half vectors in one-element arrays are not kept in registers by
+// GCC 12 (+40 % on sse2/world).
+template <int Shades>
+RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, size_t count, rays& r,
+                              closest_hit<Shades>& h) {
+  for (size_t x = 0; x < count; ++x) {
+    const size_t k = list ? list[x] : x;
+    const sphere_record& e = sp.rec[k];
+    const vfloat fx = e.fx, fy = e.fy, fz = e.fz;
+    const vfloat b = (fx * r.d[0] + fy * r.d[1]) + fz * r.d[2];
+    const vfloat disc = discriminant(e, r, fx, fy, fz, b);
+    const vmask can_hit = disc >= 0.0f;
+    if (none(can_hit)) continue;
+    take_nearest(sp, k, r, b, disc, can_hit, h);
+  }
+}
+
+}  // namespace
+}  // namespace raycast::kernels::RAYCAST_ISA
