@@ -132,7 +132,7 @@ TEST(BookChapters, NamedPixels) {
   EXPECT_EQ(normals.byte(112, 200, 0), 127);
   EXPECT_EQ(normals.byte(112, 200, 1), 127);
   EXPECT_EQ(normals.byte(112, 200, 2), 255);
-  // A corner of `normals` misses: the sky's top-left check value (SPEC.md).
+  // A corner of `normals` misses: the sky's top-left check value (src/scene/README.md).
   EXPECT_EQ(normals.byte(0, 0, 0), 163);
   // The bottom centre of `world` (direction (0, -1, -1)) hits the ground:
   // solve |(0, 100.5 - t, 1 - t)|^2 = 100^2 by hand.
