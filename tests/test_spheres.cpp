@@ -439,7 +439,7 @@ TEST(SphereNumerics, WithinOneLsbOfTheReferenceAwayFromSilhouettes) {
   }
 }
 
-// Stiff cases (README "Numerics"; the start of its table): a unit sphere
+// Stiff cases (src/kernels/README.md, "Spheres: stiff cases"; the start of its table): a unit sphere
 // far away, filling about half the image through a narrow field of view (the
 // textbook quadratic in float renders 4100 radii as a solid square); the
 // ground sphere at grazing angles; the camera inside a sphere and touching
