@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Whole-process timings of the antialiased picture (SPEC.md "Antialiasing (ch.
+# Whole-process timings of the antialiased picture (src/scene/README.md, "Antialiasing (ch.
 # 7)"): `raycast --scene world --samples 100` at 400x225 on all cores against
 # the book's own ch. 7 program (build/bin/book-ch7: one thread, double, virtual
 # hittable_list, 100 samples a pixel, P3 on standard output). Each command is

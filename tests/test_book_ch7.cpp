@@ -1,7 +1,7 @@
 // The bench's ch. 7 peer (bench/book_ch7.h, the book's antialiasing program)
 // renders the picture our reference renders, averaged the book's way: each
 // pixel is the mean of the colour over the square of viewport points up and
-// right of its ch. 6 sample point (SPEC.md "Antialiasing (ch. 7)"). That mean
+// right of its ch. 6 sample point (src/scene/README.md, "Antialiasing (ch. 7)"). That mean
 // is computed here without randomness, from our double reference on a grid
 // k times finer, so the peer's only error is its own sampling noise.
 #include <gtest/gtest.h>

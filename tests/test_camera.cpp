@@ -1,5 +1,5 @@
 // The camera, rays, the sky colour and 8-bit quantization, checked against
-// SPEC.md's formulas and check values, and against the lesson's own loop.
+// The lesson's formulas and check values (src/scene/README.md), and against the lesson's own loop.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Numerical stability on stiff and extreme cases (README "Numerics"), each
+// Numerical stability on stiff and extreme cases (src/kernels/README.md, "The sky: numerics contract"), each
 // over every backend this CPU runs x both precisions:
 //   degenerate sizes, scale, far origin, exact directions, FTZ/DAZ, 64-bit
 //   indexing and size limits, HDR colours, and the documented error bounds.
@@ -295,7 +295,7 @@ TEST_P(Numerics, HdrColoursReachFloatOutputUnclamped) {
 
 // ------------------------------------------------------------------ 9. error bounds
 
-// The documented bounds (scalar.h, README "Numerics") hold on the cases that
+// The documented bounds (scalar.h, src/kernels/README.md) hold on the cases that
 // push the error hardest: the widest sky spans and many directions.
 TEST_P(Numerics, DocumentedErrorBoundsHoldAtTheirEdge) {
   camera_params p;

@@ -103,7 +103,7 @@ TEST_P(SphereStiffNumerics, ExactAwayFromSilhouettesAndNoWorseThanTheBookInFloat
   EXPECT_LE(ours.false_hits, naive.false_hits);
   EXPECT_LE(ours.false_misses, naive.false_misses);
   EXPECT_LE(ours.wrong_object, naive.wrong_object);
-  // README "Numerics": within 7e-7 relative everywhere. Where both are at
+  // src/kernels/README.md, "Spheres: stiff cases": within 7e-7 relative everywhere. Where both are at
   // float's own rounding (a few units in the last place of the distance, as
   // inside a sphere), which of two maxima of rounding noise is larger says
   // nothing: there, ours need only stay within 4 ulp (2^-22). Where the

@@ -132,7 +132,7 @@ TEST(BookChapters, NamedPixels) {
   EXPECT_EQ(normals.byte(112, 200, 0), 127);
   EXPECT_EQ(normals.byte(112, 200, 1), 127);
   EXPECT_EQ(normals.byte(112, 200, 2), 255);
-  // A corner of `normals` misses: the sky's top-left check value (SPEC.md).
+  // A corner of `normals` misses: the sky's top-left check value (src/scene/README.md).
   EXPECT_EQ(normals.byte(0, 0, 0), 163);
   // The bottom centre of `world` (direction (0, -1, -1)) hits the ground:
   // solve |(0, 100.5 - t, 1 - t)|^2 = 100^2 by hand.
@@ -439,7 +439,7 @@ TEST(SphereNumerics, WithinOneLsbOfTheReferenceAwayFromSilhouettes) {
   }
 }
 
-// Stiff cases (README "Numerics"; the start of its table): a unit sphere
+// Stiff cases (src/kernels/README.md, "Spheres: stiff cases"; the start of its table): a unit sphere
 // far away, filling about half the image through a narrow field of view (the
 // textbook quadratic in float renders 4100 radii as a solid square); the
 // ground sphere at grazing angles; the camera inside a sphere and touching

@@ -31,7 +31,7 @@
 // The estimate differs between instruction sets (12 bits on SSE and AVX2, 14
 // on AVX-512), AVX2/AVX-512 fuse the multiply-adds, and the kernels regroup
 // (the lesson camera folds d.y into A and B and adds y^2 + z^2 first), so fast
-// mode's bits differ by backend; its error bound is in README.md and tested
+// mode's bits differ by backend; its error bound is in src/kernels/README.md and tested
 // (tests/support/error_bounds.h).
 //
 // Scenes with spheres: kernels/float_spheres.h gives their order (the

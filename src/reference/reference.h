@@ -1,4 +1,4 @@
-// The oracle: the lesson's loop in double, exactly SPEC.md. Boring on purpose.
+// The oracle: the lesson's loop in double, exactly the formulas of src/scene/README.md. Boring on purpose.
 // With spheres, the book's ch. 6 world (reference/hittable.h): the closest hit
 // for t in [0, infinity) is shaded 0.5 (N + 1) with N facing the ray, or with
 // its flat colour; rays that hit nothing see the sky. Ch. 5's and ch. 6's

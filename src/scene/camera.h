@@ -1,4 +1,4 @@
-// The lesson's pinhole camera (SPEC.md, "Camera"): an axis-aligned viewport
+// The lesson's pinhole camera (src/scene/README.md, "The lesson"): an axis-aligned viewport
 // `focal_length` in front of the origin, spanned by `horizontal` and `vertical`;
 // optionally the book's positionable camera (look-at, view-up, vertical field
 // of view), which tilts that viewport.

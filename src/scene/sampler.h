@@ -41,7 +41,7 @@ namespace raycast {
 
 enum class sampler_kind : uint8_t { random, stratified, sobol };
 // The sampler with the lowest error for its run time on the bench's scenes
-// (raycast-bench's antialiasing rows; README "Antialiasing").
+// (raycast-bench's antialiasing rows; bench/README.md, "Antialiasing: error against run time").
 inline constexpr sampler_kind default_sampler = sampler_kind::sobol;
 std::string_view to_string(sampler_kind k);
 std::optional<sampler_kind> parse_sampler(std::string_view text);

@@ -9,7 +9,7 @@
 //   - parse_args: exit code 0 or 2; a usage error is one line "raycast: error:
 //     ..." on the error stream; an accepted job has a valid camera;
 //   - float output is finite everywhere (no NaN, no infinity);
-//   - --precision exact gives the same bits on every backend (README).
+//   - --precision exact gives the same bits on every backend (src/kernels/README.md).
 // AddressSanitizer and UndefinedBehaviorSanitizer catch the rest. Nothing here
 // opens a file: the sinks are never called, and --help / --version print into
 // a string.
