@@ -10,7 +10,8 @@ its counters; this script takes each row's median over its repetitions (the
 iteration runs, else the median aggregate), computes what needs other rows
 (speedup, vs_memset, vs_none, Embree / ours, growth in N, the antialiasing
 curves' slopes), prints the summaries and, with --plot FILE.svg (or .png),
-draws FILE, FILE-aa.svg and FILE-scale.svg with matplotlib (Debian:
+draws FILE (when the run has summary rows), FILE-aa.svg and FILE-scale.svg
+(the scale rows: time per new scene against N) with matplotlib (Debian:
 python3-matplotlib); the tables need Python 3 alone.
 """
 import argparse
@@ -528,7 +529,7 @@ def main(argv=None):
     print_bound(rows, sorted({r.threads for r in of_kind(rows, "render")}, key=int))
     if a.rows:
         print_rows(rows)
-    if a.plot:
+    if a.plot and srows:  # a run of other rows only (say scale/): its own plots only
         plot_summary(srows, ctx, size, threads, a.plot)
         print("Plot written to", a.plot)
     print_aa(rows, ctx)
