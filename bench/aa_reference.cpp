@@ -3,10 +3,12 @@
 #include <omp.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "cases.h"
 #include "reference/reference.h"
@@ -173,6 +175,18 @@ aa_reference cached_aa_reference(const std::string& dir, const aa_reference_spec
   if (save_aa_reference(file, ref)) ref.file = file;
   else std::fprintf(stderr, "raycast-bench: cannot write %s; the reference is not cached\n", file.c_str());
   return ref;
+}
+
+image_error measure_image_error(const float* image, const std::vector<double>& reference) {
+  image_error e;
+  double sum_sq = 0;
+  for (size_t k = 0; k < reference.size(); ++k) {
+    const double d = std::abs(double(image[k]) - reference[k]);
+    sum_sq += d * d;
+    if (!(d <= e.max_abs)) e.max_abs = std::isnan(d) ? std::numeric_limits<double>::infinity() : d;
+  }
+  e.rmse = reference.empty() ? 0 : std::sqrt(sum_sq / double(reference.size()));
+  return e;
 }
 
 }  // namespace raycast::bench

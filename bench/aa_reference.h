@@ -60,4 +60,13 @@ bool save_aa_reference(const std::string& file, const aa_reference& ref);
 // cannot be written is reported on stderr and the computed one returned.
 aa_reference cached_aa_reference(const std::string& dir, const aa_reference_spec& spec);
 
+// An image's error against the reference (tests/test_aa_bench.cpp checks it):
+// linear float colour, interleaved RGB, against the reference's doubles in
+// the same layout; RMSE over every pixel and channel, max_abs with NaN
+// counted as infinite.
+struct image_error {
+  double rmse = 0, max_abs = 0;
+};
+image_error measure_image_error(const float* image, const std::vector<double>& reference);
+
 }  // namespace raycast::bench

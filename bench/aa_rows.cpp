@@ -5,10 +5,9 @@
 #include <map>
 #include <memory>
 
-#include "aa_stats.h"
 #include "book_ch7.h"
 #include "errors.h"
-#include "report.h"
+#include "rows.h"
 #include "render/render.h"
 #include "scene/builtin.h"
 
@@ -42,10 +41,18 @@ const aa_reference& reference_for(const std::string& scene) {
   return *it->second;
 }
 
-void set_aa_counters(benchmark::State& state, const float* image, const aa_reference& ref) {
+// The row's error against the reference, ns_per_sample, and how the
+// reference was had: ref_built_s on ref_threads threads, ref_samples a pixel,
+// ref_cached 1 read from the cache, 0 computed and cached now, -1 not cached.
+void set_aa_counters(benchmark::State& state, const float* image, const aa_reference& ref, double samples) {
   const image_error e = measure_image_error(image, ref.rgb);
   state.counters["rms_err"] = e.rmse;
   state.counters["max_abs_err"] = e.max_abs;
+  state.counters["ns_per_sample"] = state.counters["ns_per_px"] / samples;
+  state.counters["ref_built_s"] = ref.build_seconds;
+  state.counters["ref_threads"] = ref.threads;
+  state.counters["ref_samples"] = ref.spec.samples;
+  state.counters["ref_cached"] = ref.from_cache ? 1 : ref.file.empty() ? -1 : 0;
 }
 
 void bench_aa(benchmark::State& state, std::string scene_name, sampler_kind kind, uint32_t samples) {
@@ -61,11 +68,8 @@ void bench_aa(benchmark::State& state, std::string scene_name, sampler_kind kind
   const int64_t w = ref.spec.width, h = ref.spec.height;
   const size_t stride = size_t(w) * bytes_per_pixel(pixel_format::rgb_f32);
   const image_band band{scratch(stride * size_t(h)), stride, pixel_format::rgb_f32, 0, h};
-  for (auto _ : state) {
-    r.render(band);
-    benchmark::ClobberMemory();
-  }
-  set_aa_counters(state, static_cast<const float*>(band.data), ref);
+  time_pixels(state, double(w * h), [&] { r.render(band); });
+  set_aa_counters(state, static_cast<const float*>(band.data), ref, samples);
 }
 
 // The book's ch. 7 program (bench/book_ch7.h) on world: samples_per_pixel
@@ -75,12 +79,11 @@ void bench_aa(benchmark::State& state, std::string scene_name, sampler_kind kind
 void bench_book7(benchmark::State& state, int w, int h, int spp) {
   const aa_reference& ref = reference_for("world");
   book_ch7_image img;
-  for (auto _ : state) {
+  time_pixels(state, double(w * h), [&] {
     img = render_book_ch7(w, h, spp);
     benchmark::DoNotOptimize(img.rgb.data());
-    benchmark::ClobberMemory();
-  }
-  set_aa_counters(state, img.rgb.data(), ref);
+  });
+  set_aa_counters(state, img.rgb.data(), ref, spp);
 }
 
 // A region of a many-sample frame (--region): the frame's camera and keys,
@@ -104,13 +107,7 @@ void bench_region(benchmark::State& state, int64_t w, int64_t h, uint32_t sample
   const int64_t rw = win.x1 - win.x0, rh = win.y1 - win.y0;
   const size_t stride = size_t(rw) * bytes_per_pixel(pixel_format::rgb8);
   const image_band band{scratch(stride * size_t(rh)), stride, pixel_format::rgb8, win.y0, win.y1, win.x0, win.x1};
-  for (auto _ : state) {
-    r.render(band);
-    benchmark::ClobberMemory();
-  }
-  state.counters["ns_per_px"] = benchmark::Counter(double(rw * rh) * 1e-9,
-                                                   benchmark::Counter::kIsIterationInvariantRate |
-                                                       benchmark::Counter::kInvert);
+  time_pixels(state, double(rw * rh), [&] { r.render(band); });
 }
 
 }  // namespace
@@ -134,38 +131,33 @@ aa_reference_spec aa_reference_spec_for(const aa_config& cfg, const std::string&
 
 void register_aa_rows(const aa_config& cfg) {
   config() = cfg;
+  const std::string size = size_text(cfg.width, cfg.height);
+  auto fields = [&](const std::string& backend, const std::string& sampler, const std::string& scene, int64_t n) {
+    return "kind=aa backend=" + backend + (sampler.empty() ? "" : " sampler=" + sampler) + " scene=" + scene +
+           " size=" + size + " samples=" + std::to_string(n);
+  };
   for (const std::string& sc : cfg.scenes)
     for (sampler_kind k : cfg.samplers)
-      for (int64_t n : cfg.samples)
-        benchmark::RegisterBenchmark(
-            aa_row_name(cfg.backend, std::string(to_string(k)), sc, cfg.width, cfg.height, n).c_str(),
-            bench_aa, sc, k, uint32_t(n))
-            ->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark(aa_row_name("book7", "", "world", cfg.width, cfg.height, cfg.book_samples).c_str(),
-                               bench_book7, int(cfg.width), int(cfg.height), cfg.book_samples)
-      ->Unit(benchmark::kMillisecond);
-  for (const region_row& row : region_rows(cfg))
-    benchmark::RegisterBenchmark(row.name.c_str(), bench_region, row.width, row.height, row.samples,
-                                 window{row.x0, row.y0, row.x1, row.y1})
-        ->Unit(benchmark::kMillisecond);
-}
-
-std::vector<region_row> region_rows(const aa_config& cfg) {
-  // The four quadrants of a frame 4x the rows' size, at 16 samples, and the
-  // frame itself: together the quadrants are the frame's pixels.
+      for (int64_t n : cfg.samples) {
+        const std::string sampler(to_string(k));
+        add_row("aa/" + cfg.backend + "/" + sampler + "/" + sc + "/" + size + "/s" + std::to_string(n),
+                fields(cfg.backend, sampler, sc, n), benchmark::kMillisecond, bench_aa, sc, k, uint32_t(n));
+      }
+  add_row("aa/book7/world/" + size + "/s" + std::to_string(cfg.book_samples),
+          fields("book7", "", "world", cfg.book_samples), benchmark::kMillisecond, bench_book7, int(cfg.width),
+          int(cfg.height), cfg.book_samples);
+  // region/BACKEND/world/WxH/s16/PART: the four quadrants of a frame 4x the
+  // rows' size, at 16 samples, and the frame itself (PART full): together the
+  // quadrants are the frame's pixels.
   const int64_t W = 4 * cfg.width, H = 4 * cfg.height;
-  const std::string base = "region/" + cfg.backend + "/world/" + std::to_string(W) + "x" + std::to_string(H) + "/s16/";
-  std::vector<region_row> rows = {{base + "full", W, H, 16, 0, 0, W, H}};
+  const std::string base = "region/" + cfg.backend + "/world/" + size_text(W, H) + "/s16/";
   const int64_t xs[] = {0, W / 2 - 7, W}, ys[] = {0, H / 2 + 5, H};  // edges inside batches
-  for (int q = 0; q < 4; ++q)
-    rows.push_back({base + "q" + std::to_string(q), W, H, 16, xs[q % 2], ys[q / 2], xs[q % 2 + 1], ys[q / 2 + 1]});
-  return rows;
-}
-
-std::vector<const aa_reference*> aa_references_used() {
-  std::vector<const aa_reference*> out;
-  for (const auto& [scene, ref] : references()) out.push_back(ref.get());
-  return out;
+  for (int q = -1; q < 4; ++q) {
+    const std::string part = q < 0 ? "full" : "q" + std::to_string(q);
+    const window win = q < 0 ? window{0, 0, W, H} : window{xs[q % 2], ys[q / 2], xs[q % 2 + 1], ys[q / 2 + 1]};
+    add_row(base + part, "kind=region size=" + size_text(W, H) + " samples=16 part=" + part,
+            benchmark::kMillisecond, bench_region, W, H, uint32_t(16), win);
+  }
 }
 
 }  // namespace raycast::bench

@@ -11,7 +11,8 @@
 // each sampler keeps its s1 row, the same image, so every curve starts there.
 // Each row carries rms_err and max_abs_err of its linear colour against a
 // converged reference (bench/aa_reference.h: stratified, 16384 samples a
-// pixel; --quick: 4096), and the reporter adds ns_per_px and ns_per_sample.
+// pixel; --quick: 4096), ns_per_px and ns_per_sample, and how the reference
+// was had (ref_* counters).
 #pragma once
 #include <cstdint>
 #include <string>
@@ -36,20 +37,8 @@ aa_config aa_config_for(bool quick, const std::string& reference_dir);
 // The reference of a scene at the config's size (stratified, a fixed seed).
 aa_reference_spec aa_reference_spec_for(const aa_config& cfg, const std::string& scene);
 
+// The aa/ rows above, and the region rows (--region): a frame 4x their size
+// at 16 samples, and its four quadrants, each its own row.
 void register_aa_rows(const aa_config& cfg);
-
-// The region rows (--region): a frame and its four quadrants, each its own
-// row, so that the quadrants' times can be added up against the frame's.
-struct region_row {
-  std::string name;
-  int64_t width, height;
-  uint32_t samples;
-  int64_t x0, y0, x1, y1;
-};
-std::vector<region_row> region_rows(const aa_config& cfg);
-
-// The references the rows have used so far (each loaded or computed once,
-// the first time a row of its scene ran), by scene.
-std::vector<const aa_reference*> aa_references_used();
 
 }  // namespace raycast::bench

@@ -3,33 +3,19 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <cstring>
 #include <map>
-#include <optional>
 #include <memory>
-#include <ostream>
 #include <string>
 #include <tuple>
 
 #include "embree_peer.h"
 #include "errors.h"
+#include "rows.h"
 #include "scene/builtin.h"
 
 namespace raycast::bench {
 namespace {
-
-// Our fastest backend for spheres: the last core path in available_paths()'
-// order (sse2, avx2, avx512), exact (fast renders spheres as exact does).
-const path& best_path() {
-  static const path p = [] {
-    path best;
-    for (const path& q : available_paths())
-      if (!q.autovec && q.prec == precision::exact) best = q;
-    return best;
-  }();
-  return p;
-}
 
 const char* mode_name(embree_peer::mode m) {
   return m == embree_peer::mode::packet16 ? "embree16" : "embree1";
@@ -85,10 +71,7 @@ void bench_embree(benchmark::State& state, std::string name, int64_t w, int64_t 
   const embree_peer peer(s);
   const size_t stride = size_t(w) * 3;
   const image_band band{scratch(stride * size_t(h)), stride, pixel_format::rgb8, 0, h};
-  for (auto _ : state) {
-    peer.render(band, m);
-    benchmark::ClobberMemory();
-  }
+  time_pixels(state, double(w * h), [&] { peer.render(band, m); });
   const error_stats& err = m == embree_peer::mode::packet16 ? e.packet16 : e.single;
   state.counters["max_abs_err"] = err.max_abs_err;
   state.counters["rms_err"] = err.rms_err();
@@ -96,52 +79,28 @@ void bench_embree(benchmark::State& state, std::string name, int64_t w, int64_t 
   state.counters["lsb_mismatch"] = err.lsb_mismatch();
 }
 
-std::optional<double> ns_per_px(const run_table& t, const std::string& row, int64_t w, int64_t h) {
-  const auto s = t.seconds(row + "|");
-  if (!s) return std::nullopt;
-  return *s * 1e9 / (double(w) * double(h));
-}
-
 }  // namespace
+
+const path& best_sphere_path() {
+  static const path p = [] {
+    path best;
+    for (const path& q : available_paths())
+      if (!q.autovec && q.prec == precision::exact) best = q;
+    return best;
+  }();
+  return p;
+}
 
 void register_embree_rows(const std::vector<std::pair<int64_t, int64_t>>& sizes) {
   for (std::string_view sv : builtin_scene_names()) {
     const std::string name(sv);
     if (builtin_spheres(name)->empty()) continue;
     for (const auto& [w, h] : sizes)
-      for (auto m : {embree_peer::mode::packet16, embree_peer::mode::single})
-        benchmark::RegisterBenchmark(scene_row_name(mode_name(m), "float", name, w, h, 1, "rgb8").c_str(),
-                                     bench_embree, name, w, h, m)
-            ->Unit(benchmark::kMicrosecond);
+      for (auto m : {embree_peer::mode::packet16, embree_peer::mode::single}) {
+        const row_id r = render_row(mode_name(m), "float", name, w, h, 1, "rgb8");
+        add_row(r.name, r.fields, benchmark::kMicrosecond, bench_embree, name, w, h, m);
+      }
   }
-}
-
-void print_embree_summary(std::ostream& os, const run_table& table, int64_t w, int64_t h) {
-  const path& best = best_path();
-  const std::string ours_label = best.backend + "/" + std::string(to_string(best.prec));
-  const std::string prec(to_string(best.prec));
-  const auto ours = ns_per_px(table, scene_row_name(best.backend, prec, "world", w, h, 1, "rgb8"), w, h);
-  const auto e16 = ns_per_px(table, scene_row_name("embree16", "float", "world", w, h, 1, "rgb8"), w, h);
-  const auto e1 = ns_per_px(table, scene_row_name("embree1", "float", "world", w, h, 1, "rgb8"), w, h);
-  const auto book = ns_per_px(table, scene_row_name("book", "exact", "world", w, h, 1, "rgb8"), w, h);
-  char line[256];
-  // Sections with no row measured (filtered out by --benchmark_filter) are left out.
-  if (ours || e16 || e1 || book)
-    os << "\nPeers on world, " << w << "x" << h << ", 1 thread, rgb8 (ns/px; x = peer / ours):\n";
-  auto peer_line = [&](const char* label, std::optional<double> v) {
-    if (!v) return;
-    std::snprintf(line, sizeof line, "  %-26s %9.2f", label, *v);
-    os << line;
-    if (ours && *ours > 0) {
-      std::snprintf(line, sizeof line, "   %7.1fx", *v / *ours);
-      os << line;
-    }
-    os << "\n";
-  };
-  peer_line(ours_label.c_str(), ours);
-  peer_line("embree16 (rtcIntersect16)", e16);
-  peer_line("embree1 (rtcIntersect1)", e1);
-  peer_line("book (double, virtual)", book);
 }
 
 }  // namespace raycast::bench

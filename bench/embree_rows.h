@@ -10,18 +10,18 @@
 // are bench/scale_rows.h.
 #pragma once
 #include <cstdint>
-#include <iosfwd>
 #include <utility>
 #include <vector>
 
-#include "report.h"
+#include "errors.h"
 
 namespace raycast::bench {
 
 void register_embree_rows(const std::vector<std::pair<int64_t, int64_t>>& sizes);
 
-// Embree against our best backend and the book on `world` at w x h, one
-// thread, 8-bit.
-void print_embree_summary(std::ostream& os, const run_table& table, int64_t w, int64_t h);
+// Our fastest backend for spheres, the peers' yardstick: the last core path in
+// available_paths()' order (sse2, avx2, avx512), exact (fast renders spheres
+// as exact does).
+const path& best_sphere_path();
 
 }  // namespace raycast::bench

@@ -1,52 +1,64 @@
 // raycast-bench: every way of computing the sky, timed with Google Benchmark,
 // next to memset (the store-bandwidth bound) and with its error against the
-// double reference; then an error-vs-run-time summary and the stiff cases.
+// double reference, and the stiff cases' errors as rows of their own. Every
+// run is also written as JSON, which bench/report.py turns into the summaries
+// (error vs run time, peers, shortcuts, antialiasing, scale, stiff cases).
 #include <benchmark/benchmark.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <unistd.h>
+#include <fstream>
 #include <iostream>
 #include <map>
-#include <memory>
 #include <string>
 #include <vector>
 
-#include "aa_report.h"
 #include "aa_rows.h"
 #include "embree_peer.h"
 #include "embree_rows.h"
 #include "errors.h"
 #include "gbench_flags.h"
-#include "report.h"
+#include "rows.h"
 #include "scale_rows.h"
 #include "spheres.h"
 #include "sphere_numerics.h"
 
+extern char** environ;
+
 namespace raycast::bench {
 namespace {
+
+// The directory of this program, and whether it is the build tree's.
+std::string exe_dir() {
+  char buf[4096];
+  const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
+  const std::string exe = n > 0 ? std::string(buf, size_t(n)) : "";
+  return exe.substr(0, exe.find_last_of('/'));
+}
+bool in_build_tree() { return exe_dir() == RAYCAST_BENCH_BUILD_BIN_DIR; }
 
 // Where the aa/ rows' references are cached unless --aa-reference-dir says:
 // the build tree's bench-cache for the raycast-bench built there, else (an
 // installed one, which must not write into a build tree) the XDG cache,
 // $XDG_CACHE_HOME/raycast or ~/.cache/raycast; '' (not cached) without either.
 std::string default_cache_dir() {
-  char buf[4096];
-  const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
-  if (n > 0) {
-    const std::string exe(buf, size_t(n));
-    if (exe.substr(0, exe.find_last_of('/')) == RAYCAST_BENCH_BUILD_BIN_DIR) return RAYCAST_BENCH_CACHE_DIR;
-  }
+  if (in_build_tree()) return RAYCAST_BENCH_CACHE_DIR;
   if (const char* x = std::getenv("XDG_CACHE_HOME"); x && x[0] == '/') return std::string(x) + "/raycast";
   if (const char* h = std::getenv("HOME"); h && h[0] == '/') return std::string(h) + "/.cache/raycast";
   return "";
 }
 
+// bench/report.py: the source tree's for the build tree's raycast-bench, else
+// the installed copy.
+std::string report_script() { return in_build_tree() ? RAYCAST_BENCH_REPORT : RAYCAST_BENCH_REPORT_INSTALLED; }
+
 struct options {
   bool quick = false;
-  std::string plot;
-  std::optional<std::pair<int64_t, int64_t>> summary_size;
+  std::string plot, summary_size;
   int summary_threads = 1;
   std::string aa_reference_dir = default_cache_dir();
 };
@@ -77,10 +89,7 @@ void bench_render(benchmark::State& state, size_t path_index, size2 size, int th
   const painter paint(paths()[path_index], s, threads);
   const size_t stride = size_t(size.w) * bytes_per_pixel(format);
   const image_band band{scratch(stride * size_t(size.h)), stride, format, 0, size.h};
-  for (auto _ : state) {
-    paint.render(band);
-    benchmark::ClobberMemory();
-  }
+  time_pixels(state, double(size.w * size.h), [&] { paint.render(band); });
   state.counters["max_abs_err"] = e.max_abs_err;
   state.counters["rms_err"] = e.rms_err();
   state.counters["max_lsb"] = e.max_lsb;
@@ -92,69 +101,152 @@ struct shortcut_set {
   const char* name;
   unsigned shortcuts;
 };
-const std::vector<shortcut_set>& shortcut_sets() {
-  static const std::vector<shortcut_set> v = {
-      {"none", shortcut::none},
-      {"lanes", shortcut::lanes},
-      {"lanes+mirror", shortcut::lanes | shortcut::mirror},
-      {"channels", shortcut::channels},
-      {"clamps", shortcut::clamps},
-      {"all", shortcut::all},
-  };
-  return v;
-}
+const shortcut_set shortcut_sets[] = {
+    {"none", shortcut::none},         {"lanes", shortcut::lanes},   {"lanes+mirror", shortcut::lanes | shortcut::mirror},
+    {"channels", shortcut::channels}, {"clamps", shortcut::clamps}, {"all", shortcut::all},
+};
 
 void bench_shortcuts(benchmark::State& state, size_t path_index, size2 size, unsigned shortcuts) {
   const scene s = make_scene(sized(size.w, size.h));
   const painter paint(paths()[path_index], s, 1, shortcuts);
   const size_t stride = size_t(size.w) * 3;
   const image_band band{scratch(stride * size_t(size.h)), stride, pixel_format::rgb8, 0, size.h};
-  for (auto _ : state) {
-    paint.render(band);
-    benchmark::ClobberMemory();
-  }
+  time_pixels(state, double(size.w * size.h), [&] { paint.render(band); });
 }
 
-// shortcuts/ rows: the SIMD backends at one size with each shortcut alone, the
-// general path (none) first so the others can report vs_none.
+// shortcuts/BACKEND/PRECISION/WxH/t1/rgb8/SET: the SIMD backends at one size
+// with each shortcut alone, none (the general path) and all (the default).
 void register_shortcuts_rows(size2 sz) {
   for (size_t p = 0; p < paths().size(); ++p) {
     const path& pa = paths()[p];
     if (pa.autovec || pa.core == backend::reference || pa.core == backend::scalar) continue;
-    for (const shortcut_set& v : shortcut_sets())
-      benchmark::RegisterBenchmark(
-          shortcuts_row_name(pa.backend, to_string(pa.prec), sz.w, sz.h, v.name).c_str(),
-          bench_shortcuts, p, sz, v.shortcuts)
-          ->Unit(benchmark::kMicrosecond);
+    const std::string prec(to_string(pa.prec)), size = size_text(sz.w, sz.h);
+    for (const shortcut_set& v : shortcut_sets)
+      add_row("shortcuts/" + pa.backend + "/" + prec + "/" + size + "/t1/rgb8/" + v.name,
+              "kind=shortcuts backend=" + pa.backend + " precision=" + prec + " size=" + size +
+                  " threads=1 out=rgb8 shortcuts=" + v.name,
+              benchmark::kMicrosecond, bench_shortcuts, p, sz, v.shortcuts);
   }
 }
 
 void bench_memset(benchmark::State& state, size2 size) {
   const size_t bytes = size_t(size.w) * size_t(size.h) * 3;
   unsigned char* buf = scratch(bytes);
-  for (auto _ : state) {
+  time_pixels(state, double(size.w * size.h), [&] {
     std::memset(buf, 0x5a, bytes);
     benchmark::DoNotOptimize(buf);
-    benchmark::ClobberMemory();
-  }
+  });
   state.SetBytesProcessed(int64_t(state.iterations()) * int64_t(bytes));
 }
 
-// Rows grouped by size, threads and output, memset and the reference first:
-// the reporter needs their times for the other rows' speedup and vs_memset.
+// bound/memset/WxH/rgb8 and render/BACKEND/PRECISION/WxH/tTHREADS/OUT.
 void register_rows(const std::vector<size2>& sizes, const std::vector<int>& threads) {
   for (const size2& sz : sizes) {
-    benchmark::RegisterBenchmark(memset_row_name(sz.w, sz.h).c_str(), bench_memset, sz)
-        ->Unit(benchmark::kMicrosecond);
+    const std::string size = size_text(sz.w, sz.h);
+    add_row("bound/memset/" + size + "/rgb8", "kind=bound backend=memset size=" + size + " out=rgb8",
+            benchmark::kMicrosecond, bench_memset, sz);
     for (int t : threads)
       for (pixel_format f : {pixel_format::rgb8, pixel_format::rgb_f32})
         for (size_t p = 0; p < paths().size(); ++p) {
-          const std::string name =
-              render_row_name(paths()[p].backend, to_string(paths()[p].prec), sz.w, sz.h, t,
-                              f == pixel_format::rgb8 ? "rgb8" : "f32");
-          benchmark::RegisterBenchmark(name.c_str(), bench_render, p, sz, t, f)
-              ->Unit(benchmark::kMicrosecond);
+          const row_id r = render_row(paths()[p].backend, std::string(to_string(paths()[p].prec)), "", sz.w,
+                                      sz.h, t, f == pixel_format::rgb8 ? "rgb8" : "f32");
+          add_row(r.name, r.fields, benchmark::kMicrosecond, bench_render, p, sz, t, f);
         }
+  }
+}
+
+// stiff/CASE/BACKEND/PRECISION (not timed: one iteration): a stiff sky case's
+// error for one path, all paths measured by the case's first row.
+void bench_stiff(benchmark::State& state, size_t case_index, size_t path_index) {
+  static std::map<size_t, std::vector<error_stats>> cache;
+  for (auto _ : state)
+    if (!cache.count(case_index)) {
+      const stiff_case c = stiff_cases()[case_index];
+      cache[case_index] = measure_errors(make_scene(c.cam, c.sky), paths());
+    }
+  const error_stats& e = cache[case_index][path_index];
+  state.counters["max_abs_err"] = e.max_abs_err;
+  state.counters["max_lsb"] = e.max_lsb;
+  state.counters["nan_count"] = double(e.nan_count);
+}
+
+// Embree's view of a scene as the metrics want it: rtcIntersect1's hits and
+// the 8-bit image of the same single-ray path.
+raycast_test::traced_image trace_embree(const scene& s, const embree_peer& peer) {
+  raycast_test::traced_image t;
+  t.width = s.cam.image_width;
+  t.height = s.cam.image_height;
+  t.rgb8.assign(size_t(t.width * t.height) * 3, 0);
+  peer.render(image_band{t.rgb8.data(), size_t(t.width) * 3, pixel_format::rgb8, 0, t.height},
+              embree_peer::mode::single);
+  for (int64_t row = 0; row < t.height; ++row)
+    for (int64_t i = 0; i < t.width; ++i) {
+      const embree_peer::hit h = peer.trace(i, t.height - 1 - row);
+      t.sphere.push_back(h.sphere);
+      t.distance.push_back(h.distance);
+    }
+  return t;
+}
+
+// stiff_sphere/CASE/PEER (not timed: one iteration): a stiff sphere case
+// (tests/support/sphere_numerics.h) against the double reference for ours
+// (the scalar renderer, exact mode: every backend's bits), naive (the book's
+// ch. 6 formula in float) or embree (rtcIntersect1).
+void bench_sphere_stiff(benchmark::State& state, size_t case_index, std::string peer) {
+  const raycast_test::sphere_stiff_case c = raycast_test::sphere_stiff_cases()[case_index];
+  const scene s = raycast_test::scene_of(c);
+  raycast_test::sphere_metrics m;
+  for (auto _ : state) {
+    const raycast_test::traced_image ref = raycast_test::trace_reference(s);
+    if (peer == "embree") {
+      const embree_peer e(s);
+      if (!e.error().empty()) return state.SkipWithError(e.error().c_str());
+      m = raycast_test::measure(ref, trace_embree(s, e));
+    } else {
+      m = raycast_test::measure(ref, peer == "ours" ? raycast_test::trace_ours(s) : raycast_test::trace_naive(s));
+    }
+  }
+  const std::pair<const char*, double> counters[] = {
+      {"wrong_object", m.wrong_object}, {"wrong_object_away", m.wrong_object_away},
+      {"false_hits", m.false_hits},     {"false_hits_away", m.false_hits_away},
+      {"false_misses", m.false_misses}, {"false_misses_away", m.false_misses_away},
+      {"max_lsb", m.max_lsb},           {"max_lsb_away", m.max_lsb_away},
+      {"max_rel_distance_err", m.max_rel_distance_err}};
+  for (const auto& [k, v] : counters) state.counters[k] = v;
+}
+
+void register_stiff_rows() {
+  const std::vector<stiff_case> cases = stiff_cases();
+  for (size_t k = 0; k < cases.size(); ++k) {
+    const camera_params& cam = cases[k].cam;
+    const std::string fields = strf("kind=stiff case=%s index=%zu size=", cases[k].name.c_str(), k) +
+                               size_text(cam.image_width, cam.image_height.value_or(
+                                                              default_height(cam.image_width, cam.aspect_ratio)));
+    if (auto why = validate(cam)) {  // refused: one row, its error the reason
+      const std::string msg = why->message;
+      add_row("stiff/" + cases[k].name, fields, benchmark::kMillisecond,
+              [msg](benchmark::State& s) { s.SkipWithError(msg.c_str()); })
+          ->Iterations(1);
+      continue;
+    }
+    for (size_t p = 0; p < paths().size(); ++p) {
+      const path& pa = paths()[p];
+      if (!pa.autovec && pa.core == backend::reference) continue;  // the oracle
+      const std::string prec(to_string(pa.prec));
+      add_row("stiff/" + cases[k].name + "/" + pa.backend + "/" + prec,
+              fields + " backend=" + pa.backend + " precision=" + prec, benchmark::kMillisecond, bench_stiff, k, p)
+          ->Iterations(1);
+    }
+  }
+  const std::vector<raycast_test::sphere_stiff_case> spheres = raycast_test::sphere_stiff_cases();
+  for (size_t k = 0; k < spheres.size(); ++k) {
+    const scene s = raycast_test::scene_of(spheres[k]);
+    for (const std::string peer : {"ours", "naive", "embree"})
+      add_row("stiff_sphere/" + spheres[k].name + "/" + peer,
+              strf("kind=stiff_sphere case=%s index=%zu peer=%s size=", spheres[k].name.c_str(), k, peer.c_str()) +
+                  size_text(s.cam.image_width, s.cam.image_height),
+              benchmark::kMillisecond, bench_sphere_stiff, k, peer)
+          ->Iterations(1);
   }
 }
 
@@ -162,14 +254,16 @@ void print_help() {
   std::printf(
       "raycast-bench: time every sky renderer and compare it with the double reference\n"
       "  --quick                 seconds-long pass over 400x225 and 1920x1080\n"
-      "  --plot FILE.svg         write the error-vs-time scatter as SVG\n"
+      "  --plot FILE.svg         write the error-vs-time scatter (and FILE-aa.svg,\n"
+      "                          FILE-scale.svg) with matplotlib; .png works too\n"
       "  --summary-size WxH      size of the summary table (default 3840x2160;\n"
       "                          --quick: 1920x1080)\n"
       "  --summary-threads N     threads of the summary table (default 1)\n"
       "  --aa-reference-dir DIR  where the aa/ rows' converged references are cached\n"
       "                          (default %s; '' : not cached)\n"
-      "Google Benchmark's flags:\n",
-      default_cache_dir().c_str());
+      "The summaries are %s's, from the run's JSON\n"
+      "(python3 %s RUN.json --help). Google Benchmark's flags:\n",
+      default_cache_dir().c_str(), report_script().c_str(), report_script().c_str());
   benchmark::PrintDefaultHelp();
 }
 
@@ -203,7 +297,7 @@ options parse_own_flags(int& argc, char** argv) {
       char tail = 0;
       if (std::sscanf(sz->c_str(), "%lldx%lld%c", &w, &h, &tail) != 2 || w < 1 || h < 1)
         usage_error("--summary-size wants WxH, got '" + *sz + "'");
-      o.summary_size = std::pair<int64_t, int64_t>(w, h);
+      o.summary_size = size_text(w, h);
     } else if (auto n = value("--summary-threads")) {
       char tail = 0;
       if (std::sscanf(n->c_str(), "%d%c", &o.summary_threads, &tail) != 1 || o.summary_threads < 1)
@@ -217,101 +311,97 @@ options parse_own_flags(int& argc, char** argv) {
   return o;
 }
 
-std::unique_ptr<benchmark::BenchmarkReporter> make_file_reporter(const std::string& format) {
-  if (format == "console")
-    return std::make_unique<benchmark::ConsoleReporter>(benchmark::ConsoleReporter::OO_None);
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wdeprecated-declarations"
-  if (format == "csv") return std::make_unique<benchmark::CSVReporter>();
-#pragma GCC diagnostic pop
-  return std::make_unique<benchmark::JSONReporter>();
-}
-
-std::vector<stiff_result> run_stiff_cases() {
-  std::vector<stiff_result> results;
-  for (const stiff_case& c : stiff_cases()) {
-    stiff_result r;
-    r.name = c.name;
-    r.width = c.cam.image_width;
-    r.height = c.cam.image_height.value_or(default_height(c.cam.image_width, c.cam.aspect_ratio));
-    if (auto why = validate(c.cam))
-      r.invalid = why->message;
-    else
-      r.errors = measure_errors(make_scene(c.cam, c.sky), paths());
-    results.push_back(std::move(r));
+// The display reporter, with every run also written to a JSON stream for the
+// report (whatever --benchmark_out and --benchmark_format say).
+class tee_json : public benchmark::BenchmarkReporter {
+ public:
+  tee_json(benchmark::BenchmarkReporter* display, std::ostream& json) : display_(display) {
+    json_.SetOutputStream(&json);
+    json_.SetErrorStream(&std::cerr);
   }
-  return results;
-}
-
-// Embree's view of a scene as the metrics want it: rtcIntersect1's hits and
-// the 8-bit image of the same single-ray path.
-raycast_test::traced_image trace_embree(const scene& s, const embree_peer& peer) {
-  raycast_test::traced_image t;
-  t.width = s.cam.image_width;
-  t.height = s.cam.image_height;
-  t.rgb8.assign(size_t(t.width * t.height) * 3, 0);
-  peer.render(image_band{t.rgb8.data(), size_t(t.width) * 3, pixel_format::rgb8, 0, t.height},
-              embree_peer::mode::single);
-  for (int64_t row = 0; row < t.height; ++row)
-    for (int64_t i = 0; i < t.width; ++i) {
-      const embree_peer::hit h = peer.trace(i, t.height - 1 - row);
-      t.sphere.push_back(h.sphere);
-      t.distance.push_back(h.distance);
-    }
-  return t;
-}
-
-std::vector<sphere_stiff_result> run_sphere_stiff_cases() {
-  std::vector<sphere_stiff_result> results;
-  for (const raycast_test::sphere_stiff_case& c : raycast_test::sphere_stiff_cases()) {
-    const scene s = raycast_test::scene_of(c);
-    const raycast_test::traced_image ref = raycast_test::trace_reference(s);
-    sphere_stiff_result r;
-    r.name = c.name;
-    r.width = s.cam.image_width;
-    r.height = s.cam.image_height;
-    r.ours = raycast_test::measure(ref, raycast_test::trace_ours(s));
-    r.naive = raycast_test::measure(ref, raycast_test::trace_naive(s));
-    const embree_peer peer(s);
-    r.embree_error = peer.error();
-    if (r.embree_error.empty()) r.embree = raycast_test::measure(ref, trace_embree(s, peer));
-    results.push_back(std::move(r));
+  bool ReportContext(const Context& context) override {
+    display_->SetOutputStream(&GetOutputStream());
+    display_->SetErrorStream(&GetErrorStream());
+    json_.ReportContext(context);
+    return display_->ReportContext(context);
   }
-  return results;
-}
-
-// Google Benchmark's flags, with a short default min time: it keeps the full
-// run within two minutes, and a row whose single iteration takes longer (the
-// reference and scalar rows at 15360x8640) runs exactly once, by the
-// library's own rule, so row names stay free of /iterations: suffixes.
-// (Our default is set before Initialize, which replaces it only when the
-// command line gives --benchmark_min_time.) Rows run in registration order:
-// a row's speedup and vs_memset are filled from rows reported before it, so
-// the library's --benchmark_enable_random_interleaving, which shuffles them,
-// leaves those counters out where it puts a row before its yardstick (the
-// summaries, read at the end, are whole either way; README "Antialiasing").
-void init_benchmark(int& argc, char** argv, bool quick) {
-  benchmark::FLAGS_benchmark_min_time = quick ? 0.02 : 0.1;
-  benchmark::Initialize(&argc, argv, print_help);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) std::exit(2);
-}
-
-// Runs the registered rows through reporters that fill the cross-row counters.
-void run_rows(run_table& table) {
-  counter_filler display(benchmark::CreateDefaultDisplayReporter(), table);
-  std::unique_ptr<benchmark::BenchmarkReporter> file_inner;
-  std::unique_ptr<counter_filler> file;
-  if (!benchmark::FLAGS_benchmark_out.empty()) {
-    file_inner = make_file_reporter(benchmark::FLAGS_benchmark_out_format);
-    file = std::make_unique<counter_filler>(file_inner.get(), table);
+  void ReportRuns(const std::vector<Run>& runs) override {
+    json_.ReportRuns(runs);
+    display_->ReportRuns(runs);
   }
-  benchmark::RunSpecifiedBenchmarks(&display, file.get());
-  benchmark::Shutdown();
+  void Finalize() override {
+    json_.Finalize();
+    display_->Finalize();
+  }
+
+ private:
+  benchmark::BenchmarkReporter* display_;
+  benchmark::JSONReporter json_;
+};
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);) {
+    const size_t colon = line.find(':');
+    if (line.rfind("model name", 0) == 0 && colon != std::string::npos && colon + 2 <= line.size())
+      return line.substr(colon + 2);
+  }
+  return "unknown CPU";
+}
+
+// What the report needs besides the rows, in the JSON's context.
+void add_context(const options& opt) {
+  benchmark::AddCustomContext("cpu_model", cpu_model());
+  benchmark::AddCustomContext("available_cores", std::to_string(available_cores()));
+  std::string skipped;
+  for (const skipped_backend& s : skipped_backends())
+    skipped += (skipped.empty() ? "" : "; ") + s.name + " (" + s.reason + ")";
+  benchmark::AddCustomContext("skipped_backends", skipped.empty() ? "none (this CPU runs every backend)" : skipped);
+  benchmark::AddCustomContext("summary_size", !opt.summary_size.empty() ? opt.summary_size
+                                              : opt.quick              ? "1920x1080"
+                                                                       : "3840x2160");
+  benchmark::AddCustomContext("summary_threads", std::to_string(opt.summary_threads));
+  benchmark::AddCustomContext("default_sampler", std::string(to_string(default_sampler)));
+  benchmark::AddCustomContext("best_sphere_path", best_sphere_path().label());
+  benchmark::AddCustomContext("aa_reference_dir", opt.aa_reference_dir);
+}
+
+// Runs the report script on the run's JSON, its output on stdout (tables on
+// stderr when stdout is machine-readable); false when it could not run.
+bool run_report(const std::string& json, const options& opt, bool to_stderr) {
+  const char* env = std::getenv("RAYCAST_BENCH_PYTHON");
+  const std::string python = env && *env ? env : access("/usr/bin/python3", X_OK) == 0 ? "/usr/bin/python3" : "python3";
+  std::vector<std::string> args = {python, report_script(), json};
+  if (!opt.plot.empty()) args.insert(args.end(), {"--plot", opt.plot});
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  if (to_stderr) posix_spawn_file_actions_adddup2(&fa, 2, 1);
+  std::cout.flush();
+  std::fflush(stdout);
+  pid_t pid = 0;
+  int status = 0;
+  const bool ok = posix_spawnp(&pid, argv[0], &fa, nullptr, argv.data(), environ) == 0 &&
+                  waitpid(pid, &status, 0) == pid && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  posix_spawn_file_actions_destroy(&fa);
+  return ok;
 }
 
 int run(int argc, char** argv) {
   const options opt = parse_own_flags(argc, argv);
-  init_benchmark(argc, argv, opt.quick);
+  // Google Benchmark's flags, with a short default min time: it keeps the
+  // full run within two minutes, and a row whose single iteration takes
+  // longer (the reference and scalar rows at 15360x8640) runs exactly once,
+  // by the library's own rule, so row names stay free of /iterations:
+  // suffixes. (Our default is set before Initialize, which replaces it only
+  // when the command line gives --benchmark_min_time.) Rows may run in any
+  // order (--benchmark_enable_random_interleaving): none needs another.
+  benchmark::FLAGS_benchmark_min_time = opt.quick ? 0.02 : 0.1;
+  benchmark::Initialize(&argc, argv, print_help);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
+
   std::vector<size2> sizes = {{400, 225}, {1920, 1080}};
   if (!opt.quick) sizes.insert(sizes.end(), {{3840, 2160}, {15360, 8640}});
   std::vector<int> threads = {1};
@@ -322,47 +412,31 @@ int run(int argc, char** argv) {
   for (const size2& sz : sizes)
     if (sz.w <= 3840) scene_sizes.emplace_back(sz.w, sz.h);  // the reference at 15360x8640 takes minutes
   register_sphere_rows(scene_sizes, threads);
-  const aa_config aa = aa_config_for(opt.quick, opt.aa_reference_dir);
-  register_aa_rows(aa);
+  register_aa_rows(aa_config_for(opt.quick, opt.aa_reference_dir));
   register_embree_rows(scene_sizes);
   register_scale_rows(opt.quick);
+  register_stiff_rows();
+  add_context(opt);
 
-  run_table table;
-  run_rows(table);
-  if (benchmark::FLAGS_benchmark_list_tests) return 0;
-
-  // Machine-readable stdout stays machine-readable: the tables go to stderr.
-  const std::string format = benchmark::FLAGS_benchmark_format;
-  std::ostream& os = format == "console" ? std::cout : std::cerr;
-  summary_options so;
-  const std::pair<int64_t, int64_t> size =
-      opt.summary_size.value_or(opt.quick ? std::pair<int64_t, int64_t>{1920, 1080}
-                                          : std::pair<int64_t, int64_t>{3840, 2160});
-  so.width = size.first;
-  so.height = size.second;
-  so.threads = opt.summary_threads;
-  so.cpu = cpu_model();
-  so.date = today();
-  const std::vector<summary_row> rows = summary_rows(table, so);
-  print_summary(os, rows, so, skipped_backends());
-  if (!opt.plot.empty()) {
-    if (!write_svg(opt.plot, rows, so)) {
-      std::fprintf(stderr, "raycast-bench: cannot write %s\n", opt.plot.c_str());
-      return 1;
-    }
-    os << "Plot written to " << opt.plot << "\n";
+  char json[] = "/tmp/raycast-bench-XXXXXX.json";
+  const int fd = mkstemps(json, 5);
+  if (fd < 0) return std::perror("raycast-bench: temporary file"), 1;
+  close(fd);
+  {
+    std::ofstream out(json);
+    tee_json tee(benchmark::CreateDefaultDisplayReporter(), out);
+    benchmark::RunSpecifiedBenchmarks(&tee);
+    benchmark::Shutdown();
   }
-  print_aa_summary(os, table, aa, aa_references_used(), so.cpu, so.date);
-  if (!opt.plot.empty() && write_aa_svg(aa_plot_file(opt.plot), table, aa, so.cpu, so.date))
-    os << "Antialiasing plot written to " << aa_plot_file(opt.plot) << "\n";
-  std::vector<std::string> names;
-  for (const shortcut_set& v : shortcut_sets()) names.push_back(v.name);
-  print_shortcuts(os, table, names);
-  print_embree_summary(os, table, so.width, so.height);
-  print_scale_summary(os, table, opt.quick);
-  print_stiff(os, paths(), run_stiff_cases());
-  print_sphere_stiff(os, run_sphere_stiff_cases());
-  os.flush();
+  if (benchmark::FLAGS_benchmark_list_tests) return std::remove(json), 0;
+  if (!run_report(json, opt, benchmark::FLAGS_benchmark_format != "console")) {
+    std::fprintf(stderr,
+                 "raycast-bench: no summary: `python3 %s %s` failed (it needs Python 3; --plot also "
+                 "matplotlib, Debian python3-matplotlib); the rows stay in %s\n",
+                 report_script().c_str(), json, json);
+    return opt.plot.empty() ? 0 : 1;
+  }
+  std::remove(json);
   return 0;
 }
 

@@ -5,7 +5,6 @@
 #include <chrono>
 #include <memory>
 #include <optional>
-#include <ostream>
 #include <string>
 #include <variant>
 #include <vector>
@@ -13,6 +12,7 @@
 #include "cloud.h"
 #include "embree_peer.h"
 #include "errors.h"
+#include "rows.h"
 #include "scene/scene_file.h"
 
 namespace raycast::bench {
@@ -125,70 +125,18 @@ void bench_load(benchmark::State& state, int64_t n) {
   state.counters["bytes_per_sphere"] = double(text.size()) / double(n);
 }
 
-// Milliseconds, 3 or 4 significant digits, in 8 columns.
-std::string ms(std::optional<double> s) {
-  if (!s) return "       -";
-  const double v = *s * 1e3;
-  return strf(v < 10 ? "%8.3f" : v < 100 ? "%8.2f" : v < 1e4 ? "%8.1f" : "%8.0f", v);
-}
-std::string ratio(std::optional<double> a, std::optional<double> b) {
-  if (!a || !b || !(*b > 0)) return "        ";
-  const double x = *a / *b;
-  return strf(x < 100 ? " %6.2fx" : " %6.0fx", x);
-}
-
 }  // namespace
 
 void register_scale_rows(bool quick) {
   for (int64_t n : counts(quick)) {
-    auto setup = [](benchmark::internal::Benchmark* b) { b->Unit(benchmark::kMillisecond); };
-    for (bool all : {false, true}) {
-      setup(benchmark::RegisterBenchmark(row("ours", n, all).c_str(), bench_ours, n, all));
-      setup(benchmark::RegisterBenchmark(row("embree", n, all).c_str(), bench_embree, n, all));
-    }
-    setup(benchmark::RegisterBenchmark(load_row(n).c_str(), bench_load, n));
+    for (bool all : {false, true})
+      for (const char* peer : {"ours", "embree"})
+        add_row(row(peer, n, all), strf("kind=scale peer=%s spheres=%lld threads=%s", peer, static_cast<long long>(n),
+                                        all ? "all" : "1"),
+                benchmark::kMillisecond, peer[0] == 'o' ? bench_ours : bench_embree, n, all);
+    add_row(load_row(n), strf("kind=load spheres=%lld", static_cast<long long>(n)), benchmark::kMillisecond,
+            bench_load, n);
   }
-}
-
-void print_scale_summary(std::ostream& os, const run_table& table, bool quick) {
-  struct cells {
-    std::optional<double> prep, render, total, total_all, px;
-  };
-  auto at = [&](const char* who, const char* prepare, int64_t n) {
-    cells c;
-    c.prep = table.counter(row(who, n, false), prepare);
-    c.render = table.counter(row(who, n, false), "render_s");
-    c.total = table.seconds(row(who, n, false) + "|");
-    c.total_all = table.seconds(row(who, n, true) + "|");
-    c.px = table.counter(row(who, n, false), "ns_per_px");
-    return c;
-  };
-  bool any = false;
-  for (int64_t n : counts(quick))
-    any = any || at("ours", "prepare_s", n).total || at("ours", "prepare_s", n).total_all ||
-          at("embree", "build_s", n).total || at("embree", "build_s", n).total_all ||
-          table.seconds(load_row(n) + "|");
-  if (!any) return;
-  const cells ours_base = at("ours", "prepare_s", 1000), embree_base = at("embree", "build_s", 1000);
-  os << "\nScale: particle clouds (tests/support/cloud.h, coverage 1.5), 1920x1080, rgb8; ms (medians); tall = "
-     << available_cores() << " threads\n"
-     << "                  ours t1           ours      embree t1         embree  embree  speedup "
-        "tall   ns/px vs 1e3  load ns/sphere\n"
-     << "         N    prep  render   total    tall   build  render   total    tall   /ours    ours"
-        "  embree    ours  embree   parse    prep\n";
-  for (int64_t n : counts(quick)) {
-    const cells o = at("ours", "prepare_s", n), e = at("embree", "build_s", n);
-    auto ns = [&](const char* name) {
-      const auto v = table.counter(load_row(n), name);
-      return v ? strf("%8.1f", *v) : std::string("       -");
-    };
-    os << strf("  %8lld", static_cast<long long>(n)) << ms(o.prep) << ms(o.render) << ms(o.total)
-       << ms(o.total_all) << ms(e.prep) << ms(e.render) << ms(e.total) << ms(e.total_all)
-       << ratio(e.total, o.total) << ratio(o.total, o.total_all) << ratio(e.total, e.total_all)
-       << ratio(o.px, ours_base.px) << ratio(e.px, embree_base.px) << ns("parse_ns_per_sphere")
-       << ns("prepare_ns_per_sphere") << "\n";
-  }
-  os << "  total = prepare + render; embree / ours and ns/px growth at 1 thread; speedup = t1 / tall\n";
 }
 
 }  // namespace raycast::bench

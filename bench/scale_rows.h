@@ -15,16 +15,9 @@
 // line). A full run of these rows peaks at about 8 GB (load/10^7: the JSON
 // text and the parser's tree).
 #pragma once
-#include <iosfwd>
-
-#include "report.h"
 
 namespace raycast::bench {
 
 void register_scale_rows(bool quick);
-
-// One table of the scale rows: times, Embree / ours, the all-core speedup,
-// ns/px against N = 10^3, the load costs. Nothing when none ran.
-void print_scale_summary(std::ostream& os, const run_table& table, bool quick);
 
 }  // namespace raycast::bench

@@ -10,7 +10,7 @@
 
 #include "book_ch6.h"
 #include "errors.h"
-#include "report.h"
+#include "rows.h"
 #include "scene/builtin.h"
 
 namespace raycast::bench {
@@ -73,10 +73,7 @@ void bench_scene(benchmark::State& state, std::string name, size_t path_index, i
   const painter paint(core_paths()[path_index], s, threads);
   const size_t stride = size_t(w) * bytes_per_pixel(format);
   const image_band band{scratch(stride * size_t(h)), stride, format, 0, h};
-  for (auto _ : state) {
-    paint.render(band);
-    benchmark::ClobberMemory();
-  }
+  time_pixels(state, double(w * h), [&] { paint.render(band); });
   set_error_counters(state, e.core[path_index], true);
 }
 
@@ -86,10 +83,7 @@ void bench_book(benchmark::State& state, int64_t w, int64_t h) {
   const book_ch6 book(s);
   const size_t stride = size_t(w) * 3;
   const image_band band{scratch(stride * size_t(h)), stride, pixel_format::rgb8, 0, h};
-  for (auto _ : state) {
-    book.render(band);
-    benchmark::ClobberMemory();
-  }
+  time_pixels(state, double(w * h), [&] { book.render(band); });
   set_error_counters(state, e.book, false);
 }
 
@@ -104,18 +98,15 @@ void register_sphere_rows(const std::vector<std::pair<int64_t, int64_t>>& sizes,
       for (int t : threads)
         for (pixel_format f : {pixel_format::rgb8, pixel_format::rgb_f32}) {
           const std::string out = f == pixel_format::rgb8 ? "rgb8" : "f32";
-          // The reference first: the other rows' speedup is against it.
           for (size_t p = 0; p < core_paths().size(); ++p) {
             const path& pa = core_paths()[p];
-            benchmark::RegisterBenchmark(
-                scene_row_name(pa.backend, to_string(pa.prec), name, w, h, t, out).c_str(),
-                bench_scene, name, p, w, h, t, f)
-                ->Unit(benchmark::kMicrosecond);
+            const row_id r = render_row(pa.backend, std::string(to_string(pa.prec)), name, w, h, t, out);
+            add_row(r.name, r.fields, benchmark::kMicrosecond, bench_scene, name, p, w, h, t, f);
           }
-          if (name == "world" && t == 1 && f == pixel_format::rgb8)
-            benchmark::RegisterBenchmark(scene_row_name("book", "exact", name, w, h, t, out).c_str(),
-                                         bench_book, w, h)
-                ->Unit(benchmark::kMicrosecond);
+          if (name == "world" && t == 1 && f == pixel_format::rgb8) {
+            const row_id r = render_row("book", "exact", name, w, h, t, out);
+            add_row(r.name, r.fields, benchmark::kMicrosecond, bench_book, w, h);
+          }
         }
   }
 }

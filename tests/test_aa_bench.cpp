@@ -1,7 +1,8 @@
-// The antialiasing bench's arithmetic (bench/aa_stats.h) and its reference
-// cache (bench/aa_reference.h): the slope and the samples-to-match
-// interpolation on exact power laws, and a cached reference that reads back
-// as written and is rebuilt when its header or scene no longer match.
+// The antialiasing bench's image error and its reference cache
+// (bench/aa_reference.h): a cached reference that reads back as written and
+// is rebuilt when its header or scene no longer match. (The summary's
+// slope and samples-to-match arithmetic is bench/report.py's:
+// tests/test_bench_report.py.)
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,38 +11,10 @@
 #include <string>
 
 #include "aa_reference.h"
-#include "aa_stats.h"
 
 namespace {
 
 using namespace raycast::bench;
-
-std::vector<error_point> power_law(double a, double slope, std::vector<double> ns) {
-  std::vector<error_point> c;
-  for (double n : ns) c.push_back({n, a * std::pow(n, slope)});
-  return c;
-}
-
-TEST(AaStats, SlopeOfAPowerLawOverNAtLeastFour) {
-  std::vector<error_point> c = power_law(0.1, -0.75, {4, 16, 64, 256});
-  c.insert(c.begin(), error_point{1, 1.0});  // N = 1 is left out of the fit
-  ASSERT_TRUE(loglog_slope(c).has_value());
-  EXPECT_NEAR(*loglog_slope(c), -0.75, 1e-12);
-  EXPECT_FALSE(loglog_slope(power_law(0.1, -0.5, {1, 4})).has_value());  // one point at N >= 4
-}
-
-TEST(AaStats, SamplesToMatchInterpolatesInLogLog) {
-  const std::vector<error_point> c = power_law(0.1, -0.5, {1, 4, 16, 64, 256});
-  const auto m = samples_to_match(c, 0.1 / std::sqrt(100.0));
-  ASSERT_TRUE(m.has_value());
-  EXPECT_NEAR(m->samples, 100.0, 1e-9);
-  EXPECT_FALSE(m->extrapolated);
-  const auto far = samples_to_match(c, 0.1 / std::sqrt(1024.0));
-  ASSERT_TRUE(far.has_value());
-  EXPECT_NEAR(far->samples, 1024.0, 1e-6);
-  EXPECT_TRUE(far->extrapolated);
-  EXPECT_FALSE(samples_to_match(c, 0.5).has_value());  // worse than one sample
-}
 
 TEST(AaStats, ImageErrorIsRmseAndMax) {
   const float img[4] = {1.0f, 2.0f, 3.0f, 4.0f};

@@ -1,0 +1,96 @@
+"""bench/report.py: its antialiasing arithmetic on exact power laws, and its tables and plots
+from a short run of raycast-bench (RAYCAST_BENCH: the binary; CTest's bench.report), with the
+rows interleaved and repeated, and the same report whatever the rows' order in the JSON."""
+import importlib.util
+import json
+import math
+import os
+import random
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+HERE = Path(__file__).resolve().parent
+REPORT = HERE.parent / "bench" / "report.py"
+spec = importlib.util.spec_from_file_location("report", REPORT)
+report = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(report)
+
+# Every section's rows, each a few: the sky and world at 400x225, one thread; the shortcuts of
+# sse2/fast; two sobol points and the book on world; the regions; the scale rows at N = 1; a
+# stiff sky case and a stiff sphere case.
+FILTER = ("^bound/memset/400x225/|^render/[^/]+/[^/]+/400x225/t1/|^render/[^/]+/[^/]+/world/400x225/t1/rgb8"
+          "|^shortcuts/sse2/fast/|^aa/[^/]+/sobol/world/96x54/s(1|4)$|^aa/book7/|^region/"
+          "|^scale/[^/]+/1/t1$|^load/1$|^stiff/W=1/|^stiff_sphere/unit_sphere_at_10/")
+
+
+def power_law(a, slope, ns):
+    return [(n, a * n ** slope) for n in ns]
+
+
+def test_slope_of_a_power_law_over_n_at_least_four():
+    c = [(1, 1.0)] + power_law(0.1, -0.75, [4, 16, 64, 256])  # N = 1 is left out of the fit
+    assert report.loglog_slope(c) == pytest.approx(-0.75, abs=1e-12)
+    assert report.loglog_slope(power_law(0.1, -0.5, [1, 4])) is None  # one point at N >= 4
+
+
+def test_samples_to_match_interpolates_in_log_log():
+    c = power_law(0.1, -0.5, [1, 4, 16, 64, 256])
+    n, extrapolated = report.samples_to_match(c, 0.1 / math.sqrt(100))
+    assert n == pytest.approx(100, abs=1e-9) and not extrapolated
+    n, extrapolated = report.samples_to_match(c, 0.1 / math.sqrt(1024))
+    assert n == pytest.approx(1024, abs=1e-6) and extrapolated
+    assert report.samples_to_match(c, 0.5) is None  # worse than one sample
+
+
+def run_report(*args):
+    return subprocess.run([sys.executable, str(REPORT), *map(str, args)], check=True, capture_output=True,
+                          text=True).stdout
+
+
+@pytest.fixture(scope="module")
+def run_json(tmp_path_factory):
+    bench = os.environ.get("RAYCAST_BENCH")
+    if not bench:
+        pytest.skip("RAYCAST_BENCH (the raycast-bench binary) not set")
+    tmp = tmp_path_factory.mktemp("bench")
+    out = tmp / "run.json"
+    subprocess.run([bench, "--quick", "--benchmark_filter=" + FILTER, "--benchmark_repetitions=2",
+                    "--benchmark_enable_random_interleaving=true", "--summary-size=400x225",
+                    "--aa-reference-dir=" + str(tmp / "cache"), "--benchmark_out=" + str(out),
+                    "--benchmark_out_format=json"], check=True, capture_output=True, text=True)
+    return out
+
+
+def test_every_table_has_its_rows(run_json):
+    text = run_report(run_json, "--rows")
+    summary = text[text.index("Error vs run time"):text.index("Skipped backends")]
+    for label in ["reference/exact", "scalar/exact", "sse2/fast", "autovec/exact", "reference/exact/world",
+                  "book/exact/world", "embree16/float/world"]:
+        line = next(l for l in summary.splitlines() if l[4:].startswith(label + " "))
+        assert "x " in line, line  # its speedup against the reference of its scene
+    assert "* reference/exact " in summary
+    for section in ["Store bandwidth", "Every row:", "Regions (--region)", "Antialiasing: error vs run time",
+                    "Samples to match the book's RMSE on world", "What each shortcut saves", "Peers on world, 400x225",
+                    "Scale: particle clouds", "Stiff cases", "Stiff sphere cases", "| unit_sphere_at_10 | 200x112 |"]:
+        assert section in text, section
+    assert next(l for l in text.splitlines() if l.startswith("  sse2/fast ")).count(".") == 6  # every set
+    assert next(l for l in text.splitlines() if l.startswith("  W=1 ")).split()[2:]  # a cell per path
+
+
+def test_the_rows_order_does_not_matter(run_json, tmp_path):
+    data = json.loads(run_json.read_text())
+    random.Random(1).shuffle(data["benchmarks"])
+    shuffled = tmp_path / "shuffled.json"
+    shuffled.write_text(json.dumps(data))
+    assert run_report(shuffled) == run_report(run_json)
+
+
+def test_plots(run_json, tmp_path):
+    pytest.importorskip("matplotlib")
+    text = run_report(run_json, "--plot", tmp_path / "p.svg")
+    for f in ["p.svg", "p-aa.svg", "p-scale.svg"]:
+        assert (tmp_path / f).read_text().startswith("<?xml"), f
+    assert "Antialiasing plot written to" in text
