@@ -83,6 +83,23 @@ void write_all(int fd, const void* data, size_t n, const std::string& name) {
   }
 }
 
+namespace {
+
+// Refuses an image of `bytes` that the file system of dir cannot hold.
+void check_free_space(const std::string& dest, const std::string& dir, uint64_t bytes) {
+  struct statvfs vfs {};
+  if (statvfs(dir.c_str(), &vfs) != 0) return;
+  // root may use the blocks reserved for it; others may not.
+  const uint64_t blocks = geteuid() == 0 ? vfs.f_bfree : vfs.f_bavail;
+  const uint64_t free_bytes = blocks * uint64_t(vfs.f_frsize);
+  if (bytes > free_bytes)
+    throw io_error(dest + ": the image needs " + std::to_string(bytes) + " bytes (" + human_size(bytes) +
+                   ") but its file system has " + std::to_string(free_bytes) + " bytes (" + human_size(free_bytes) +
+                   ") free");
+}
+
+}  // namespace
+
 atomic_file::atomic_file(const std::string& dest, std::optional<uint64_t> known_size) : dest_(dest) {
   struct stat st {};
   bool exists = stat(dest.c_str(), &st) == 0;  // follows symbolic links
@@ -111,19 +128,12 @@ atomic_file::atomic_file(const std::string& dest, std::optional<uint64_t> known_
   if (exists && faccessat(AT_FDCWD, target_.c_str(), W_OK, AT_EACCESS) != 0)
     throw io_error(dest + ": " + errno_text(errno));
 
-  if (known_size) {
-    struct statvfs vfs {};
-    if (statvfs(dir_or_dot.c_str(), &vfs) == 0) {
-      // root may use the blocks reserved for it; others may not.
-      const uint64_t blocks = geteuid() == 0 ? vfs.f_bfree : vfs.f_bavail;
-      const uint64_t free_bytes = blocks * uint64_t(vfs.f_frsize);
-      if (*known_size > free_bytes)
-        throw io_error(dest + ": the image needs " + std::to_string(*known_size) + " bytes (" +
-                       human_size(*known_size) + ") but its file system has " +
-                       std::to_string(free_bytes) + " bytes (" + human_size(free_bytes) + ") free");
-    }
-  }
+  if (known_size) check_free_space(dest, dir_or_dot, *known_size);
+  open_temporary(dir_or_dot);
+  keep_owner_and_mode(exists ? &st : nullptr);
+}
 
+void atomic_file::open_temporary(const std::string& dir_or_dot) {
   // An unnamed file first: nothing to leave behind whatever ends the process.
   // Giving it a name needs /proc/self/fd (or CAP_DAC_READ_SEARCH) at the end.
   if (access("/proc/self/fd", X_OK) == 0) {
@@ -136,7 +146,7 @@ atomic_file::atomic_file(const std::string& dest, std::optional<uint64_t> known_
     const std::string pattern = dir_ + "." + base_ + ".XXXXXX";
     std::vector<char> tmpl(pattern.begin(), pattern.end());
     tmpl.push_back('\0');
-    if (tmpl.size() > pending_path_capacity) throw io_error(dest + ": path too long");
+    if (tmpl.size() > pending_path_capacity) throw io_error(dest_ + ": path too long");
     int e = 0;
     {
       // Signals blocked until the name is registered: a signal between
@@ -149,14 +159,18 @@ atomic_file::atomic_file(const std::string& dest, std::optional<uint64_t> known_
         register_pending_temporary(tmpl.data());
       }
     }
-    if (fd_ < 0) throw io_error(dest + ": " + errno_text(e));
+    if (fd_ < 0) throw io_error(dest_ + ": " + errno_text(e));
     fcntl(fd_, F_SETFD, FD_CLOEXEC);
   }
+}
+
+void atomic_file::keep_owner_and_mode(const struct stat* existing) {
   // Replacing a file keeps its owner and group where we may set them (root;
   // an owner for a group it is in), then its permissions (chown clears
   // set-id bits). A new file gets what the umask allows, as with open().
   mode_t mode = 0;
-  if (exists) {
+  if (existing) {
+    const struct stat& st = *existing;
     if (st.st_uid != geteuid() || st.st_gid != getegid()) {
       if (fchown(fd_, st.st_uid, st.st_gid) != 0) (void)!fchown(fd_, uid_t(-1), st.st_gid);
     }

@@ -13,6 +13,8 @@
 // the old file keeps the old image (the name is replaced, not the inode: a
 // failed write must not damage it). A device or a pipe is written in place.
 #pragma once
+#include <sys/stat.h>
+
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -43,6 +45,11 @@ class atomic_file {
   void commit();
 
  private:
+  // The constructor's steps: a file with no name (or a registered named
+  // temporary) in dir_or_dot; then the replaced file's owner and mode
+  // (existing: its stat, or null for a new file).
+  void open_temporary(const std::string& dir_or_dot);
+  void keep_owner_and_mode(const struct stat* existing);
   void discard() noexcept;
   std::string dest_, target_, dir_, base_;
   std::string temp_;       // the named temporary, while one exists

@@ -117,7 +117,7 @@ struct frame_vectors {
   double c[3], h[3], v[3];
   explicit frame_vectors(const float_scene& f) {
     for (int i = 0; i < 3; ++i) {
-      c[i] = f.centre[i];
+      c[i] = f.center[i];
       h[i] = f.horizontal[i];
       v[i] = f.vertical[i];
     }
@@ -136,7 +136,7 @@ struct row_test {
     // The row's plane through the camera origin, spanned by a = centre + sv *
     // vertical (as scalar.h's direction, in double) and horizontal; n its normal.
     for (int k = 0; k < 3; ++k) {
-      rr.a[k] = double(f.centre[k]) + double(sv) * double(f.vertical[k]);
+      rr.a[k] = double(f.center[k]) + double(sv) * double(f.vertical[k]);
       rr.h[k] = double(f.horizontal[k]);
     }
     cross(rr.a, rr.h, n);

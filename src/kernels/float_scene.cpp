@@ -6,33 +6,35 @@
 #include <utility>
 
 namespace raycast {
+namespace {
 
-float_scene prepare_float_scene(const scene& s, int threads) {
+// Values below 2^-64 (camera components relative to the largest, and sky
+// colours) become 0. They cannot change a float result, but as denormals
+// somewhere in the arithmetic they could make the output depend on the
+// FTZ/DAZ bits; above 2^-64 no product or sum in scalar.h is denormal.
+float flush(double x) { return std::abs(x) < 0x1p-64 ? 0.0f : float(x); }
+
+// The camera and the sky, scaled and rounded once (float_scene.h).
+void prepare_camera(float_scene& f, const scene& s) {
   const camera& c = s.cam;
-  float_scene f;
   f.width = c.image_width;
   f.height = c.image_height;
   f.last_col = float(c.image_width - 1);
   f.last_row = float(c.image_height - 1);
   f.mid_col = float(double(c.image_width - 1) / 2.0);
   f.mid_row = float(double(c.image_height - 1) / 2.0);
-  const vec3 centre = -c.focal_length * c.axis_w;
+  const vec3 center = -c.focal_length * c.axis_w;
   f.du = c.image_width == 1 ? 0.0f : 1.0f / f.last_col;
   f.dv = c.image_height == 1 ? 0.0f : 1.0f / f.last_row;
 
   double m = 0.0;
-  for (const vec3& v : {centre, c.horizontal, c.vertical})
+  for (const vec3& v : {center, c.horizontal, c.vertical})
     m = std::max({m, std::abs(v.x), std::abs(v.y), std::abs(v.z)});
   int e = 0;
   std::frexp(m, &e);  // m = x * 2^e with x in [0.5, 1)
   const double scale = std::ldexp(1.0, -e);
-  // Values below 2^-64 (camera components relative to the largest, and sky
-  // colours) become 0. They cannot change a float result, but as denormals
-  // somewhere in the arithmetic they could make the output depend on the
-  // FTZ/DAZ bits; above 2^-64 no product or sum in scalar.h is denormal.
-  const auto flush = [](double x) { return std::abs(x) < 0x1p-64 ? 0.0f : float(x); };
   for (int k = 0; k < 3; ++k) {
-    f.centre[k] = flush(centre[k] * scale);
+    f.center[k] = flush(center[k] * scale);
     f.horizontal[k] = flush(c.horizontal[k] * scale);
     f.vertical[k] = flush(c.vertical[k] * scale);
     f.bottom[k] = flush(s.sky.bottom[k]) + 0.0f;  // + 0: a -0 colour becomes +0
@@ -51,10 +53,52 @@ float_scene prepare_float_scene(const scene& s, int threads) {
     const auto len = [](const float* v) {
       return std::sqrt(double(v[0]) * v[0] + double(v[1]) * v[1] + double(v[2]) * v[2]);
     };
-    f.pixel_spread = 1.01 * (len(f.horizontal) * f.du + len(f.vertical) * f.dv) / len(f.centre);
+    f.pixel_spread = 1.01 * (len(f.horizontal) * f.du + len(f.vertical) * f.dv) / len(f.center);
   }
   f.axis_aligned_camera = f.horizontal[1] == 0 && f.horizontal[2] == 0 && f.vertical[0] == 0 &&
                    f.vertical[2] == 0;
+}
+
+// One sphere's constants in double, each rounded to float once
+// (float_spheres.h), and its culling radius.
+sphere_record record_of(const sphere& b, const point3& origin, float& cull_radius) {
+  const vec3 fo = origin - b.center;
+  // The sphere's own unit, 2^e: max(|f|, r) 2^-e in [0.5, 1) (exact in
+  // double for every finite scene; the float constants then neither
+  // overflow nor underflow but for radii below 2^-126 of the distance).
+  const double size = std::max({std::abs(fo.x), std::abs(fo.y), std::abs(fo.z), b.radius});
+  int unit = 0;
+  std::frexp(size, &unit);
+  const double down = std::ldexp(1.0, -unit);
+  const vec3 fs = fo * down;
+  const double r = b.radius * down;
+  const double f2 = fs.x * fs.x + fs.y * fs.y + fs.z * fs.z;
+  const double cc = f2 - r * r;
+  sphere_record e{};
+  e.fx = float(fs.x);
+  e.fy = float(fs.y);
+  e.fz = float(fs.z);
+  e.c = float(cc);
+  e.r2 = float(r * r);
+  e.inv_r = float(1.0 / r);
+  e.scale = float(std::ldexp(1.0, unit));
+  e.near = f2 < 2.0 * r * r ? 1 : 0;
+  e.inside = cc <= 0.0 ? 1 : 0;
+  {  // from the float constants, as the renderers see the sphere; rounded up
+    const double ff[3] = {e.fx, e.fy, e.fz};
+    const double rf = std::sqrt(double(e.r2));
+    const double wide = rf + 1e-5 * (std::sqrt(ff[0] * ff[0] + ff[1] * ff[1] + ff[2] * ff[2]) + rf);
+    cull_radius = std::nextafter(float(wide), INFINITY);
+  }
+  return e;
+}
+
+}  // namespace
+
+float_scene prepare_float_scene(const scene& s, int threads) {
+  const camera& c = s.cam;
+  float_scene f;
+  prepare_camera(f, s);
 
   // Per-sphere constants in double, each rounded to float once
   // (kernels/float_spheres.h); in parallel for large scenes (each sphere's
@@ -72,43 +116,16 @@ float_scene prepare_float_scene(const scene& s, int threads) {
 #pragma omp parallel for schedule(static) num_threads(team) reduction(|| : any_inside, any_flat, any_normal, any_lit)
   for (size_t k = 0; k < n; ++k) {
     const sphere b = s.sphere_at(k);  // a vector's, or a caller's arrays'
-    const vec3 fo = c.origin - b.center;
-    // The sphere's own unit, 2^e: max(|f|, r) 2^-e in [0.5, 1) (exact in
-    // double for every finite scene; the float constants then neither
-    // overflow nor underflow but for radii below 2^-126 of the distance).
-    const double size = std::max({std::abs(fo.x), std::abs(fo.y), std::abs(fo.z), b.radius});
-    int unit = 0;
-    std::frexp(size, &unit);
-    const double down = std::ldexp(1.0, -unit);
-    const vec3 fs = fo * down;
-    const double r = b.radius * down;
-    const double f2 = fs.x * fs.x + fs.y * fs.y + fs.z * fs.z;
-    const double cc = f2 - r * r;
-    sphere_record& e = sp.rec[k];
-    e.fx = float(fs.x);
-    e.fy = float(fs.y);
-    e.fz = float(fs.z);
-    e.c = float(cc);
-    e.r2 = float(r * r);
-    e.inv_r = float(1.0 / r);
-    e.scale = float(std::ldexp(1.0, unit));
-    e.near = f2 < 2.0 * r * r ? 1 : 0;
-    e.inside = cc <= 0.0 ? 1 : 0;
-    {  // from the float constants, as the renderers see the sphere; rounded up
-      const double ff[3] = {e.fx, e.fy, e.fz};
-      const double rf = std::sqrt(double(e.r2));
-      const double wide = rf + 1e-5 * (std::sqrt(ff[0] * ff[0] + ff[1] * ff[1] + ff[2] * ff[2]) + rf);
-      sp.cull_radius[k] = std::nextafter(float(wide), INFINITY);
-    }
+    const sphere_record& e = sp.rec[k] = record_of(b, c.origin, sp.cull_radius[k]);
     any_inside = any_inside || e.inside;
-    const bool flat = b.shade == shading::flat, lit = b.shade == shading::lit, coloured = flat || lit;
-    sp.red[k] = coloured ? flush(b.flat_color.r) + 0.0f : 0.0f;
-    sp.green[k] = coloured ? flush(b.flat_color.g) + 0.0f : 0.0f;
-    sp.blue[k] = coloured ? flush(b.flat_color.b) + 0.0f : 0.0f;
+    const bool flat = b.shade == shading::flat, lit = b.shade == shading::lit, colored = flat || lit;
+    sp.red[k] = colored ? flush(b.flat_color.r) + 0.0f : 0.0f;
+    sp.green[k] = colored ? flush(b.flat_color.g) + 0.0f : 0.0f;
+    sp.blue[k] = colored ? flush(b.flat_color.b) + 0.0f : 0.0f;
     sp.kind[k] = flat ? shading_kind::flat : lit ? shading_kind::lit : shading_kind::normal;
     any_flat = any_flat || flat;
     any_lit = any_lit || lit;
-    any_normal = any_normal || !coloured;
+    any_normal = any_normal || !colored;
   }
   sp.any_inside = any_inside;
   sp.any_flat = any_flat;

@@ -26,7 +26,7 @@ struct float_scene {
   // pixel's one-sample ray: one pixel across in each direction over the
   // viewport's distance, and 1 % more. Culling widens each radius by it.
   double pixel_spread = 0;
-  float centre[3] = {};      // viewport centre - origin = -focal_length * w, scaled
+  float center[3] = {};      // viewport centre - origin = -focal_length * w, scaled
   float horizontal[3] = {};  // scaled
   float vertical[3] = {};    // scaled
   float bottom[3] = {}, top[3] = {};

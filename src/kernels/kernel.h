@@ -41,7 +41,7 @@ struct kernel_args {
   bool lerp_exact = false;
   // ...and, for 8-bit output, sky colours within [0, 1]: the clamp to [0, 1]
   // before quantizing is a no-op.
-  bool colours_in_unit_range = false;
+  bool colors_in_unit_range = false;
   // The sphere kernel's spheres (kernels/float_spheres.h); n = 0 for the sky.
   sphere_arrays spheres;
   // The frame's row index (kernels/culling.h; built by the renderer, with the

@@ -40,7 +40,7 @@ struct pixel_dir {
 pixel_dir direction(const float_scene& f, int64_t i, int64_t j) {
   const float su = pixel_su(f, i), sv = pixel_sv(f, j);
   float d[3];
-  for (int k = 0; k < 3; ++k) d[k] = (f.centre[k] + su * f.horizontal[k]) + sv * f.vertical[k];
+  for (int k = 0; k < 3; ++k) d[k] = (f.center[k] + su * f.horizontal[k]) + sv * f.vertical[k];
   return {d[1], (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2]};
 }
 
@@ -109,7 +109,7 @@ traced trace(const float_scene& f, const float (&dir)[3]) {
 // The ray through (su, sv): kernels/scalar.h's direction.
 traced trace(const float_scene& f, float su, float sv) {
   float d[3];
-  for (int k = 0; k < 3; ++k) d[k] = (f.centre[k] + su * f.horizontal[k]) + sv * f.vertical[k];
+  for (int k = 0; k < 3; ++k) d[k] = (f.center[k] + su * f.horizontal[k]) + sv * f.vertical[k];
   return trace(f, d);
 }
 
@@ -125,7 +125,7 @@ void hit_normal(const float_scene& f, const traced& tr, float n[3]) {
 }
 
 // The colour of a hit (tr.hit < the sphere count): flat, lit, or 0.5 (N + 1).
-void hit_colour(const float_scene& f, const traced& tr, float out[3]) {
+void hit_color(const float_scene& f, const traced& tr, float out[3]) {
   const float_spheres& sp = f.spheres;
   const size_t hit = tr.hit;
   const float albedo[3] = {sp.red[hit], sp.green[hit], sp.blue[hit]};
@@ -146,13 +146,13 @@ void hit_colour(const float_scene& f, const traced& tr, float out[3]) {
 }
 
 // The colour of the ray at (su, sv), exact: the closest sphere's shading, else the sky.
-void sample_colour(const float_scene& f, float su, float sv, float out[3]) {
+void sample_color(const float_scene& f, float su, float sv, float out[3]) {
   const traced tr = trace(f, su, sv);
   if (tr.hit == f.spheres.size()) {
     const float uy = tr.d[1] / std::sqrt(vmax(tr.n2, FLT_MIN));
     shade(f, clampf((uy + 1.0f) * 0.5f, 0.0f, 1.0f), out);
   } else {
-    hit_colour(f, tr, out);
+    hit_color(f, tr, out);
   }
 }
 
@@ -168,7 +168,7 @@ float pixel_sv(const float_scene& f, int64_t j) {
 
 void scalar_pixel(const float_scene& f, precision p, int64_t i, int64_t j, float out[3]) {
   if (!f.spheres.empty()) {
-    sample_colour(f, pixel_su(f, i), pixel_sv(f, j), out);
+    sample_color(f, pixel_su(f, i), pixel_sv(f, j), out);
     return;
   }
   const pixel_dir d = direction(f, i, j);
@@ -186,23 +186,23 @@ scalar_hit scalar_trace(const float_scene& f, int64_t i, int64_t j) {
   return {int64_t(tr.hit), double(tr.closest) * d_len};
 }
 
-void scalar_pixel_samples(const float_scene& f, const sampling::sample_plan& sp, int64_t i, int64_t j,
+void scalar_pixel_samples(const float_scene& f, const sampling::sample_plan& plan, int64_t i, int64_t j,
                           float out[3]) {
   const float su = pixel_su(f, i), sv = pixel_sv(f, j);
-  const float unit = sampling::offset_unit_of(sp.kind);
+  const float unit = sampling::offset_unit_of(plan.kind);
   const float du = f.du * unit, dv = f.dv * unit;  // exact: a power of two
   float base[3], step_x[3], step_y[3];
   for (int k = 0; k < 3; ++k) {
-    base[k] = (f.centre[k] + su * f.horizontal[k]) + sv * f.vertical[k];
+    base[k] = (f.center[k] + su * f.horizontal[k]) + sv * f.vertical[k];
     step_x[k] = du * f.horizontal[k];
     step_y[k] = dv * f.vertical[k];
   }
   const float_spheres& spheres = f.spheres;
   float flat[3] = {0.0f, 0.0f, 0.0f}, normals[3] = {0.0f, 0.0f, 0.0f}, normal_count = 0.0f;
   float sky_sum = 0.0f, sky_count = 0.0f;
-  for (uint32_t s = 0; s < sp.count; ++s) {
+  for (uint32_t s = 0; s < plan.count; ++s) {
     float xi, eta;
-    sampling::sample_offset_counts(sp, uint32_t(i), uint32_t(j), s, xi, eta);
+    sampling::sample_offset_counts(plan, uint32_t(i), uint32_t(j), s, xi, eta);
     float d[3];
     for (int k = 0; k < 3; ++k) d[k] = (base[k] + xi * step_x[k]) + eta * step_y[k];
     const traced tr = trace(f, d);
@@ -211,7 +211,7 @@ void scalar_pixel_samples(const float_scene& f, const sampling::sample_plan& sp,
       sky_count = sky_count + 1.0f;
     } else if (spheres.kind[tr.hit] != shading_kind::normal) {
       float c[3];
-      hit_colour(f, tr, c);  // the flat or lit colour
+      hit_color(f, tr, c);  // the flat or lit colour
       for (int k = 0; k < 3; ++k) flat[k] = flat[k] + c[k];
     } else {
       float n[3];
@@ -220,7 +220,7 @@ void scalar_pixel_samples(const float_scene& f, const sampling::sample_plan& sp,
       normal_count = normal_count + 1.0f;
     }
   }
-  const float n = float(sp.count);
+  const float n = float(plan.count);
   for (int k = 0; k < 3; ++k)
     out[k] = ((flat[k] + (normals[k] + normal_count) * 0.5f) + (sky_count * f.sky_mid[k] + sky_sum * f.sky_half[k])) / n;
 }

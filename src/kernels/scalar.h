@@ -35,7 +35,7 @@
 // (tests/support/error_bounds.h).
 //
 // Scenes with spheres: kernels/float_spheres.h gives their order (the
-// direction d above, normalized; the sky as in exact mode where no sphere is hit).
+// direction d above, not normalized; the sky as in exact mode where no sphere is hit).
 //
 // Every operation is a single IEEE operation; this file is compiled with
 // -ffp-contract=off, so no fused multiply-add changes a rounding.
@@ -81,7 +81,7 @@ scalar_hit scalar_trace(const float_scene& f, int64_t i, int64_t j);
 // -- the average of the samples' colours 0.5 (N + 1), flat colours and sky,
 // with each affine map applied once per pixel rather than per sample.
 // Both precisions: fast mode has no sampled path of its own.
-void scalar_pixel_samples(const float_scene& f, const sampling::sample_plan& sp, int64_t i, int64_t j,
+void scalar_pixel_samples(const float_scene& f, const sampling::sample_plan& plan, int64_t i, int64_t j,
                           float out[3]);
 
 // Fills the band's pixels (its rows, and its columns: image_band); with

@@ -226,9 +226,9 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
     // Lesson camera: centre = (0, 0, -f), horizontal = (hx, 0, 0), vertical =
     // (0, vy, 0), so scalar.h's d.y = (0 + su*0) + sv*vy and d.z = (-f + su*0)
     // + sv*0: sv*vy and -f up to the sign of a zero, which no square sees.
-    rs.dy = (s.centre[1] + 0.0f) + rs.row_part[1];
+    rs.dy = (s.center[1] + 0.0f) + rs.row_part[1];
     rs.y2 = rs.dy * rs.dy;
-    rs.z2 = s.centre[2] * s.centre[2];
+    rs.z2 = s.center[2] * s.center[2];
     rs.yz2 = rs.y2 + rs.z2;
     rs.nr_a = fast_nr_a * rs.dy;
     rs.nr_b = fast_nr_b * rs.dy;
@@ -303,7 +303,7 @@ void render_sky_rows(const kernel_args& a, const image_band& band, int64_t r0, i
   const bool f32 = band.format == pixel_format::rgb_f32;
   // Shortcut `clamps`: float output needs only the exact lerp; 8-bit output
   // also needs colours in [0, 1].
-  const bool no_clamps = a.lerp_exact && (f32 || a.colours_in_unit_range);
+  const bool no_clamps = a.lerp_exact && (f32 || a.colors_in_unit_range);
   int computed = 0;
   for (int k = 0; k < 3; ++k) computed |= a.constant[k] ? 0 : 1 << k;
   paired = paired && a.lanes && a.mirror;

@@ -157,12 +157,12 @@ struct sample_camera {
       step_x[k] = du * s.horizontal[k];
       step_y[k] = dv * s.vertical[k];
     }
-    lesson = s.axis_aligned_camera && s.centre[0] == 0.0f && s.centre[1] == 0.0f && !std::signbit(s.centre[0]) &&
-             !std::signbit(s.centre[1]) && s.centre[2] != 0.0f;
-    z2 = s.centre[2] * s.centre[2];
+    lesson = s.axis_aligned_camera && s.center[0] == 0.0f && s.center[1] == 0.0f && !std::signbit(s.center[0]) &&
+             !std::signbit(s.center[1]) && s.center[2] != 0.0f;
+    z2 = s.center[2] * s.center[2];
     if (lesson) fz_dz = static_cast<float*>(std::malloc(sp.n * sizeof(float) + 1));
     if (fz_dz)
-      for (size_t k = 0; k < sp.n; ++k) fz_dz[k] = sp.rec[k].fz * s.centre[2];
+      for (size_t k = 0; k < sp.n; ++k) fz_dz[k] = sp.rec[k].fz * s.center[2];
   }
   ~sample_camera() { std::free(fz_dz); }
   sample_camera(const sample_camera&) = delete;
@@ -246,7 +246,7 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
         const vuint column = vuint::iota(uint32_t(i0));
         const vfloat su_i = W == 1 ? vfloat(0.0f) : (to_float(column) - s.mid_col) / s.last_col;  // scalar.h
         vfloat base[3];  // the pixels' one-sample directions
-        for (int k = 0; k < 3; ++k) base[k] = (s.centre[k] + su_i * s.horizontal[k]) + sv_j * s.vertical[k];
+        for (int k = 0; k < 3; ++k) base[k] = (s.center[k] + su_i * s.horizontal[k]) + sv_j * s.vertical[k];
         const sampling::pixel_seeds<vuint> seeds = sampling::seeds_for<K>(plan, column, uint32_t(j));
         sample_sums sums;
         uint32_t t = 0;

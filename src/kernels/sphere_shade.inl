@@ -67,7 +67,7 @@ RAYCAST_INLINE vfloat headlight(const vfloat n[3], const vfloat d[3], vfloat n2)
 // The hit colour of each lane that hit (float_spheres.h): 0.5 (N + 1), the
 // sphere's flat colour, or its lit colour.
 template <int Shades>
-RAYCAST_INLINE void hit_colour(const sphere_arrays& sp, const closest_hit<Shades>& h, const rays& r,
+RAYCAST_INLINE void hit_color(const sphere_arrays& sp, const closest_hit<Shades>& h, const rays& r,
                                vfloat out[3]) {
   vfloat n[3];
   if constexpr ((Shades & normal_shading) != 0) {
@@ -97,14 +97,14 @@ RAYCAST_INLINE void shade(const sky_shader& sky, const sphere_arrays& sp, const 
     return;
   }
   vfloat hit[3];
-  hit_colour(sp, h, r, hit);
+  hit_color(sp, h, r, hit);
   if (all(h.hit)) {
     for (int k = 0; k < 3; ++k) out[k] = hit[k];
     return;
   }
-  vfloat sky_colour[3];
-  sky.shade(r, sky_colour);
-  for (int k = 0; k < 3; ++k) out[k] = select(h.hit, hit[k], sky_colour[k]);
+  vfloat sky_color[3];
+  sky.shade(r, sky_color);
+  for (int k = 0; k < 3; ++k) out[k] = select(h.hit, hit[k], sky_color[k]);
 }
 
 // The per-lane sums of a sampled batch (kernels/scalar.h's order): flat and
@@ -144,8 +144,8 @@ struct sample_sums {
         }
       }
       if constexpr ((Shades & flat_shading) != 0) {  // flat and lit colours
-        vmask coloured = h.hit;
-        if constexpr (mixed<Shades>) coloured = coloured & !(h.kind == shading_kind::normal);
+        vmask colored = h.hit;
+        if constexpr (mixed<Shades>) colored = colored & !(h.kind == shading_kind::normal);
         vfloat c[3] = {h.red, h.green, h.blue};
         if constexpr (Shades == all_shadings) {
           const vmask lit = h.hit & (h.kind == shading_kind::lit);
@@ -154,7 +154,7 @@ struct sample_sums {
             for (int k = 0; k < 3; ++k) c[k] = select(lit, c[k] * light, c[k]);
           }
         }
-        for (int k = 0; k < 3; ++k) flat[k] = flat[k] + select(coloured, c[k], 0.0f);
+        for (int k = 0; k < 3; ++k) flat[k] = flat[k] + select(colored, c[k], 0.0f);
       }
       if (every) return;
     }

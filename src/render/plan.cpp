@@ -28,7 +28,7 @@ plan::plan(const float_scene& f, precision p, unsigned allowed) {
     if (args_.lanes && !spheres && k > 0) break;  // the sky kernel reads x only
     column_part_[k] = table();
     for (int64_t i = 0; i < f.width; ++i)
-      column_part_[k][size_t(i)] = f.centre[k] + pixel_su(f, i) * f.horizontal[k];
+      column_part_[k][size_t(i)] = f.center[k] + pixel_su(f, i) * f.horizontal[k];
     args_.column_part[k] = column_part_[k].get();
   }
   if (args_.lanes && !spheres) {
@@ -49,7 +49,7 @@ plan::plan(const float_scene& f, precision p, unsigned allowed) {
   }
   const bool clamps = allowed & shortcut::clamps;
   args_.lerp_exact = clamps && lerp_exact;
-  args_.colours_in_unit_range = clamps && unit;
+  args_.colors_in_unit_range = clamps && unit;
 }
 
 }  // namespace raycast

@@ -50,7 +50,7 @@ std::optional<invalid_field> validate(const sphere& s, size_t index) {
     return bad(scene_field::sphere_radius, "sphere radius must be at most 1e37 (the float renderers' range)");
   if (s.shade != shading::normal)
     for (int k = 0; k < 3; ++k)
-      if (!(std::abs(s.flat_color[k]) <= max_colour))
+      if (!(std::abs(s.flat_color[k]) <= max_color))
         return bad(scene_field::sphere_color, "colour components must be finite and within +-1e30");
   return std::nullopt;
 }

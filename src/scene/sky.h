@@ -17,13 +17,13 @@ struct sky {
 
 // Largest colour component magnitude accepted: far beyond any HDR sky, and
 // small enough that top - bottom and every lerp stay finite in float.
-inline constexpr double max_colour = 1e30;
+inline constexpr double max_color = 1e30;
 
 // Why the sky cannot be rendered, naming the colour, or nullopt.
 inline std::optional<invalid_field> validate(const sky& s) {
   for (const auto& [field, c] : {std::pair{scene_field::sky_bottom, s.bottom}, {scene_field::sky_top, s.top}})
     for (int k = 0; k < 3; ++k)
-      if (!(std::abs(c[k]) <= max_colour))
+      if (!(std::abs(c[k]) <= max_color))
         return invalid_field{field, "colour components must be finite and within +-1e30"};
   return std::nullopt;
 }
