@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "backend_test.h"
 #include "render_support.h"
 #include "scene/builtin.h"
 #include "scene/sampler.h"
@@ -213,13 +214,7 @@ std::vector<backend_param> simd_params() {
   return v;
 }
 
-class SampledEquivalence : public ::testing::TestWithParam<backend_param> {
- protected:
-  void SetUp() override {
-    if (auto why = backend_unavailable(GetParam().which))
-      GTEST_SKIP() << to_string(GetParam().which) << " skipped: " << *why;
-  }
-};
+class SampledEquivalence : public raycast_test::backend_test<backend_param> {};
 
 // Many samples per pixel: the SIMD bytes and floats are the scalar renderer's
 // (both precisions: the sampled path is exact), for every sampler, at sizes

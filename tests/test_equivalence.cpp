@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "backend_test.h"
 #include "render_support.h"
 
 namespace {
@@ -89,13 +90,7 @@ std::vector<param> all_params() {
   return v;
 }
 
-class Equivalence : public ::testing::TestWithParam<param> {
- protected:
-  void SetUp() override {
-    if (auto why = backend_unavailable(GetParam().which))
-      GTEST_SKIP() << to_string(GetParam().which) << " skipped: " << *why;
-  }
-};
+class Equivalence : public raycast_test::backend_test<param> {};
 
 TEST_P(Equivalence, EveryWidthAndHeight) {
   const param& prm = GetParam();
@@ -150,10 +145,9 @@ INSTANTIATE_TEST_SUITE_P(AllBackends, Equivalence, ::testing::ValuesIn(all_param
 // how. The one test of thread invariance: large enough that every thread
 // gets rows (a job under 2^17 pixels per thread stays on one), and, with
 // images of fewer rows than threads, small enough that some get none.
-class ThreadEquivalence : public ::testing::TestWithParam<backend> {};
+class ThreadEquivalence : public raycast_test::backend_test<backend> {};
 
 TEST_P(ThreadEquivalence, AnyThreadCountGivesTheSameBytes) {
-  if (auto why = backend_unavailable(GetParam())) GTEST_SKIP() << *why;
   for (const auto& [w, h] : {std::pair<int64_t, int64_t>{1031, 1000}, {65536, 5}, {3, 2}}) {
     const scene s = raycast_test::make_scene(raycast_test::sized(w, h));
     for (precision p : {precision::exact, precision::fast}) {
@@ -178,10 +172,9 @@ INSTANTIATE_TEST_SUITE_P(AllBackends, ThreadEquivalence,
 // The kernel writes exactly W x 3 bytes (or floats) per row: nothing before or
 // after a row's pixels changes, at every tail length, even with a row stride
 // wider than the row.
-class Tails : public ::testing::TestWithParam<backend> {};
+class Tails : public raycast_test::backend_test<backend> {};
 
 TEST_P(Tails, NoByteOutsideTheRowIsWritten) {
-  if (auto why = backend_unavailable(GetParam())) GTEST_SKIP() << *why;
   for (pixel_format f : {pixel_format::rgb8, pixel_format::rgb_f32}) {
     for (int64_t w = 1; w <= 40; ++w) {
       camera_params cp;

@@ -16,6 +16,7 @@
 #include <xmmintrin.h>
 #endif
 
+#include "backend_test.h"
 #include "render_support.h"
 #include "stiff_cases.h"
 
@@ -29,13 +30,8 @@ using raycast_test::mode;
 using raycast_test::stiff_case;
 using raycast_test::stiff_cases;
 
-class Numerics : public ::testing::TestWithParam<mode> {
+class Numerics : public raycast_test::backend_test<mode> {
  protected:
-  void SetUp() override {
-    if (auto why = backend_unavailable(GetParam().which))
-      GTEST_SKIP() << to_string(GetParam().which) << " skipped: " << *why;
-  }
-
   double bound(const raycast::sky& s) const {
     if (GetParam().which == backend::reference)  // a double render rounded to float
       return 1.2e-7 * colour_scale(s);
@@ -331,11 +327,10 @@ INSTANTIATE_TEST_SUITE_P(AllBackends, Numerics, ::testing::ValuesIn(raycast_test
 
 // All backends agree with each other on the degenerate sizes too: in exact
 // mode, the same bits as the scalar float renderer.
-class DegenerateSizes : public ::testing::TestWithParam<backend> {};
+class DegenerateSizes : public raycast_test::backend_test<backend> {};
 
 TEST_P(DegenerateSizes, EveryBackendGivesTheScalarRenderersBits) {
   const backend b = GetParam();
-  if (auto why = backend_unavailable(b)) GTEST_SKIP() << to_string(b) << ": " << *why;
   for (auto [w, h] : {std::pair<int64_t, int64_t>{1, 1}, {1, 225}, {400, 1}, {3, 300000}}) {
     camera_params p;
     p.image_width = w;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "backend_test.h"
 #include "render_support.h"
 
 namespace {
@@ -83,10 +84,9 @@ camera_params to_params(const book_camera& c, int64_t W, int64_t H) {
 
 using raycast_test::mode;
 
-class PositionableCamera : public ::testing::TestWithParam<mode> {};
+class PositionableCamera : public raycast_test::backend_test<mode> {};
 
 TEST_P(PositionableCamera, MatchesTheBooksCameraComputedIndependently) {
-  if (auto why = backend_unavailable(GetParam().which)) GTEST_SKIP() << *why;
   for (const named_camera& nc : cameras()) {
     SCOPED_TRACE(nc.name);
     for (auto [W, H] : {std::pair<int64_t, int64_t>{67, 31}, {400, 225}, {1, 1}}) {
@@ -119,11 +119,10 @@ INSTANTIATE_TEST_SUITE_P(AllBackends, PositionableCamera, ::testing::ValuesIn(ra
 
 // In exact mode a tilted camera runs the general kernel path on every SIMD
 // backend and still gives the scalar float renderer's bits.
-class TiltedCamera : public ::testing::TestWithParam<backend> {};
+class TiltedCamera : public raycast_test::backend_test<backend> {};
 
 TEST_P(TiltedCamera, ExactModeIsBitIdenticalToTheScalarRenderer) {
   const backend b = GetParam();
-  if (auto why = backend_unavailable(b)) GTEST_SKIP() << to_string(b) << ": " << *why;
   for (const named_camera& nc : cameras()) {
     const scene s = raycast_test::make_scene(to_params(nc.cam, 131, 37));
     for (pixel_format f : {pixel_format::rgb8, pixel_format::rgb_f32})

@@ -8,6 +8,7 @@
 
 #include "reference/reference.h"
 #include "render/render.h"
+#include "backend_test.h"
 #include "render_support.h"
 
 namespace raycast {
@@ -63,15 +64,15 @@ TEST(Backends, ReferenceAndScalarRunEverywhere) {
 }
 
 // Every backend this machine runs; the others are skipped, and must refuse.
-class RendererTest : public ::testing::TestWithParam<backend> {
+class RendererTest : public raycast_test::backend_test<backend> {
  protected:
   void SetUp() override {
-    if (auto why = backend_unavailable(GetParam())) {
+    if (backend_unavailable(GetParam())) {
       render_options o;
       o.which = GetParam();
       EXPECT_THROW(renderer(make_scene(), o), unsupported_backend);
-      GTEST_SKIP() << to_string(GetParam()) << " does not run here: " << *why;
     }
+    backend_test::SetUp();
   }
   renderer make(const scene& s, int threads) const {
     render_options o;

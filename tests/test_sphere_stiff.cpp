@@ -16,6 +16,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "backend_test.h"
 #include "render_support.h"
 #include "sphere_numerics.h"
 
@@ -65,13 +66,7 @@ std::vector<param> backend_params() {
   return v;
 }
 
-class SphereStiffBackend : public ::testing::TestWithParam<param> {
- protected:
-  void SetUp() override {
-    if (auto why = backend_unavailable(GetParam().which))
-      GTEST_SKIP() << to_string(GetParam().which) << " skipped: " << *why;
-  }
-};
+class SphereStiffBackend : public raycast_test::backend_test<param> {};
 
 TEST_P(SphereStiffBackend, BitIdenticalToScalar) {
   const scene s = raycast_test::scene_of(sphere_stiff_cases()[GetParam().index]);
@@ -110,8 +105,9 @@ TEST_P(SphereStiffNumerics, ExactAwayFromSilhouettesAndNoWorseThanTheBookInFloat
   // naive formula hit nothing right (overflow: its maximum is over no pixel,
   // and how it fails differs between x86 and AArch64), it is no yardstick.
   EXPECT_LE(ours.max_rel_distance_err, 7e-7);
-  if (naive.false_hits_away + naive.false_misses_away + naive.wrong_object_away == 0)
+  if (naive.false_hits_away + naive.false_misses_away + naive.wrong_object_away == 0) {
     EXPECT_LE(ours.max_rel_distance_err, std::max(naive.max_rel_distance_err, 0x1p-22));
+  }
   EXPECT_LE(ours.max_lsb_away, naive.max_lsb_away);
   EXPECT_LE(ours.max_lsb, naive.max_lsb);
   RecordProperty("ours", describe(ours));

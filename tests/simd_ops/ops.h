@@ -5,10 +5,12 @@
 // standard-library code is ever compiled with an ISA's flags, so no inline
 // function built for AVX-512 can be picked by the linker for the others.
 #pragma once
+#include <cstdint>
 
 namespace raycast_test {
 
-// Arrays hold `lanes` floats per channel; byte outputs 3 * lanes per pack.
+// Arrays hold `lanes` floats (or 32-bit integers) per channel; byte outputs
+// 3 * lanes per pack.
 struct simd_ops {
   int lanes;
   void (*load_store)(const float* in, float* out);
@@ -34,6 +36,31 @@ struct simd_ops {
                   bool* any_ge, bool* none_ge, bool* all_ge, float* not_ge, float* empty);
   // copysign(mag, sign).
   void (*copy_sign)(const float* mag, const float* sign, float* out);
+  // select(x == y, a, b), every operand a vector.
+  void (*select_equal)(const float* x, const float* y, const float* a, const float* b, float* out);
+  // max(a, b), min(a, b) and clamp(a, lo, hi) with scalar bounds.
+  void (*min_max)(const float* a, const float* b, float lo, float hi, float* mx, float* mn, float* clamped);
+  // a * b + c (two roundings: nothing fused) and a / sqrt(b).
+  void (*arithmetic)(const float* a, const float* b, const float* c, float* mul_add, float* div_sqrt);
+  void (*rsqrt_est)(const float* in, float* out);
+
+  // vint (no load or store of its own: lanes move in and out by their bytes).
+  void (*splat_int)(int32_t x, int32_t* out);
+  void (*to_int)(const float* in, int32_t* out);
+  void (*reverse_ints)(const int32_t* in, int32_t* out);
+  // vuint: vuint(s) and vuint::iota(s).
+  void (*uint_splat_iota)(uint32_t s, uint32_t* splat, uint32_t* iota);
+  // + - * ^ & | (wrapping).
+  void (*uint_arithmetic)(const uint32_t* a, const uint32_t* b, uint32_t* add, uint32_t* sub, uint32_t* mul,
+                          uint32_t* bit_xor, uint32_t* bit_and, uint32_t* bit_or);
+  // a >> n and a << n, n known only at run time.
+  void (*uint_shift)(const uint32_t* a, int n, uint32_t* shr, uint32_t* shl);
+  // a >> k and a << k for k = 0 ... 31, each a compile-time count (as the
+  // samplers shift), at shr + k * lanes and shl + k * lanes.
+  void (*uint_shift_constants)(const uint32_t* a, uint32_t* shr, uint32_t* shl);
+  void (*uint_to_float)(const uint32_t* in, float* out);
+  // as_uint(x), and as_float(as_uint(x)).
+  void (*float_bits)(const float* in, uint32_t* bits, float* back);
 };
 
 namespace sse2 { extern const simd_ops ops; }

@@ -63,6 +63,77 @@ void compare(const float* a, const float* b, float* ge, float* le, float* both, 
 void copy_sign(const float* mag, const float* sign, float* out) {
   store(out, copysign(vfloat::load(mag), vfloat::load(sign)));
 }
+void select_equal(const float* x, const float* y, const float* a, const float* b, float* out) {
+  store(out, select(vfloat::load(x) == vfloat::load(y), vfloat::load(a), vfloat::load(b)));
+}
+void min_max(const float* a, const float* b, float lo, float hi, float* mx, float* mn, float* clamped) {
+  const vfloat x = vfloat::load(a), y = vfloat::load(b);
+  store(mx, max(x, y));
+  store(mn, min(x, y));
+  store(clamped, clamp(x, lo, hi));
+}
+void arithmetic(const float* a, const float* b, const float* c, float* mul_add, float* div_sqrt) {
+  const vfloat x = vfloat::load(a), y = vfloat::load(b);
+  store(mul_add, x * y + vfloat::load(c));
+  store(div_sqrt, x / sqrt(y));
+}
+void rsqrt_estimate(const float* in, float* out) { store(out, rsqrt_est(vfloat::load(in))); }
+
+// The integer vectors' lanes, in and out by their bytes (lane 0 first in
+// memory on every instruction set here).
+static_assert(sizeof(vint) == 4 * N && sizeof(vuint) == 4 * N);
+vint ints(const int32_t* p) {
+  vint v;
+  __builtin_memcpy(&v, p, sizeof v);
+  return v;
+}
+void put(int32_t* p, vint v) { __builtin_memcpy(p, &v, sizeof v); }
+vuint uints(const uint32_t* p) {
+  vuint v;
+  __builtin_memcpy(&v, p, sizeof v);
+  return v;
+}
+void put(uint32_t* p, vuint v) { __builtin_memcpy(p, &v, sizeof v); }
+
+void splat(int32_t x, int32_t* out) { put(out, splat_int(x)); }
+void truncate(const float* in, int32_t* out) { put(out, to_int(vfloat::load(in))); }
+void reverse_ints(const int32_t* in, int32_t* out) { put(out, reverse(ints(in))); }
+void uint_splat_iota(uint32_t s, uint32_t* splat, uint32_t* iota) {
+  put(splat, vuint(s));
+  put(iota, vuint::iota(s));
+}
+void uint_arithmetic(const uint32_t* a, const uint32_t* b, uint32_t* add, uint32_t* sub, uint32_t* mul,
+                     uint32_t* bit_xor, uint32_t* bit_and, uint32_t* bit_or) {
+  const vuint x = uints(a), y = uints(b);
+  put(add, x + y);
+  put(sub, x - y);
+  put(mul, x * y);
+  put(bit_xor, x ^ y);
+  put(bit_and, x & y);
+  put(bit_or, x | y);
+}
+void uint_shift(const uint32_t* a, int n, uint32_t* shr, uint32_t* shl) {
+  const vuint x = uints(a);
+  put(shr, x >> n);
+  put(shl, x << n);
+}
+template <int K>
+void shift_by_constants(vuint x, uint32_t* shr, uint32_t* shl) {
+  if constexpr (K < 32) {
+    put(shr + K * N, x >> K);
+    put(shl + K * N, x << K);
+    shift_by_constants<K + 1>(x, shr, shl);
+  }
+}
+void uint_shift_constants(const uint32_t* a, uint32_t* shr, uint32_t* shl) {
+  shift_by_constants<0>(uints(a), shr, shl);
+}
+void uint_to_float(const uint32_t* in, float* out) { store(out, to_float(uints(in))); }
+void float_bits(const float* in, uint32_t* bits, float* back) {
+  const vuint u = as_uint(vfloat::load(in));
+  put(bits, u);
+  store(back, as_float(u));
+}
 
 }  // namespace
 
@@ -79,7 +150,9 @@ extern const simd_ops ops = {
 #else
     nullptr,
 #endif
-    compare, copy_sign,
+    compare, copy_sign, select_equal, min_max, arithmetic, rsqrt_estimate,
+    splat, truncate, reverse_ints, uint_splat_iota, uint_arithmetic, uint_shift, uint_shift_constants,
+    uint_to_float, float_bits,
 };
 
 }  // namespace raycast_test::RAYCAST_ISA
