@@ -5,6 +5,7 @@
 #include <dlfcn.h>
 
 #include <array>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -14,13 +15,12 @@
 
 #include "io/module_loader.h"
 #include "raycast/raycast.h"
+#include "scene/settings.h"
 
 namespace py = pybind11;
 namespace rc = raycast::api;
 
 namespace {
-
-using triple = std::array<double, 3>;
 
 // The address the last render read centres from: the tests' proof that an
 // array was used in place.
@@ -64,36 +64,57 @@ rc::scene scene_of(const std::string& kind, const std::string& source) {
   return rc::scene{};
 }
 
-py::array render_image(const std::string& kind, const std::string& source, std::optional<py::array> centers,
-                 std::optional<py::array> radii, std::optional<py::array> colors, const std::string& shade,
-                 std::optional<int64_t> width, std::optional<int64_t> height, std::optional<double> aspect,
-                 std::optional<triple> lookfrom, std::optional<triple> lookat, std::optional<triple> vup,
-                 std::optional<double> vfov, std::optional<double> viewport_height,
-                 std::optional<double> focal_length, std::optional<triple> sky_bottom,
-                 std::optional<triple> sky_top, const std::string& backend, const std::string& precision,
-                 int threads, int64_t samples, const std::string& sampler, uint64_t seed,
-                 std::optional<std::array<int64_t, 4>> region, const std::string& dtype) {
-  rc::scene s = scene_of(kind, source);
-  // The command line's rules for overriding a scene's camera.
+raycast::point3 internal(const rc::vec3& v) { return raycast::point3(v[0], v[1], v[2]); }
+rc::vec3 external(const raycast::point3& v) { return {v.x, v.y, v.z}; }
+
+// The camera and sky keywords (text, as the command line spells them) over
+// the scene's: the input table's parsers, ranges and derived settings, as
+// for the command line's options; errors name the scene file's key.
+void apply_camera_keywords(rc::scene& s, const std::map<std::string, std::string>& keywords) {
+  raycast::settings layer;
+  for (const auto& [keyword, text] : keywords) {
+    const raycast::setting* row = nullptr;
+    for (const raycast::setting& r : raycast::scene_settings())
+      if (r.keyword == keyword) row = &r;
+    if (!row) value_error(keyword, "is not a camera or sky keyword");
+    raycast::given g;
+    g.source = std::string(row->file_key);
+    if (auto e = raycast::parse_value(*row, text, g)) value_error(g.source, *e);
+    layer[row->id] = std::move(g);
+  }
+  if (auto e = raycast::check_groups(raycast::scene_settings(), layer)) value_error(e->source, e->message);
   rc::camera& c = s.cam;
-  if (width) c.width = *width;
-  if (aspect) c.aspect = *aspect;
-  if (height) c.height = *height;
-  if (viewport_height) {
-    if (vfov) value_error("vfov", "replaces viewport_height; give one of them");
-    c.viewport_height = *viewport_height;
-    c.vfov.reset();
-  }
-  if (focal_length) c.focal_length = *focal_length;
-  if (lookfrom) c.lookfrom = *lookfrom;
-  if (lookat) c.lookat = *lookat;
-  if (vup) {
-    c.vup = *vup;
-    if (!c.lookat) c.lookat = rc::vec3{c.lookfrom[0], c.lookfrom[1], c.lookfrom[2] - 1.0};
-  }
-  if (vfov) c.vfov = *vfov;
-  if (sky_bottom) s.sky.bottom = *sky_bottom;
-  if (sky_top) s.sky.top = *sky_top;
+  raycast::camera_params cp;
+  cp.aspect_ratio = c.aspect;
+  cp.image_width = c.width;
+  cp.image_height = c.height;
+  cp.viewport_height = c.viewport_height;
+  cp.focal_length = c.focal_length;
+  cp.origin = internal(c.lookfrom);
+  if (c.lookat) cp.lookat = internal(*c.lookat);
+  cp.vup = internal(c.vup);
+  cp.vfov_degrees = c.vfov;
+  raycast::sky sk{internal(s.sky.bottom), internal(s.sky.top)};
+  if (auto e = raycast::resolve(layer, cp, sk)) value_error(e->source, e->message);
+  c.aspect = cp.aspect_ratio;
+  c.width = cp.image_width;
+  c.height = cp.image_height;
+  c.viewport_height = cp.viewport_height;
+  c.focal_length = cp.focal_length;
+  c.lookfrom = external(cp.origin);
+  if (cp.lookat) c.lookat = external(*cp.lookat);
+  c.vup = external(cp.vup);
+  c.vfov = cp.vfov_degrees;
+  s.sky = {external(sk.bottom), external(sk.top)};
+}
+
+py::array render_image(const std::string& kind, const std::string& source, std::optional<py::array> centers,
+                       std::optional<py::array> radii, std::optional<py::array> colors, const std::string& shade,
+                       const std::map<std::string, std::string>& camera, const std::string& backend,
+                       const std::string& precision, int threads, int64_t samples, const std::string& sampler,
+                       uint64_t seed, std::optional<std::array<int64_t, 4>> region, const std::string& dtype) {
+  rc::scene s = scene_of(kind, source);
+  apply_camera_keywords(s, camera);
 
   const rc::shading sh = shading_of(shade);
   if (centers || radii || colors) {
