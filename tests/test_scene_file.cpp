@@ -103,8 +103,11 @@ TEST(SceneFile, TheInputTablesDefaultsAreTheScenes) {
   EXPECT_EQ(cp.origin, lesson.camera.origin);
   EXPECT_EQ(sk.bottom, lesson.sky.bottom);
   EXPECT_EQ(sk.top, lesson.sky.top);
-  for (const setting& row : scene_settings())
-    if (!row.file_key.empty()) EXPECT_EQ(find_file_key(row.file_key), &row);
+  for (const setting& row : scene_settings()) {
+    if (!row.file_key.empty()) {
+      EXPECT_EQ(find_file_key(row.file_key), &row);
+    }
+  }
 }
 
 TEST(SceneFile, EmptyObjectIsTheLesson) {

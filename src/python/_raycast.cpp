@@ -15,7 +15,7 @@
 
 #include "io/module_loader.h"
 #include "raycast/raycast.h"
-#include "scene/settings.h"
+#include "raycast/inputs.h"
 
 namespace py = pybind11;
 namespace rc = raycast::api;
@@ -57,20 +57,11 @@ rc::shading shading_of(const std::string& s) {
   value_error("shade", "'" + s + "' is not one of normal, flat, lit");
 }
 
-rc::scene scene_of(const std::string& kind, const std::string& source) {
-  if (kind == "builtin") return rc::builtin_scene(source);
-  if (kind == "file") return rc::load_scene(source);
-  if (kind == "json") return rc::parse_scene(source);
-  return rc::scene{};
-}
-
-raycast::point3 internal(const rc::vec3& v) { return raycast::point3(v[0], v[1], v[2]); }
-rc::vec3 external(const raycast::point3& v) { return {v.x, v.y, v.z}; }
-
-// The camera and sky keywords (text, as the command line spells them) over
-// the scene's: the input table's parsers, ranges and derived settings, as
-// for the command line's options; errors name the scene file's key.
-void apply_camera_keywords(rc::scene& s, const std::map<std::string, std::string>& keywords) {
+// The camera and sky keywords (text, as the command line spells them),
+// parsed by the input table's parsers into settings that override the
+// scene's keys as the command line's options do; errors name the scene
+// file's key ("camera.vfov").
+raycast::settings keyword_settings(const std::map<std::string, std::string>& keywords) {
   raycast::settings layer;
   for (const auto& [keyword, text] : keywords) {
     const raycast::setting* row = nullptr;
@@ -83,29 +74,7 @@ void apply_camera_keywords(rc::scene& s, const std::map<std::string, std::string
     layer[row->id] = std::move(g);
   }
   if (auto e = raycast::check_groups(raycast::scene_settings(), layer)) value_error(e->source, e->message);
-  rc::camera& c = s.cam;
-  raycast::camera_params cp;
-  cp.aspect_ratio = c.aspect;
-  cp.image_width = c.width;
-  cp.image_height = c.height;
-  cp.viewport_height = c.viewport_height;
-  cp.focal_length = c.focal_length;
-  cp.origin = internal(c.lookfrom);
-  if (c.lookat) cp.lookat = internal(*c.lookat);
-  cp.vup = internal(c.vup);
-  cp.vfov_degrees = c.vfov;
-  raycast::sky sk{internal(s.sky.bottom), internal(s.sky.top)};
-  if (auto e = raycast::resolve(layer, cp, sk)) value_error(e->source, e->message);
-  c.aspect = cp.aspect_ratio;
-  c.width = cp.image_width;
-  c.height = cp.image_height;
-  c.viewport_height = cp.viewport_height;
-  c.focal_length = cp.focal_length;
-  c.lookfrom = external(cp.origin);
-  if (cp.lookat) c.lookat = external(*cp.lookat);
-  c.vup = external(cp.vup);
-  c.vfov = cp.vfov_degrees;
-  s.sky = {external(sk.bottom), external(sk.top)};
+  return layer;
 }
 
 py::array render_image(const std::string& kind, const std::string& source, std::optional<py::array> centers,
@@ -113,8 +82,7 @@ py::array render_image(const std::string& kind, const std::string& source, std::
                        const std::map<std::string, std::string>& camera, const std::string& backend,
                        const std::string& precision, int threads, int64_t samples, const std::string& sampler,
                        uint64_t seed, std::optional<std::array<int64_t, 4>> region, const std::string& dtype) {
-  rc::scene s = scene_of(kind, source);
-  apply_camera_keywords(s, camera);
+  rc::scene s = rc::scene_with(kind, source, keyword_settings(camera));
 
   const rc::shading sh = shading_of(shade);
   if (centers || radii || colors) {

@@ -42,11 +42,11 @@ std::vector<setting> build() {
        keep("Built-in scene (" + builtin_scene_list() +
             ") or a .json scene file, whose settings the other options override")});
   run({format, "--format", "", "", "format", vt::name, {}, io::format_name_list(), "FMT", "",
-       "overrides the extension"});
+       "overrides the extension", 0, true});
   run({setting_id::backend, "--backend", "", "", "backend", vt::name, {}, backends, "NAME",
-       "auto: the best this CPU runs"});
+       "auto: the best this CPU runs", ""});
   run({setting_id::precision, "--precision", "", "", "precision", vt::name, {}, precisions, "MODE",
-       to_string(default_precision)});
+       to_string(default_precision), ""});
   run({threads, "--threads", "", "", "threads", vt::integer, {1, 1024}, {}, "N", "all cores", "Render threads"});
   run({samples, "--samples", "", "", "samples", vt::integer, {1, double(max_samples)}, {}, "N", "1",
        "Samples per pixel, averaged (antialiasing); 1 is the pixel's own point"});

@@ -6,7 +6,9 @@
 // the library and the Python module check their options with its rows.
 #pragma once
 #include <span>
+#include <string>
 
+#include "raycast/raycast.h"
 #include "scene/settings.h"
 
 namespace raycast {
@@ -15,3 +17,13 @@ std::span<const setting> input_table();
 const setting& input_row(setting_id id);
 
 }  // namespace raycast
+
+namespace raycast::api {
+
+// A scene -- kind "builtin" (source: its name), "file" (a path), "json" (the
+// text) or "" (the sky alone) -- with settings merged over its camera and
+// sky keys before they are resolved, as the command line's options over a
+// scene file: the Python module's keywords (errors name the scene file's key).
+scene scene_with(const std::string& kind, const std::string& source, const settings& over);
+
+}  // namespace raycast::api

@@ -235,6 +235,25 @@ scene parse_scene(const std::string& json_text) {
   return from_internal(std::get<scene_params>(parsed));
 }
 
+scene scene_with(const std::string& kind, const std::string& source, const settings& over) {
+  scene_file_contents c;
+  if (kind == "builtin") {
+    c.scene = to_internal(builtin_scene(source));
+  } else if (kind == "file" || kind == "json") {
+    auto read = kind == "file" ? read_scene_file(source) : read_scene_text(source);
+    if (auto* e = std::get_if<scene_file_error>(&read)) {
+      if (kind == "json") invalid(e->path, e->message);
+      throw error(e->path.empty() ? error::kind::io : error::kind::invalid_argument, e->path,
+                  source + ": " + e->message);
+    }
+    c = std::move(std::get<scene_file_contents>(read));
+  }
+  settings merged = c.keys;
+  merge(merged, over, scene_settings());
+  if (auto e = resolve(merged, c.scene.camera, c.scene.sky)) invalid(e->source, e->message);
+  return from_internal(c.scene);
+}
+
 struct job::impl {
   std::optional<renderer> r;
   pixel_rect region;

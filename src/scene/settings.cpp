@@ -1,9 +1,9 @@
 #include "scene/settings.h"
 
-#include <cerrno>
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
-#include <cstdlib>
 
 namespace raycast {
 namespace {
@@ -162,9 +162,14 @@ std::optional<std::string> parse_region(std::string_view text, std::array<int64_
 }
 
 std::optional<std::string> parse_name(std::string_view text, std::span<const std::string_view> names,
-                                      size_t& index) {
+                                      size_t& index, bool any_case) {
+  const auto same = [&](std::string_view name) {
+    if (!any_case) return name == text;
+    return std::equal(name.begin(), name.end(), text.begin(), text.end(),
+                      [](char a, char b) { return std::tolower((unsigned char)a) == std::tolower((unsigned char)b); });
+  };
   for (index = 0; index < names.size(); ++index)
-    if (names[index] == text) return std::nullopt;
+    if (same(names[index])) return std::nullopt;
   std::string list;
   for (std::string_view n : names) list += (list.empty() ? "" : ", ") + std::string(n);
   return quote_token(text) + " is not one of " + list;
@@ -177,7 +182,7 @@ std::optional<std::string> parse_value(const setting& row, std::string_view text
     case vt::real: return parse_real(text, g.v.real);
     case vt::aspect: return parse_aspect(text, g.v.real);
     case vt::triple: return parse_triple(text, g.v.triple, &g.tokens);
-    case vt::name: return parse_name(text, row.names, g.v.name);
+    case vt::name: return parse_name(text, row.names, g.v.name, row.any_case);
     case vt::region: return parse_region(text, g.v.region);
     case vt::seed: return parse_seed(text, g.v.seed);
     case vt::text: g.v.text = std::string(text); return std::nullopt;

@@ -93,6 +93,7 @@ struct setting {
   // viewport_height, origin or lookfrom): one source gives one of them, and
   // a later source's replaces an earlier source's.
   uint8_t group = 0;
+  bool any_case = false;  // value_type::name: "PNG" is "png"
 };
 
 // The scene's rows (camera and sky), in the table's order; the run's rows
@@ -148,7 +149,8 @@ std::optional<std::string> parse_aspect(std::string_view text, double& value);
 std::optional<std::string> parse_triple(std::string_view text, vec3& value, std::array<std::string, 3>* tokens = nullptr);
 std::optional<std::string> parse_seed(std::string_view text, uint64_t& value);
 std::optional<std::string> parse_region(std::string_view text, std::array<int64_t, 4>& value);
-std::optional<std::string> parse_name(std::string_view text, std::span<const std::string_view> names, size_t& index);
+std::optional<std::string> parse_name(std::string_view text, std::span<const std::string_view> names, size_t& index,
+                                      bool any_case = false);
 
 // Parses text as row's type into g (g.v, g.tokens); the range is checked later.
 std::optional<std::string> parse_value(const setting& row, std::string_view text, given& g);
