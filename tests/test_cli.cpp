@@ -527,6 +527,11 @@ TEST_F(Cli, RangeErrorsSayTooSmallOrTooLargeWithTheTokenAsTyped) {
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.err, want);
   }
+  // CLI11's own messages quote no more of a token either.
+  const run_result bogus = box.run({"--" + std::string(1000, 'x'), "-o", "a.ppm"});
+  EXPECT_EQ(bogus.exit_code, 2);
+  EXPECT_EQ(bogus.err, "raycast: error: The following argument was not expected: --" + std::string(30, 'x') +
+                           "\u2026 (see --help)\n");
   write_file(box.work() / "w.json", "{\"camera\": {\"width\": 0}}");
   const run_result r = box.run({"--scene", "w.json", "-o", "a.ppm"});
   EXPECT_EQ(r.err, "raycast: error: --scene: w.json: camera.width: '0' is too small (at least 1) (at line 1, column 22: 0)\n");

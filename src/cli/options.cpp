@@ -86,6 +86,22 @@ settings given_settings(const CLI::App& app, const command_line& cl) {
   return s;
 }
 
+// CLI11's message with each word longer than a token excerpt cut short
+// ("The following argument was not expected: --xxxx…").
+std::string cut_long_words(std::string_view message) {
+  std::string r;
+  size_t start = 0;
+  while (start <= message.size()) {
+    size_t end = message.find(' ', start);
+    if (end == std::string_view::npos) end = message.size();
+    const std::string word = quote_token(message.substr(start, end - start));  // 'word', cut
+    r += word.substr(1, word.size() - 2);
+    if (end < message.size()) r += ' ';
+    start = end + 1;
+  }
+  return r;
+}
+
 // The row a camera or sky field is set by (the camera position has two).
 setting_id row_for(scene_field f, const settings& s) {
   switch (f) {
@@ -232,7 +248,7 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
     app.parse(int(split_argv.size()), split_argv.data());
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return {std::nullopt, app.exit(e, out, err)};
-    err << "raycast: error: " << printable(e.what()) << " (see --help)\n";
+    err << "raycast: error: " << printable(cut_long_words(e.what())) << " (see --help)\n";
     return {std::nullopt, 2};
   }
   if (cl.flags[size_t(version)]) {
