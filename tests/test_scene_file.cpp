@@ -81,6 +81,9 @@ TEST(SceneFile, AnAspectIsANumberOrAStringTheCommandLineTakes) {
         << aspect;
   for (const char* aspect : {"\"16:0\"", "\"wide\"", "\" 16:9\"", "\"-16:9\"", "true", "-1", "0"})
     EXPECT_EQ(error_path(std::string(R"({"camera": {"aspect": )") + aspect + "}}"), "camera.aspect") << aspect;
+  // A number is JSON's, then the command line's: no leading zeros, no bare point.
+  for (const char* n : {"01", "1.", "-01.5"})
+    EXPECT_EQ(error_path(std::string(R"({"camera": {"vfov": )") + n + "}}"), "camera.vfov") << n;
 }
 
 // The table's defaults, as --help shows them, are the camera's and sky's.

@@ -287,6 +287,26 @@ class reader {
   mutable const char* line_start_ = text_;
 };
 
+// Whether text is a number as JSON writes it: -?(0|[1-9][0-9]*)(.[0-9]+)?([eE][+-]?[0-9]+)?
+bool json_number(std::string_view t) {
+  size_t k = 0;
+  const auto digits = [&] {
+    const size_t from = k;
+    while (k < t.size() && t[k] >= '0' && t[k] <= '9') ++k;
+    return k > from;
+  };
+  if (k < t.size() && t[k] == '-') ++k;
+  if (k < t.size() && t[k] == '0') ++k;
+  else if (!digits()) return false;
+  if (k < t.size() && t[k] == '.' && (++k, !digits())) return false;
+  if (k < t.size() && (t[k] == 'e' || t[k] == 'E')) {
+    ++k;
+    if (k < t.size() && (t[k] == '+' || t[k] == '-')) ++k;
+    if (!digits()) return false;
+  }
+  return k == t.size();
+}
+
 // The number as written, for the input table's parsers.
 std::string_view reader::number_token(od::value& v, const std::string& path, const char* must_be) {
   const char* start = at(v);
@@ -296,6 +316,7 @@ std::string_view reader::number_token(od::value& v, const std::string& path, con
   std::string_view token = v.raw_json_token();
   while (!token.empty() && std::string_view(" \t\r\n").find(token.back()) != std::string_view::npos)
     token.remove_suffix(1);
+  if (!json_number(token)) fail(path, quote_token(token) + " is not a JSON number", start);
   return token;
 }
 
