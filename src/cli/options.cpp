@@ -142,8 +142,10 @@ scene_params scene_of(const settings& cli, job& j) {
   };
   scene_params& sp = contents.scene;
   if (auto e = resolve(merged, sp.camera, sp.sky)) throw blame(e->source, e->message);
-  // The ranges are the scene's to check (scene/scene.h), once; here only the
-  // field it blames becomes the setting that set it.
+  // What one value cannot say (lookat = lookfrom, vup along the view, a
+  // derived height, spheres far from the camera) is the scene's to check
+  // (scene/scene.h), once; here only the field it blames becomes the
+  // setting that set it.
   if (auto e = validate(sp)) {
     const setting_id id = row_for(e->field, merged);
     // A setting the command line did not give came from the scene file.
