@@ -458,6 +458,87 @@ TEST_F(Cli, SceneFileAndOptionsThatOverrideIt) {
   EXPECT_EQ(r.exit_code, 0) << r.err;  // --viewport-height replaces the file's vfov
 }
 
+// The command line overrides the file, key by key, and what is derived is
+// derived from the merged settings.
+TEST_F(Cli, AnOptionOverridesTheSameFileKey) {
+  write_file(box.work() / "wide.json", R"({"camera": {"width": 64, "height": 10}})");
+  ASSERT_EQ(box.run({"--scene", "wide.json", "--height", "20", "-o", "a.ppm"}).exit_code, 0);
+  const raycast_test::ppm p = parse_ppm(read_file(box.work() / "a.ppm"));
+  EXPECT_EQ(p.width, 64);
+  EXPECT_EQ(p.height, 20);
+}
+
+TEST_F(Cli, TheHeightFollowsAWidthGivenOverTheFilesAspect) {
+  write_file(box.work() / "square.json", R"({"camera": {"width": 64, "aspect": "2:1"}})");
+  ASSERT_EQ(box.run({"--scene", "square.json", "-w", "40", "-o", "a.ppm"}).exit_code, 0);
+  const raycast_test::ppm p = parse_ppm(read_file(box.work() / "a.ppm"));
+  EXPECT_EQ(p.width, 40);
+  EXPECT_EQ(p.height, 20);  // 40 / 2, not the file's 64 / 2
+}
+
+TEST_F(Cli, AFilesVupLooksDownFromTheLookfromTheOptionsGive) {
+  // vup without lookat: the lesson's view down -z from the camera, wherever
+  // --lookfrom puts it; the same image as giving that lookat outright.
+  write_file(box.work() / "tilt.json", R"({"camera": {"width": 32, "vup": [0.3, 1, 0]}})");
+  ASSERT_EQ(box.run({"--scene", "tilt.json", "--lookfrom", "5,0,0", "-o", "a.ppm"}).exit_code, 0);
+  ASSERT_EQ(box.run({"-w", "32", "--vup", "0.3,1,0", "--lookfrom", "5,0,0", "--lookat", "5,0,-1", "-o", "b.ppm"})
+                .exit_code,
+            0);
+  EXPECT_EQ(read_file(box.work() / "a.ppm"), read_file(box.work() / "b.ppm"));
+}
+
+TEST_F(Cli, AnAspectIsSpelledTheSameInTheFileAndOnTheCommandLine) {
+  for (const std::string aspect : {"2:1", "2", "2.0", "4:2", "1e0:0.5"}) {
+    write_file(box.work() / "a.json", R"({"camera": {"width": 32, "aspect": ")" + aspect + R"("}})");
+    ASSERT_EQ(box.run({"--scene", "a.json", "-o", "file.ppm"}).exit_code, 0) << aspect;
+    ASSERT_EQ(box.run({"-w", "32", "--aspect", aspect, "-o", "cli.ppm"}).exit_code, 0) << aspect;
+    EXPECT_EQ(read_file(box.work() / "file.ppm"), read_file(box.work() / "cli.ppm")) << aspect;
+    EXPECT_EQ(parse_ppm(read_file(box.work() / "cli.ppm")).height, 16) << aspect;
+  }
+  for (const std::string aspect : {"16:0", "wide", " 2:1", "-2:1"}) {
+    write_file(box.work() / "a.json", R"({"camera": {"aspect": ")" + aspect + R"("}})");
+    const run_result file = box.run({"--scene", "a.json", "-o", "file.ppm"});
+    const run_result cli = box.run({"--aspect", aspect, "-o", "cli.ppm"});
+    EXPECT_EQ(file.exit_code, 2) << aspect;
+    EXPECT_EQ(cli.exit_code, 2) << aspect;
+    // The same reason, after the file's path or the option.
+    const std::string why = cli.err.substr(cli.err.find("--aspect: ") + 10);
+    EXPECT_NE(file.err.find("camera.aspect: " + why.substr(0, why.size() - 1)), std::string::npos)
+        << file.err << " vs " << cli.err;
+  }
+}
+
+TEST_F(Cli, RangeErrorsSayTooSmallOrTooLargeWithTheTokenAsTyped) {
+  const std::pair<std::vector<std::string>, std::string> cases[] = {
+      {{"--width", "0"}, "raycast: error: --width: '0' is too small (at least 1)\n"},
+      {{"--width", "16777217"}, "raycast: error: --width: '16777217' is too large (at most 16777216)\n"},
+      {{"--vfov", "180"}, "raycast: error: --vfov: '180' is too large (below 180)\n"},
+      {{"--vfov", "-0"}, "raycast: error: --vfov: '-0' is too small (above 0)\n"},
+      {{"--threads", "1025"}, "raycast: error: --threads: '1025' is too large (at most 1024)\n"},
+      {{"--samples", "0"}, "raycast: error: --samples: '0' is too small (at least 1)\n"},
+      {{"--sky-top", "1,1e31,1"}, "raycast: error: --sky-top: component 2: '1e31' is too large (at most 1e+30)\n"},
+      {{"--width", std::string(100, '9')},
+       "raycast: error: --width: '" + std::string(32, '9') + "\u2026' is out of range\n"},
+  };
+  for (const auto& [args, want] : cases) {
+    std::vector<std::string> a = args;
+    a.insert(a.end(), {"-o", "a.ppm"});
+    const run_result r = box.run(a);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, want);
+  }
+  // CLI11's own messages quote no more of a token either.
+  const run_result bogus = box.run({"--" + std::string(1000, 'x'), "-o", "a.ppm"});
+  EXPECT_EQ(bogus.exit_code, 2);
+  EXPECT_EQ(bogus.err, "raycast: error: The following argument was not expected: --" + std::string(30, 'x') +
+                           "\u2026 (see --help)\n");
+  write_file(box.work() / "w.json", "{\"camera\": {\"width\": 0}}");
+  const run_result r = box.run({"--scene", "w.json", "-o", "a.ppm"});
+  EXPECT_EQ(r.err, "raycast: error: --scene: w.json: camera.width: '0' is too small (at least 1) (at line 1, column 22: 0)\n");
+  // Overridden, the file's value is no error.
+  EXPECT_EQ(box.run({"--scene", "w.json", "-w", "8", "-o", "a.ppm"}).exit_code, 0);
+}
+
 TEST_F(Cli, SceneFileErrorsNameTheJsonPath) {
   raycast_test::write_file(box.work() / "bad.json",
                            R"({"spheres": [{"center": [0, 0, -1], "radius": 1},

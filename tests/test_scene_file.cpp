@@ -73,6 +73,46 @@ TEST(SceneFile, EveryKey) {
   EXPECT_FALSE(validate(p));
 }
 
+// The aspect is read by the command line's parser: a number, or a string
+// holding W:H or a number.
+TEST(SceneFile, AnAspectIsANumberOrAStringTheCommandLineTakes) {
+  for (const char* aspect : {"1.6", "\"1.6\"", "\"16:10\"", "\"8:5\"", "\"1.6e0\""})
+    EXPECT_DOUBLE_EQ(parsed(std::string(R"({"camera": {"aspect": )") + aspect + "}}").camera.aspect_ratio, 1.6)
+        << aspect;
+  for (const char* aspect : {"\"16:0\"", "\"wide\"", "\" 16:9\"", "\"-16:9\"", "true", "-1", "0"})
+    EXPECT_EQ(error_path(std::string(R"({"camera": {"aspect": )") + aspect + "}}"), "camera.aspect") << aspect;
+  // A number is JSON's, then the command line's: no leading zeros, no bare point.
+  for (const char* n : {"01", "1.", "-01.5"})
+    EXPECT_EQ(error_path(std::string(R"({"camera": {"vfov": )") + n + "}}"), "camera.vfov") << n;
+}
+
+// The table's defaults, as --help shows them, are the camera's and sky's.
+TEST(SceneFile, TheInputTablesDefaultsAreTheScenes) {
+  const scene_params lesson;
+  settings s;
+  for (const setting& row : scene_settings()) {
+    if (row.default_text.empty() || row.id == setting_id::height || row.id == setting_id::lookat) continue;
+    given g;
+    ASSERT_FALSE(parse_value(row, row.default_text, g)) << row.option;
+    s[row.id] = g;
+  }
+  camera_params cp;
+  sky sk;
+  ASSERT_FALSE(resolve(s, cp, sk));
+  EXPECT_EQ(cp.image_width, lesson.camera.image_width);
+  EXPECT_EQ(cp.aspect_ratio, lesson.camera.aspect_ratio);
+  EXPECT_EQ(cp.viewport_height, lesson.camera.viewport_height);
+  EXPECT_EQ(cp.focal_length, lesson.camera.focal_length);
+  EXPECT_EQ(cp.origin, lesson.camera.origin);
+  EXPECT_EQ(sk.bottom, lesson.sky.bottom);
+  EXPECT_EQ(sk.top, lesson.sky.top);
+  for (const setting& row : scene_settings()) {
+    if (!row.file_key.empty()) {
+      EXPECT_EQ(find_file_key(row.file_key), &row);
+    }
+  }
+}
+
 TEST(SceneFile, EmptyObjectIsTheLesson) {
   const scene_params p = parsed("{}");
   const scene_params lesson;

@@ -1,5 +1,7 @@
 // Command-line arguments -> a validated job. Every usage error is one line
-// naming the option and why; the only file touched is a --scene file, read.
+// naming the option and why; the only file touched is a --scene file, read
+// by the scene room (scene/scene_file.h). The options are the input table's
+// (raycast/inputs.h), parsed by its parsers (scene/settings.h).
 #pragma once
 #include <iosfwd>
 #include <optional>
@@ -45,14 +47,5 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
 // Text with control characters written as \xNN: an error message is one line
 // even when a file name holds a line break.
 std::string printable(std::string_view s);
-
-// Strict number parsing, exposed for tests: the whole text must be the number,
-// finite and in range; returns an error reason otherwise.
-std::optional<std::string> parse_int(std::string_view text, int64_t& value);
-std::optional<std::string> parse_real(std::string_view text, double& value);
-std::optional<std::string> parse_triple(std::string_view text, vec3& value);
-std::optional<std::string> parse_aspect(std::string_view text, double& value);
-std::optional<std::string> parse_seed(std::string_view text, uint64_t& value);
-std::optional<std::string> parse_region(std::string_view text, int64_t width, int64_t height, pixel_region& value);
 
 }  // namespace raycast::cli

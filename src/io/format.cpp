@@ -1,40 +1,54 @@
 #include "io/format.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <string>
 
 namespace raycast::io {
 
+std::span<const std::string_view> format_name_list() {
+  static const auto names = [] {
+    std::array<std::string_view, std::size(format_names)> n{};
+    for (size_t k = 0; k < n.size(); ++k) n[k] = format_names[k].name;
+    return n;
+  }();
+  return names;
+}
+
 std::string_view to_string(file_format f) {
-  switch (f) {
-    case file_format::png: return "png";
-    case file_format::ppm: return "ppm";
-    case file_format::jpg: return "jpg";
-    case file_format::tif: return "tif";
-    case file_format::exr: return "exr";
-  }
+  for (const format_name& n : format_names)
+    if (n.format == f) return n.name;
   return "?";
 }
 
 std::optional<file_format> format_from_name(std::string_view name) {
   std::string n(name);
   std::transform(n.begin(), n.end(), n.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  if (n == "png") return file_format::png;
-  if (n == "ppm" || n == "pnm") return file_format::ppm;
-  if (n == "jpg" || n == "jpeg") return file_format::jpg;
-  if (n == "tif" || n == "tiff") return file_format::tif;
-  if (n == "exr") return file_format::exr;
+  for (const format_name& f : format_names)
+    if (f.name == n) return f.format;
   return std::nullopt;
+}
+
+std::string format_names_text(std::string_view separator) {
+  std::string r;
+  for (const format_name& f : format_names) r += (r.empty() ? "" : std::string(separator)) + std::string(f.name);
+  return r;
+}
+
+std::string supported_extensions() {
+  std::string r;
+  for (const format_name& f : format_names) r += (r.empty() ? "." : ", .") + std::string(f.name);
+  return r;
 }
 
 std::optional<std::string> format_from_path(const std::string& path, file_format& format) {
   const size_t slash = path.find_last_of('/');
   const size_t dot = path.find_last_of('.');
   if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
-    return "'" + path + "' has no extension; supported: " + std::string(supported_extensions) + " (or use --format)";
+    return "'" + path + "' has no extension; supported: " + supported_extensions() + " (or use --format)";
   auto f = format_from_name(std::string_view(path).substr(dot + 1));
-  if (!f) return "unknown extension '" + path.substr(dot) + "'; supported: " + std::string(supported_extensions);
+  if (!f) return "unknown extension '" + path.substr(dot) + "'; supported: " + supported_extensions();
   format = *f;
   return std::nullopt;
 }

@@ -2,6 +2,7 @@
 #pragma once
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -11,15 +12,31 @@ namespace raycast::io {
 
 enum class file_format { png, ppm, jpg, tif, exr };
 
-std::string_view to_string(file_format f);  // "png", "ppm", "jpg", "tif", "exr"
-// The format a name or file extension means, any case: png, ppm/pnm,
-// jpg/jpeg, tif/tiff, exr; nullopt for another.
+// The one table of format names (--format, a file's extension, the
+// library's and Python's format=): each format's own name first, then its
+// other spellings.
+struct format_name {
+  std::string_view name;
+  file_format format;
+};
+inline constexpr format_name format_names[] = {
+    {"png", file_format::png}, {"ppm", file_format::ppm}, {"pnm", file_format::ppm},
+    {"jpg", file_format::jpg}, {"jpeg", file_format::jpg}, {"tif", file_format::tif},
+    {"tiff", file_format::tif}, {"exr", file_format::exr},
+};
+// Every name in the table, in its order: what --format accepts.
+std::span<const std::string_view> format_name_list();
+
+std::string_view to_string(file_format f);  // its own name: "png", "ppm", "jpg", "tif", "exr"
+// The format a name or file extension means, any case; nullopt for another.
 std::optional<file_format> format_from_name(std::string_view name);
+// "png, ppm, pnm, jpg, ..." (or with another separator), for messages and --help.
+std::string format_names_text(std::string_view separator = ", ");
 // The format a file name's extension gives, or why there is none (no
 // extension, an unknown one); the reason is a sentence for "--output: ".
 std::optional<std::string> format_from_path(const std::string& path, file_format& format);
-// What a file name's extension supports, for messages.
-inline constexpr std::string_view supported_extensions = ".png, .ppm, .pnm, .jpg, .jpeg, .tif, .tiff, .exr";
+// What a file name's extension supports, for messages: ".png, .ppm, .pnm, ...".
+std::string supported_extensions();
 bool is_float_format(file_format f);        // EXR carries linear 32-bit float
 pixel_format pixel_format_for(file_format f);
 std::string_view display_name(file_format f);  // "PNG", "JPEG", "TIFF", ... for messages

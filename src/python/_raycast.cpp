@@ -5,6 +5,7 @@
 #include <dlfcn.h>
 
 #include <array>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -14,13 +15,12 @@
 
 #include "io/module_loader.h"
 #include "raycast/raycast.h"
+#include "raycast/inputs.h"
 
 namespace py = pybind11;
 namespace rc = raycast::api;
 
 namespace {
-
-using triple = std::array<double, 3>;
 
 // The address the last render read centres from: the tests' proof that an
 // array was used in place.
@@ -57,43 +57,32 @@ rc::shading shading_of(const std::string& s) {
   value_error("shade", "'" + s + "' is not one of normal, flat, lit");
 }
 
-rc::scene scene_of(const std::string& kind, const std::string& source) {
-  if (kind == "builtin") return rc::builtin_scene(source);
-  if (kind == "file") return rc::load_scene(source);
-  if (kind == "json") return rc::parse_scene(source);
-  return rc::scene{};
+// The camera and sky keywords (text, as the command line spells them),
+// parsed by the input table's parsers into settings that override the
+// scene's keys as the command line's options do; errors name the scene
+// file's key ("camera.vfov").
+raycast::settings keyword_settings(const std::map<std::string, std::string>& keywords) {
+  raycast::settings layer;
+  for (const auto& [keyword, text] : keywords) {
+    const raycast::setting* row = nullptr;
+    for (const raycast::setting& r : raycast::scene_settings())
+      if (r.keyword == keyword) row = &r;
+    if (!row) value_error(keyword, "is not a camera or sky keyword");
+    raycast::given g;
+    g.source = std::string(row->file_key);
+    if (auto e = raycast::parse_value(*row, text, g)) value_error(g.source, *e);
+    layer[row->id] = std::move(g);
+  }
+  if (auto e = raycast::check_groups(raycast::scene_settings(), layer)) value_error(e->source, e->message);
+  return layer;
 }
 
 py::array render_image(const std::string& kind, const std::string& source, std::optional<py::array> centers,
-                 std::optional<py::array> radii, std::optional<py::array> colors, const std::string& shade,
-                 std::optional<int64_t> width, std::optional<int64_t> height, std::optional<double> aspect,
-                 std::optional<triple> lookfrom, std::optional<triple> lookat, std::optional<triple> vup,
-                 std::optional<double> vfov, std::optional<double> viewport_height,
-                 std::optional<double> focal_length, std::optional<triple> sky_bottom,
-                 std::optional<triple> sky_top, const std::string& backend, const std::string& precision,
-                 int threads, int64_t samples, const std::string& sampler, uint64_t seed,
-                 std::optional<std::array<int64_t, 4>> region, const std::string& dtype) {
-  rc::scene s = scene_of(kind, source);
-  // The command line's rules for overriding a scene's camera.
-  rc::camera& c = s.cam;
-  if (width) c.width = *width;
-  if (aspect) c.aspect = *aspect;
-  if (height) c.height = *height;
-  if (viewport_height) {
-    if (vfov) value_error("vfov", "replaces viewport_height; give one of them");
-    c.viewport_height = *viewport_height;
-    c.vfov.reset();
-  }
-  if (focal_length) c.focal_length = *focal_length;
-  if (lookfrom) c.lookfrom = *lookfrom;
-  if (lookat) c.lookat = *lookat;
-  if (vup) {
-    c.vup = *vup;
-    if (!c.lookat) c.lookat = rc::vec3{c.lookfrom[0], c.lookfrom[1], c.lookfrom[2] - 1.0};
-  }
-  if (vfov) c.vfov = *vfov;
-  if (sky_bottom) s.sky.bottom = *sky_bottom;
-  if (sky_top) s.sky.top = *sky_top;
+                       std::optional<py::array> radii, std::optional<py::array> colors, const std::string& shade,
+                       const std::map<std::string, std::string>& camera, const std::string& backend,
+                       const std::string& precision, int threads, int64_t samples, const std::string& sampler,
+                       uint64_t seed, std::optional<std::array<int64_t, 4>> region, const std::string& dtype) {
+  rc::scene s = rc::scene_with(kind, source, keyword_settings(camera));
 
   const rc::shading sh = shading_of(shade);
   if (centers || radii || colors) {

@@ -10,6 +10,7 @@
 #include "io/image_sink.h"
 #include "io/module_loader.h"
 #include "raycast/bands.h"
+#include "raycast/inputs.h"
 #include "render/render.h"
 #include "scene/builtin.h"
 #include "scene/scene_file.h"
@@ -131,24 +132,34 @@ scene from_internal(const scene_params& p) {
   return s;
 }
 
+// A name the input table's row accepts (the command line's parser and message).
+std::string_view checked_name(setting_id id, const std::string& text) {
+  const setting& row = input_row(id);
+  size_t k = 0;
+  if (auto e = parse_name(text, row.names, k)) invalid(std::string(row.keyword), *e);
+  return row.names[k];
+}
+
+// A number within the input table's row's range (the command line's message).
+void check_number(setting_id id, int64_t n, const std::string& also = "") {
+  const setting& row = input_row(id);
+  given g;
+  g.v.integer = n;
+  g.tokens[0] = std::to_string(n);
+  if (auto e = check_range(row, g)) invalid(std::string(row.keyword), *e + also);
+}
+
 render_options to_internal(const options& o) {
   render_options r;
-  const auto b = parse_backend(o.backend);
-  if (!b) invalid("backend", "'" + o.backend + "' is not one of auto, reference, scalar, sse2, avx2, avx512, neon");
-  if (auto why = backend_unavailable(*b)) throw error(error::kind::unsupported_backend, "backend", *why);
-  r.which = *b;
-  const auto p = parse_precision(o.precision);
-  if (!p) invalid("precision", "'" + o.precision + "' is not one of exact, fast");
-  r.prec = *p;
-  if (o.threads < 0 || o.threads > 1024)
-    invalid("threads", "must be between 1 and 1024 (or 0: all cores), got " + std::to_string(o.threads));
+  const backend b = *parse_backend(checked_name(setting_id::backend, o.backend));
+  if (auto why = backend_unavailable(b)) throw error(error::kind::unsupported_backend, "backend", *why);
+  r.which = b;
+  r.prec = *parse_precision(checked_name(setting_id::precision, o.precision));
+  if (o.threads != 0) check_number(setting_id::threads, o.threads, "; or 0: all cores");
   r.threads = o.threads;
-  if (o.samples < 1 || o.samples > int64_t(max_samples))
-    invalid("samples", "must be between 1 and " + std::to_string(max_samples) + ", got " + std::to_string(o.samples));
+  check_number(setting_id::samples, o.samples);
   r.samples = uint32_t(o.samples);
-  const auto k = parse_sampler(o.sampler);
-  if (!k) invalid("sampler", "'" + o.sampler + "' is not one of random, stratified, sobol");
-  r.sampler = *k;
+  r.sampler = *parse_sampler(checked_name(setting_id::sampler, o.sampler));
   r.seed = o.seed;
   return r;
 }
@@ -171,7 +182,7 @@ io::file_format file_format_for(const std::string& path, const std::string& form
   io::file_format f{};
   if (!format.empty()) {
     auto g = io::format_from_name(format);
-    if (!g) invalid("format", "'" + format + "' is not one of png, ppm, jpg, tif, exr");
+    if (!g) invalid("format", quote_token(format) + " is not one of " + io::format_names_text());
     return *g;
   }
   if (path.empty()) invalid("path", "empty file name");
@@ -222,6 +233,25 @@ scene parse_scene(const std::string& json_text) {
   auto parsed = parse_scene_file(json_text);
   if (auto* e = std::get_if<scene_file_error>(&parsed)) invalid(e->path, e->message);
   return from_internal(std::get<scene_params>(parsed));
+}
+
+scene scene_with(const std::string& kind, const std::string& source, const settings& over) {
+  scene_file_contents c;
+  if (kind == "builtin") {
+    c.scene = to_internal(builtin_scene(source));
+  } else if (kind == "file" || kind == "json") {
+    auto read = kind == "file" ? read_scene_file(source) : read_scene_text(source);
+    if (auto* e = std::get_if<scene_file_error>(&read)) {
+      if (kind == "json") invalid(e->path, e->message);
+      throw error(e->path.empty() ? error::kind::io : error::kind::invalid_argument, e->path,
+                  source + ": " + e->message);
+    }
+    c = std::move(std::get<scene_file_contents>(read));
+  }
+  settings merged = c.keys;
+  merge(merged, over, scene_settings());
+  if (auto e = resolve(merged, c.scene.camera, c.scene.sky)) invalid(e->source, e->message);
+  return from_internal(c.scene);
 }
 
 struct job::impl {

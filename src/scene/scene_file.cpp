@@ -5,6 +5,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -13,9 +15,11 @@
 #include <new>
 #include <optional>
 #include <utility>
+#include <vector>
 
 #include <simdjson.h>
 
+#include "scene/builtin.h"
 #include "scene/huge_pages.h"
 
 namespace raycast {
@@ -130,20 +134,29 @@ class reader {
   reader(const char* text, size_t size, od::document& doc)
       : text_(text), size_(size), doc_(doc), released_to_(text), released_line_start_(text) {}
 
-  scene_params read();
+  scene_file_contents read();
 
  private:
-  using keys = std::initializer_list<std::string_view>;
+  using keys = std::span<const std::string_view>;
 
   // " (at line L, column C: excerpt)" for a place in the text; columns count bytes.
   std::string where(const char* at) const {
     if (at == nullptr || at < released_to_ || at > text_ + size_) return "";
-    size_t line = released_lines_ + 1;
-    const char* line_start = released_line_start_;
-    for (const char* p = released_to_; (p = static_cast<const char*>(std::memchr(p, '\n', size_t(at - p)))); ++p) {
-      ++line;
-      line_start = p + 1;
+    // Lines counted on from the last place asked for when it is before this
+    // one (the camera and sky keys of a file of millions of spheres each
+    // ask), else from the end of the text handed back, counted as it went.
+    if (at < counted_) {
+      counted_ = released_to_;
+      line_ = released_lines_ + 1;
+      line_start_ = released_line_start_;
     }
+    for (const char* p = counted_; (p = static_cast<const char*>(std::memchr(p, '\n', size_t(at - p)))); ++p) {
+      ++line_;
+      line_start_ = p + 1;
+    }
+    counted_ = at;
+    const size_t line = line_;
+    const char* line_start = line_start_;
     std::string r = " (at line " + std::to_string(line) + ", column " + std::to_string(at - line_start + 1);
     std::string quote = excerpt(std::string_view(at, size_t(text_ + size_ - at)));
     while (!quote.empty() && (quote.back() == ' ' || quote.back() == '\t')) quote.pop_back();
@@ -167,6 +180,11 @@ class reader {
     }
     ::madvise(const_cast<char*>(released_to_), size_t(end - released_to_), MADV_DONTNEED);
     released_to_ = end;
+    if (counted_ < end) {  // where() counts on from here
+      counted_ = end;
+      line_ = released_lines_ + 1;
+      line_start_ = released_line_start_;
+    }
   }
 
   // Where the iterator stands, for errors simdjson reports without a value.
@@ -279,49 +297,12 @@ class reader {
     return r;
   }
 
-  template <class Path>
-  int64_t integer(od::value& v, const Path& path) {
-    const char* start = at(v);
-    od::number_type t;
-    if (error_code e = v.get_number_type().get(t)) {
-      od::json_type jt;
-      if (v.type().get(jt) != simdjson::SUCCESS) fail_json("not a JSON value", start);
-      if (jt != od::json_type::number) fail(path(), "must be an integer", start);
-      fail(path(), "is out of range", start);
-    }
-    if (t == od::number_type::floating_point_number) fail(path(), "must be an integer", start);
-    int64_t x = 0;
-    if (t == od::number_type::unsigned_integer || v.get_int64().get(x) != simdjson::SUCCESS)
-      fail(path(), "is out of range", start);
-    return x;
-  }
-
-  template <class Path>
-  double aspect(od::value& v, const Path& path) {
-    const char* start = at(v);
-    od::json_type t;
-    if (v.type().get(t) != simdjson::SUCCESS) fail_json("not a JSON value", start);
-    if (t != od::json_type::string) return number(v, path);
-    std::string_view s;
-    if (error_code e = v.get_string().get(s)) fail_json(e, start);
-    const size_t colon = s.find(':');
-    size_t used_w = 0, used_h = 0;
-    try {
-      if (colon == std::string::npos || s.size() > 64) throw std::invalid_argument("no colon");
-      const std::string w_text(s.substr(0, colon)), h_text(s.substr(colon + 1));
-      const double w = std::stod(w_text, &used_w);
-      const double h = std::stod(h_text, &used_h);
-      if (used_w != w_text.size() || used_h != h_text.size() || !(w > 0 && h > 0) || !std::isfinite(w / h))
-        throw std::invalid_argument("bad");
-      return w / h;
-    } catch (const std::exception&) {
-      fail(path(), "must be a number or \"W:H\" with positive W and H", start);
-    }
-  }
-
-  void read_camera(od::value& v, camera_params& cp);
-  void read_sky(od::value& v, sky& s);
   void read_spheres(od::value& v, std::vector<sphere>& out);
+
+  // The camera and sky keys as the input table parses them (scene/settings.h).
+  void read_settings(od::value& v, std::string_view object_name, settings& out);
+  void read_setting(od::value& v, const setting& row, given& g);
+  std::string_view number_token(od::value& v, const std::string& path, const char* must_be);
 
   const char* text_;
   size_t size_;
@@ -329,47 +310,102 @@ class reader {
   const char* released_to_;          // text before this was handed back (release_text_before)
   size_t released_lines_ = 0;        // newlines before released_to_
   const char* released_line_start_;  // just after the last of them
+  // where()'s count so far: the line at counted_, and where that line starts.
+  mutable const char* counted_ = text_;
+  mutable size_t line_ = 1;
+  mutable const char* line_start_ = text_;
 };
 
-void reader::read_camera(od::value& v, camera_params& cp) {
-  std::optional<vec3> vup;
-  const char* viewport_at = nullptr;
-  std::optional<double> viewport_height;
-  const auto camera_path = [] { return std::string("camera"); };
-  fields(object(v, camera_path), camera_path,
-         {"width", "height", "aspect", "lookfrom", "lookat", "vup", "vfov", "viewport_height", "focal_length"},
-         [&](int key, od::value value) {
-           switch (key) {
-             case 0: cp.image_width = integer(value, [] { return std::string("camera.width"); }); break;
-             case 1: cp.image_height = integer(value, [] { return std::string("camera.height"); }); break;
-             case 2: cp.aspect_ratio = aspect(value, [] { return std::string("camera.aspect"); }); break;
-             case 3: cp.origin = triple(value, [] { return std::string("camera.lookfrom"); }); break;
-             case 4: cp.lookat = triple(value, [] { return std::string("camera.lookat"); }); break;
-             case 5: vup = triple(value, [] { return std::string("camera.vup"); }); break;
-             case 6: cp.vfov_degrees = number(value, [] { return std::string("camera.vfov"); }); break;
-             case 7:
-               viewport_at = at(value);
-               viewport_height = number(value, [] { return std::string("camera.viewport_height"); });
-               break;
-             case 8: cp.focal_length = number(value, [] { return std::string("camera.focal_length"); }); break;
-           }
-         });
-  // Applied in this order whatever the order of the keys.
-  if (vup) {
-    cp.vup = *vup;
-    if (!cp.lookat) cp.lookat = cp.origin + vec3(0.0, 0.0, -1.0);  // the lesson's view, as the CLI
+// Whether text is a number as JSON writes it: -?(0|[1-9][0-9]*)(.[0-9]+)?([eE][+-]?[0-9]+)?
+bool json_number(std::string_view t) {
+  size_t k = 0;
+  const auto digits = [&] {
+    const size_t from = k;
+    while (k < t.size() && t[k] >= '0' && t[k] <= '9') ++k;
+    return k > from;
+  };
+  if (k < t.size() && t[k] == '-') ++k;
+  if (k < t.size() && t[k] == '0') ++k;
+  else if (!digits()) return false;
+  if (k < t.size() && t[k] == '.' && (++k, !digits())) return false;
+  if (k < t.size() && (t[k] == 'e' || t[k] == 'E')) {
+    ++k;
+    if (k < t.size() && (t[k] == '+' || t[k] == '-')) ++k;
+    if (!digits()) return false;
   }
-  if (viewport_height) {
-    if (cp.vfov_degrees) fail("camera.viewport_height", "give vfov or viewport_height, not both", viewport_at);
-    cp.viewport_height = *viewport_height;
+  return k == t.size();
+}
+
+// The number as written, for the input table's parsers.
+std::string_view reader::number_token(od::value& v, const std::string& path, const char* must_be) {
+  const char* start = at(v);
+  od::json_type t;
+  if (v.type().get(t) != simdjson::SUCCESS) fail_json("not a JSON value", start);
+  if (t != od::json_type::number) fail(path, must_be, start);
+  std::string_view token = v.raw_json_token();
+  while (!token.empty() && std::string_view(" \t\r\n").find(token.back()) != std::string_view::npos)
+    token.remove_suffix(1);
+  if (!json_number(token)) fail(path, quote_token(token) + " is not a JSON number", start);
+  return token;
+}
+
+void reader::read_setting(od::value& v, const setting& row, given& g) {
+  const std::string path(row.file_key);
+  const char* start = at(v);
+  g.source = path;
+  g.where = where(start);
+  const auto parse = [&](std::string_view text, const std::string& blame) {
+    if (auto e = parse_value(row, text, g)) fail(blame, *e, start);
+  };
+  switch (row.type) {
+    case value_type::integer: parse(number_token(v, path, "must be an integer"), path); break;
+    case value_type::real: parse(number_token(v, path, "must be a number"), path); break;
+    case value_type::aspect: {
+      // A number, or a string the command line would take: "16:9", "1.5".
+      od::json_type t;
+      if (v.type().get(t) != simdjson::SUCCESS) fail_json("not a JSON value", start);
+      if (t == od::json_type::number) return parse(number_token(v, path, ""), path);
+      if (t != od::json_type::string) fail(path, "must be a number or a string \"W:H\"", start);
+      std::string_view text;
+      if (error_code e = v.get_string().get(text)) fail_json(e, start);
+      return parse(text, path);
+    }
+    case value_type::triple: {
+      od::array arr = array(v, [&] { return path; }, "must be an array of 3 numbers");
+      int n = 0;
+      for (auto result : arr) {
+        od::value el;
+        if (error_code e = std::move(result).get(el)) fail_json(e, here());
+        if (n == 3) fail(path, "must be an array of 3 numbers", start);
+        const std::string el_path = path + "[" + std::to_string(n) + "]";
+        const std::string_view token = number_token(el, el_path, "must be a number");
+        if (auto e = parse_real(token, g.v.triple[n])) fail(el_path, *e, at(el));
+        g.tokens[size_t(n)] = token.substr(0, 64);
+        ++n;
+      }
+      if (n != 3) fail(path, "must be an array of 3 numbers", start);
+      break;
+    }
+    default: fail(path, "is not a scene file key", start);
   }
 }
 
-void reader::read_sky(od::value& v, sky& s) {
-  const auto sky_path = [] { return std::string("sky"); };
-  fields(object(v, sky_path), sky_path, {"bottom", "top"}, [&](int key, od::value value) {
-    if (key == 0) s.bottom = triple(value, [] { return std::string("sky.bottom"); });
-    if (key == 1) s.top = triple(value, [] { return std::string("sky.top"); });
+// The keys of "camera" or "sky": the input table's rows with that file key prefix.
+void reader::read_settings(od::value& v, std::string_view object_name, settings& out) {
+  static const auto known_of = [](std::string_view prefix) {
+    std::vector<std::string_view> names;
+    for (const setting& row : scene_settings())
+      if (row.file_key.substr(0, row.file_key.find('.')) == prefix) names.push_back(row.file_key.substr(prefix.size() + 1));
+    return names;
+  };
+  static const std::vector<std::string_view> camera_keys = known_of("camera"), sky_keys = known_of("sky");
+  const std::vector<std::string_view>& known = object_name == "camera" ? camera_keys : sky_keys;
+  const auto object_path = [&] { return std::string(object_name); };
+  fields(object(v, object_path), object_path, known, [&](int key, od::value value) {
+    const setting& row = *find_file_key(std::string(object_name) + "." + std::string(known[size_t(key)]));
+    given g;
+    read_setting(value, row, g);
+    out[row.id] = std::move(g);
   });
 }
 
@@ -391,7 +427,8 @@ void reader::read_spheres(od::value& v, std::vector<sphere>& out) {
     // Where each value is (nullptr: not given), for the errors about it.
     const char *center_at = nullptr, *radius_at = nullptr, *color_at = nullptr;
     sphere sp;
-    fields(object(item, at_k), at_k, {"center", "radius", "shade", "color"}, [&](int key, od::value value) {
+    static constexpr std::string_view sphere_keys[] = {"center", "radius", "shade", "color"};
+    fields(object(item, at_k), at_k, sphere_keys, [&](int key, od::value value) {
       switch (key) {
         case 0:
           center_at = at(value);
@@ -433,25 +470,28 @@ void reader::read_spheres(od::value& v, std::vector<sphere>& out) {
   }
 }
 
-scene_params reader::read() {
-  scene_params p;
+scene_file_contents reader::read() {
+  scene_file_contents p;
   od::object root;
   if (error_code e = doc_.get_object().get(root)) {
     if (e == simdjson::INCORRECT_TYPE) fail("", "must be an object", here());
     fail_json(e, here());
   }
-  fields(root, [] { return std::string(); }, {"camera", "sky", "spheres"}, [&](int key, od::value value) {
-    if (key == 0) read_camera(value, p.camera);
-    if (key == 1) read_sky(value, p.sky);
-    if (key == 2) read_spheres(value, p.spheres);
+  static constexpr std::string_view root_keys[] = {"camera", "sky", "spheres"};
+  fields(root, [] { return std::string(); }, root_keys, [&](int key, od::value value) {
+    if (key == 0) read_settings(value, "camera", p.keys);
+    if (key == 1) read_settings(value, "sky", p.keys);
+    if (key == 2) read_spheres(value, p.scene.spheres);
   });
   // At the end, the document has no current location.
   const char* rest = nullptr;
   if (doc_.current_location().get(rest) == simdjson::SUCCESS) fail_json(simdjson::TRAILING_CONTENT, rest);
+  // One file gives vfov or viewport_height, not both.
+  if (auto e = check_groups(scene_settings(), p.keys)) throw failure{{e->source, e->message}};
   return p;
 }
 
-std::variant<scene_params, scene_file_error> parse_padded(const padded_text& t) {
+std::variant<scene_file_contents, scene_file_error> parse_padded(const padded_text& t) {
   od::parser parser(max_scene_file_bytes);
   if (error_code e = parser.allocate(std::max<size_t>(t.size(), 1), max_depth))
     return scene_file_error{"", (e == simdjson::MEMALLOC ? "out of memory indexing " + bytes_text(t.size())
@@ -487,7 +527,7 @@ struct fd_closer {
 
 }  // namespace
 
-std::variant<scene_params, scene_file_error> parse_scene_file(std::string_view text) {
+std::variant<scene_file_contents, scene_file_error> read_scene_text(std::string_view text) {
   if (text.size() > max_scene_file_bytes) return too_large(text.size());
   auto t = padded_text::allocate(text.size());
   if (!t) return scene_file_error{"", "out of memory copying " + bytes_text(text.size())};
@@ -496,7 +536,7 @@ std::variant<scene_params, scene_file_error> parse_scene_file(std::string_view t
   return parse_padded(*t);
 }
 
-std::variant<scene_params, scene_file_error> load_scene_file(const std::string& path) {
+std::variant<scene_file_contents, scene_file_error> read_scene_file(const std::string& path) {
   const auto error = [](std::string why) { return scene_file_error{"", std::move(why)}; };
   // stat first: it neither blocks on a FIFO nor opens a device.
   struct stat st {};
@@ -529,6 +569,42 @@ std::variant<scene_params, scene_file_error> load_scene_file(const std::string& 
   f.fd = -1;
   t->finish(got);
   return parse_padded(*t);
+}
+
+namespace {
+
+// The file's camera and sky keys applied to the lesson's, as nothing overrides them.
+std::variant<scene_params, scene_file_error> resolved(std::variant<scene_file_contents, scene_file_error>&& r) {
+  if (auto* e = std::get_if<scene_file_error>(&r)) return std::move(*e);
+  scene_file_contents& c = std::get<scene_file_contents>(r);
+  if (auto e = resolve(c.keys, c.scene.camera, c.scene.sky)) return scene_file_error{e->source, e->message};
+  return std::move(c.scene);
+}
+
+}  // namespace
+
+std::variant<scene_params, scene_file_error> parse_scene_file(std::string_view text) {
+  return resolved(read_scene_text(text));
+}
+
+std::variant<scene_params, scene_file_error> load_scene_file(const std::string& path) {
+  return resolved(read_scene_file(path));
+}
+
+std::variant<scene_file_contents, scene_file_error> read_scene(const std::string& name_or_path) {
+  if (auto spheres = builtin_spheres(name_or_path)) {
+    scene_file_contents c;
+    c.scene.spheres = std::move(*spheres);
+    return c;
+  }
+  std::string ext = name_or_path.size() > 5 ? name_or_path.substr(name_or_path.size() - 5) : "";
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext != ".json")
+    return scene_file_error{"", quote_token(name_or_path) + " is not one of " + builtin_scene_list() + ", or a .json scene file"};
+  auto r = read_scene_file(name_or_path);
+  if (auto* e = std::get_if<scene_file_error>(&r))
+    e->message = name_or_path + ": " + (e->path.empty() ? "" : e->path + ": ") + e->message;
+  return r;
 }
 
 }  // namespace raycast

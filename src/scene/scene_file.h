@@ -13,8 +13,12 @@
 // ("spheres[3].radius"), with where in the text ("at line 4, column 17") and
 // a short quote of it (at most 32 bytes, "…" when cut). Text that is not JSON
 // is an error of the whole file (empty path), with the same place when known.
-// The camera and sky are checked by validate() after a caller has applied its
-// overrides (the CLI's options); path() of its error is the JSON path too.
+// The camera and sky keys are the input table's (scene/settings.h), parsed by
+// its parsers, so a value is spelled as on the command line ("aspect": "16:9"
+// or "1.5" or 1.5). read_scene_file returns them unapplied, for a caller to
+// merge its own settings over (the CLI's options) before resolve() checks
+// their ranges and derives the rest; the camera is checked by validate()
+// after, and path() of its error is the JSON path too.
 //
 // The text is streamed with simdjson's On-Demand API straight into
 // scene_params: no document tree; while parsing, memory is the text (padded)
@@ -26,6 +30,7 @@
 #include <variant>
 
 #include "scene/scene.h"
+#include "scene/settings.h"
 
 namespace raycast {
 
@@ -34,22 +39,40 @@ struct scene_file_error {
   std::string message;  // why
 };
 
+// A scene file as read: its spheres (scene.spheres; camera and sky as the
+// lesson's) and its camera and sky keys, not applied yet.
+struct scene_file_contents {
+  scene_params scene;
+  settings keys;
+};
+
 // The largest scene file (4 GiB - 1 byte; simdjson indexes with 32-bit
 // offsets): about 45 million spheres at 90 bytes each. Larger files are
 // refused before any is read.
 inline constexpr uint64_t max_scene_file_bytes = (uint64_t(1) << 32) - 1;
 
-// Parses the text of a scene file and validates its spheres. As on the command line, a
-// "vup" without "lookat" looks down -z from "lookfrom". The text is copied
-// into a padded buffer first.
+// Parses the text of a scene file and validates its spheres. The text is
+// copied into a padded buffer first.
+std::variant<scene_file_contents, scene_file_error> read_scene_text(std::string_view text);
+
+// The same, with the file's keys resolved (ranges checked; as on the command
+// line, a "vup" without "lookat" looks down -z from "lookfrom").
 std::variant<scene_params, scene_file_error> parse_scene_file(std::string_view text);
 
-// Reads the file and parses it as parse_scene_file does. Only a regular file
+// Reads the file and parses it as read_scene_text does. Only a regular file
 // is read: a directory, device, FIFO or socket is refused without blocking
 // (stat, then open with O_NONBLOCK and fstat), as is a file larger than
 // max_scene_file_bytes or one that grows while it is read (memory stays at
 // the size fstat gave). Errors of the file itself have an empty path and
 // strerror's text ("No such file or directory") or the reason.
+std::variant<scene_file_contents, scene_file_error> read_scene_file(const std::string& path);
+// The same, resolved as parse_scene_file does.
 std::variant<scene_params, scene_file_error> load_scene_file(const std::string& path);
+
+// The command line's --scene: a built-in scene's name (its spheres), or a
+// .json scene file read by read_scene_file; another name is an error listing
+// the built-in ones. The error's message is the whole sentence for the user:
+// "FILE: camera.vfov: why" for a file's.
+std::variant<scene_file_contents, scene_file_error> read_scene(const std::string& name_or_path);
 
 }  // namespace raycast

@@ -24,15 +24,6 @@ def builtin_scenes():
     return list(_raycast.builtin_scene_names())
 
 
-def _triple(name, v):
-    if v is None:
-        return None
-    t = tuple(float(x) for x in v)
-    if len(t) != 3:
-        raise ValueError(f"{name}: want 3 numbers, got {len(t)}")
-    return t
-
-
 def _spheres_array(name, a):
     if a is None:
         return None
@@ -46,13 +37,25 @@ def _spheres_array(name, a):
     return a
 
 
-def _aspect(a):
-    if a is None or not isinstance(a, str):
-        return None if a is None else float(a)
-    w, sep, h = a.partition(":")
-    if not sep:
-        return float(a)
-    return float(w) / float(h)
+def _token(name, v):
+    """A keyword's value as the command line would spell it, for the input
+    table's parsers (the same spellings, ranges and messages)."""
+    if isinstance(v, str):
+        return v
+    if isinstance(v, (int, _np.integer)) and not isinstance(v, bool):
+        return str(int(v))
+    try:
+        return repr(float(v))
+    except TypeError:
+        pass
+    t = [repr(float(x)) for x in v]
+    if len(t) != 3:
+        raise ValueError(f"{name}: want 3 numbers, got {len(t)}")
+    return ",".join(t)
+
+
+_CAMERA_KEYWORDS = ("width", "height", "aspect", "lookfrom", "lookat", "vup", "vfov", "viewport_height",
+                    "focal_length", "sky_bottom", "sky_top")
 
 
 def render(scene=None, *, centers=None, radii=None, colors=None, shade="normal",
@@ -101,15 +104,13 @@ def render(scene=None, *, centers=None, radii=None, colors=None, shade="normal",
         region = tuple(int(x) for x in region)
         if len(region) != 4:
             raise ValueError(f"region: want 4 numbers (x0, y0, x1, y1), got {len(region)}")
+    given = dict(width=width, height=height, aspect=aspect, lookfrom=lookfrom, lookat=lookat, vup=vup,
+                 vfov=vfov, viewport_height=viewport_height, focal_length=focal_length,
+                 sky_bottom=sky_bottom, sky_top=sky_top)
+    camera = {k: _token(k, given[k]) for k in _CAMERA_KEYWORDS if given[k] is not None}
     return _raycast.render(
         kind, source, _spheres_array("centers", centers), _spheres_array("radii", radii),
-        _spheres_array("colors", colors), str(shade),
-        None if width is None else int(width), None if height is None else int(height), _aspect(aspect),
-        _triple("lookfrom", lookfrom), _triple("lookat", lookat), _triple("vup", vup),
-        None if vfov is None else float(vfov),
-        None if viewport_height is None else float(viewport_height),
-        None if focal_length is None else float(focal_length),
-        _triple("sky_bottom", sky_bottom), _triple("sky_top", sky_top),
+        _spheres_array("colors", colors), str(shade), camera,
         str(backend), str(precision), int(threads), int(samples), str(sampler), int(seed), region, str(dtype))
 
 

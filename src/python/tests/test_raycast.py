@@ -124,6 +124,38 @@ def test_errors_name_the_field(kwargs, exc, field):
     assert str(e.value).startswith(field + ": ")
 
 
+def test_keywords_override_the_scenes_keys_as_the_clis_options_do(tmp_path):
+    f = tmp_path / "s.json"
+    f.write_text(json.dumps({"camera": {"width": 64, "aspect": "2:1", "vup": [0.3, 1, 0]}}))
+    # width over the file's: the height follows the file's aspect; lookfrom
+    # over the file's: its vup looks down -z from there.
+    img = raycast.render(str(f), width=40, lookfrom=(5, 0, 0))
+    assert img.shape == (20, 40, 3)
+    assert np.array_equal(img, ppm_pixels(cli(tmp_path, "--scene", str(f), "-w", "40", "--lookfrom", "5,0,0")))
+
+
+@pytest.mark.parametrize("aspect", ["2:1", "2", 2, 2.0, "4:2"])
+def test_aspect_spellings_are_the_clis(aspect):
+    assert raycast.render(width=32, aspect=aspect).shape == (16, 32, 3)
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(aspect=" 2:1"), "camera.aspect: ' 2' is not a number"),
+    (dict(aspect="16:0"), "camera.aspect: '16:0': both sides of W:H must be positive"),
+    (dict(width=0), "camera.width: '0' is too small (at least 1)"),
+    (dict(width=16777217), "camera.width: '16777217' is too large (at most 16777216)"),
+    (dict(width=64.5), "camera.width: '64.5' is not an integer"),
+    (dict(vfov=180), "camera.vfov: '180' is too large (below 180)"),
+    (dict(sky_top=(1, 1e31, 1)), "sky.top: component 2: '1e+31' is too large (at most 1e+30)"),
+    (dict(vfov=90, viewport_height=2), "camera.viewport_height: give vfov or viewport_height, not both"),
+    (dict(samples=0), "samples: '0' is too small (at least 1)"),
+])
+def test_messages_are_the_input_tables(kwargs, message):
+    with pytest.raises(ValueError) as e:
+        raycast.render(**kwargs)
+    assert str(e.value) == message
+
+
 def test_other_errors():
     with pytest.raises(TypeError):
         raycast.render(3)

@@ -1,0 +1,81 @@
+#include "raycast/inputs.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "io/format.h"
+#include "render/backend.h"
+#include "render/render.h"
+#include "scene/builtin.h"
+#include "scene/sampler.h"
+
+namespace raycast {
+namespace {
+
+using enum setting_id;
+using vt = value_type;
+
+// Text the table's rows point at, kept for the program's life.
+std::string_view keep(std::string s) {
+  static std::vector<std::unique_ptr<std::string>> kept;
+  kept.push_back(std::make_unique<std::string>(std::move(s)));
+  return *kept.back();
+}
+
+std::vector<std::string_view> backend_names() {
+  std::vector<std::string_view> n{to_string(raycast::backend::automatic)};
+  for (raycast::backend b : all_backends) n.push_back(to_string(b));
+  return n;
+}
+
+std::vector<setting> build() {
+  static const std::vector<std::string_view> backends = backend_names();
+  static const std::vector<std::string_view> precisions = {to_string(raycast::precision::exact), to_string(raycast::precision::fast)};
+  static const std::vector<std::string_view> samplers = {
+      to_string(sampler_kind::random), to_string(sampler_kind::stratified), to_string(sampler_kind::sobol)};
+  std::vector<setting> t(scene_settings().begin(), scene_settings().end());
+  const auto run = [&](setting s) { t.push_back(s); };
+  run({output, "--output", "-o", "", "", vt::text, {}, {}, "FILE", "",
+       "Output file; '-' writes binary PPM to standard output"});
+  run({scene, "--scene", "", "", "", vt::text, {}, {}, "NAME|FILE", "sky",
+       keep("Built-in scene (" + builtin_scene_list() +
+            ") or a .json scene file, whose settings the other options override")});
+  run({format, "--format", "", "", "format", vt::name, {}, io::format_name_list(), "FMT", "",
+       "overrides the extension", 0, true});
+  run({setting_id::backend, "--backend", "", "", "backend", vt::name, {}, backends, "NAME",
+       "auto: the best this CPU runs", ""});
+  run({setting_id::precision, "--precision", "", "", "precision", vt::name, {}, precisions, "MODE",
+       to_string(default_precision), ""});
+  run({threads, "--threads", "", "", "threads", vt::integer, {1, 1024}, {}, "N", "all cores", "Render threads"});
+  run({samples, "--samples", "", "", "samples", vt::integer, {1, double(max_samples)}, {}, "N", "1",
+       "Samples per pixel, averaged (antialiasing); 1 is the pixel's own point"});
+  run({sampler, "--sampler", "", "", "sampler", vt::name, {}, samplers, "NAME", to_string(default_sampler),
+       "where a pixel's samples fall"});
+  run({seed, "--seed", "", "", "seed", vt::seed, {}, {}, "N", "0",
+       "Seed of the samples' random numbers, 0 to 2^64-1"});
+  run({region, "--region", "", "", "region", vt::region, {}, {}, "X0,Y0,X1,Y1", "the whole image",
+       "Render and write only the pixels x0 <= x < x1, y0 <= y < y1 of the image (y0 = 0 is the top row), the "
+       "same bytes as those of the whole image"});
+  run({quiet, "--quiet", "-q", "", "", vt::flag, {}, {}, "", "", "No progress on standard error"});
+  run({stats, "--stats", "", "", "", vt::flag, {}, {}, "", "",
+       "After the run, print on standard error the seconds to load, prepare, render and write, rays per "
+       "second, spheres and peak memory"});
+  run({version, "--version", "", "", "", vt::flag, {}, {}, "", "", "Print the version and the backend auto picks here"});
+  return t;
+}
+
+}  // namespace
+
+std::span<const setting> input_table() {
+  static const std::vector<setting> table = build();
+  return table;
+}
+
+const setting& input_row(setting_id id) {
+  for (const setting& row : input_table())
+    if (row.id == id) return row;
+  return input_table().front();
+}
+
+}  // namespace raycast

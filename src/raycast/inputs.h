@@ -1,0 +1,29 @@
+// The whole input table (scene/settings.h): the scene's rows (camera and
+// sky, also a scene file's keys), then the run's (output, format, backend,
+// samples, ...), whose names come from their own rooms: backends and
+// precisions from render/backend.h, samplers from scene/sampler.h, formats
+// from io/format.h. The command line is built from it (cli/options.cpp);
+// the library and the Python module check their options with its rows.
+#pragma once
+#include <span>
+#include <string>
+
+#include "raycast/raycast.h"
+#include "scene/settings.h"
+
+namespace raycast {
+
+std::span<const setting> input_table();
+const setting& input_row(setting_id id);
+
+}  // namespace raycast
+
+namespace raycast::api {
+
+// A scene -- kind "builtin" (source: its name), "file" (a path), "json" (the
+// text) or "" (the sky alone) -- with settings merged over its camera and
+// sky keys before they are resolved, as the command line's options over a
+// scene file: the Python module's keywords (errors name the scene file's key).
+scene scene_with(const std::string& kind, const std::string& source, const settings& over);
+
+}  // namespace raycast::api
