@@ -88,7 +88,7 @@ TEST(Culling, EveryHitIsListed) {
         for (int64_t i = 0; i < f.width; ++i) {
           const float su = f.width == 1 ? 0.0f : (float(i) - f.mid_col) / f.last_col;
           float d[3];
-          for (int k = 0; k < 3; ++k) d[k] = (f.centre[k] + su * f.horizontal[k]) + sv * f.vertical[k];
+          for (int k = 0; k < 3; ++k) d[k] = (f.center[k] + su * f.horizontal[k]) + sv * f.vertical[k];
           const int64_t b = i / batch;
           const uint32_t* list = lists.list(b);
           const size_t count = lists.tests(b);

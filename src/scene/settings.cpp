@@ -12,7 +12,7 @@ constexpr size_t excerpt_bytes = 32;
 constexpr double inf = std::numeric_limits<double>::infinity();
 constexpr value_range positive{0.0, inf, true, false};
 constexpr value_range dimension{1.0, double(max_dimension)};
-constexpr value_range colour{-max_colour, max_colour};
+constexpr value_range color{-max_color, max_color};
 
 using enum setting_id;
 using vt = value_type;
@@ -35,9 +35,9 @@ constexpr setting scene_rows[] = {
     {lookat, "--lookat", "", "camera.lookat", "lookat", vt::triple, {}, {}, "X,Y,Z", "straight down -z",
      "Point the camera looks at"},
     {vup, "--vup", "", "camera.vup", "vup", vt::triple, {}, {}, "X,Y,Z", "0,1,0", "Which way is up for the camera"},
-    {sky_bottom, "--sky-bottom", "", "sky.bottom", "sky_bottom", vt::triple, colour, {}, "R,G,B", "1,1,1",
+    {sky_bottom, "--sky-bottom", "", "sky.bottom", "sky_bottom", vt::triple, color, {}, "R,G,B", "1,1,1",
      "Colour looking straight down"},
-    {sky_top, "--sky-top", "", "sky.top", "sky_top", vt::triple, colour, {}, "R,G,B", "0.5,0.7,1.0",
+    {sky_top, "--sky-top", "", "sky.top", "sky_top", vt::triple, color, {}, "R,G,B", "0.5,0.7,1.0",
      "Colour looking straight up"},
 };
 static_assert(std::size(scene_rows) == scene_setting_count);
