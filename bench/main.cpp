@@ -391,11 +391,13 @@ bool run_report(const std::string& json, const options& opt, bool to_stderr) {
 
 int run(int argc, char** argv) {
   const options opt = parse_own_flags(argc, argv);
-  // Google Benchmark's flags, with a short default min time: it keeps the
-  // full run within two minutes, and a row whose single iteration takes
-  // longer (the reference and scalar rows at 15360x8640) runs exactly once,
-  // by the library's own rule, so row names stay free of /iterations:
-  // suffixes. (Our default is set before Initialize, which replaces it only
+  // Google Benchmark's flags, with a short default min time (the library's
+  // is 0.5 s): it keeps a full run's hundreds of rows short (the scale rows
+  // are most of its minutes), and a row whose single iteration takes longer
+  // (the reference and scalar rows at 15360x8640, the big scale rows) runs
+  // exactly once, by the library's own rule, so timed rows' names stay free
+  // of /iterations: suffixes (the untimed stiff rows, Iterations(1), carry
+  // one). (Our default is set before Initialize, which replaces it only
   // when the command line gives --benchmark_min_time.) Rows may run in any
   // order (--benchmark_enable_random_interleaving): none needs another.
   benchmark::FLAGS_benchmark_min_time = opt.quick ? 0.02 : 0.1;

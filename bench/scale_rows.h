@@ -1,5 +1,5 @@
-// raycast-bench's scale section: particle clouds (bench/cloud.h) of N = 1,
-// 10, ..., 10^7 spheres at 1920x1080 (--quick: N = 1, 1000, 10^4), each row
+// raycast-bench's scale section: particle clouds (tests/support/cloud.h) of
+// N = 1, 10, ..., 10^7 spheres at 1920x1080 (--quick: N = 1, 1000, 10^4), each row
 // timing what a frame of a new scene costs, per iteration:
 //   scale/ours/N/t1, scale/ours/N/tall     the renderer's construction (the
 //       float scene, and the culling data once the constructor builds it:

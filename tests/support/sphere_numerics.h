@@ -1,6 +1,6 @@
 // The stiff sphere cases and the measurement of a renderer's numerics
 // on them against the double reference, shared by tests/test_sphere_stiff.cpp
-// and raycast-bench's stiff section (README "Numerics").
+// and raycast-bench's stiff section (src/kernels/README.md, "Spheres: stiff cases").
 //
 // A renderer is measured through what it traced per pixel (which sphere, at
 // what distance from the camera) and its 8-bit output: ours (the scalar float
