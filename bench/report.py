@@ -35,6 +35,14 @@ class Row(dict):
         return self.get(k)
 
 
+def pyplot():
+    """matplotlib's pyplot without a display (imported only when a plot is asked for)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    return plt
+
+
 def load(path):
     """(rows by name, context)."""
     with open(path) as f:
@@ -151,9 +159,7 @@ def print_rows(rows):
 
 
 def plot_summary(srows, ctx, size, threads, file):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     floor = 1e-9
     fig, ax = plt.subplots(figsize=(9.6, 6.4))
     pts = [s for s in srows if not math.isnan(s["err"])]
@@ -333,9 +339,7 @@ def plot_aa(rows, ctx, file):
     pts = aa_points(rows)
     if not pts:
         return False
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     fig, ax = plt.subplots(figsize=(9.6, 6.4))
     colours = dict(zip(SAMPLERS, ["#d62728", "#2ca02c", "#1f4e9c"]))
     ns = lambda r: r.t * 1e9 / r.px
@@ -438,9 +442,7 @@ def plot_scale(rows, ctx, file):
     cells = scale_cells(rows)
     if not cells:
         return False
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     fig, ax = plt.subplots(figsize=(8, 5.5))
     colours = {"ours": "tab:blue", "embree": "tab:red"}
     for (peer, thr), by_n in sorted(cells.items()):
