@@ -188,7 +188,7 @@ raycast_test::traced_image trace_embree(const scene& s, const embree_peer& peer)
   return t;
 }
 
-// stiff_sphere/CASE/PEER (not timed: one iteration): a stiff sphere case
+// sphere_stiff/CASE/PEER (not timed: one iteration): a stiff sphere case
 // (tests/support/sphere_numerics.h) against the double reference for ours
 // (the scalar renderer, exact mode: every backend's bits), naive (the book's
 // ch. 6 formula in float) or embree (rtcIntersect1).
@@ -242,8 +242,8 @@ void register_stiff_rows() {
   for (size_t k = 0; k < spheres.size(); ++k) {
     const scene s = raycast_test::scene_of(spheres[k]);
     for (const std::string peer : {"ours", "naive", "embree"})
-      add_row("stiff_sphere/" + spheres[k].name + "/" + peer,
-              strf("kind=stiff_sphere case=%s index=%zu peer=%s size=", spheres[k].name.c_str(), k, peer.c_str()) +
+      add_row("sphere_stiff/" + spheres[k].name + "/" + peer,
+              strf("kind=sphere_stiff case=%s index=%zu peer=%s size=", spheres[k].name.c_str(), k, peer.c_str()) +
                   size_text(s.cam.image_width, s.cam.image_height),
               benchmark::kMillisecond, bench_sphere_stiff, k, peer)
           ->Iterations(1);

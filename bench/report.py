@@ -485,7 +485,7 @@ def print_stiff(rows):
 
 def print_sphere_stiff(rows):
     by_case = defaultdict(dict)
-    for r in of_kind(rows, "stiff_sphere"):
+    for r in of_kind(rows, "sphere_stiff"):
         by_case[(int(r.index), r.case, r.size)][r.peer] = r
     if not by_case:
         return

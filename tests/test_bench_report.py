@@ -23,7 +23,7 @@ spec.loader.exec_module(report)
 # stiff sky case and a stiff sphere case.
 FILTER = ("^bound/memset/400x225/|^render/[^/]+/[^/]+/400x225/t1/|^render/[^/]+/[^/]+/world/400x225/t1/rgb8"
           "|^shortcuts/sse2/fast/|^aa/[^/]+/sobol/world/96x54/s(1|4)$|^aa/book7/|^region/"
-          "|^scale/[^/]+/1/t1$|^load/1$|^stiff/W=1/|^stiff_sphere/unit_sphere_at_10/")
+          "|^scale/[^/]+/1/t1$|^load/1$|^stiff/W=1/|^sphere_stiff/unit_sphere_at_10/")
 
 
 def power_law(a, slope, ns):
