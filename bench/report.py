@@ -44,9 +44,10 @@ def pyplot():
 
 
 def load(path):
-    """(rows by name, context)."""
+    """(rows by name, context); none from an empty file (a run whose filter matched no row)."""
     with open(path) as f:
-        data = json.load(f)
+        text = f.read()
+    data = json.loads(text) if text.strip() else {"benchmarks": []}
     runs, medians = defaultdict(list), {}
     for b in data["benchmarks"]:
         if b.get("run_type") == "aggregate":
@@ -524,6 +525,8 @@ def main(argv=None):
     ap.add_argument("--rows", action="store_true", help="also every row with speedup, vs_memset, vs_none")
     a = ap.parse_args(argv)
     rows, ctx = load(a.json)
+    if not rows:  # the filter matched none (Google Benchmark has said so)
+        return
     size = a.summary_size or ctx.get("summary_size", "3840x2160")
     threads = a.summary_threads or int(ctx.get("summary_threads", 1))
     srows = summary_rows(rows, size, threads)

@@ -140,20 +140,20 @@ scene_params scene_of(const settings& cli, job& j) {
     if (source.starts_with("--")) return usage_error{std::string(source), why};
     return usage_error{"--scene", file + ": " + std::string(source) + ": " + why};
   };
-  scene_params& sp = contents.scene;
-  if (auto e = resolve(merged, sp.camera, sp.sky)) throw blame(e->source, e->message);
+  scene_params& params = contents.scene;
+  if (auto e = resolve(merged, params.camera, params.sky)) throw blame(e->source, e->message);
   // What one value cannot say (lookat = lookfrom, vup along the view, a
   // derived height, spheres far from the camera) is the scene's to check
   // (scene/scene.h), once; here only the field it blames becomes the
   // setting that set it.
-  if (auto e = validate(sp)) {
+  if (auto e = validate(params)) {
     const setting_id id = row_for(e->field, merged);
     // A setting the command line did not give came from the scene file.
     const bool from_file = !file.empty() && (id == scene || !merged.has(id) || !merged[id]->source.starts_with("--"));
     if (from_file) throw usage_error{"--scene", file + ": " + path(*e) + ": " + e->message};
     throw usage_error{std::string(input_row(id).option), e->message};
   }
-  return std::move(sp);
+  return std::move(params);
 }
 
 // The output file and its format.
@@ -260,11 +260,11 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
   try {
     const settings cli = given_settings(app, cl);
     job j;
-    scene_params sp = scene_of(cli, j);
+    scene_params params = scene_of(cli, j);
     output_of(cli, j);
     render_options_of(cli, j);
-    const camera_params cp = sp.camera;
-    j.sc = make_scene(std::move(sp));  // moves the spheres
+    const camera_params cp = params.camera;
+    j.sc = make_scene(std::move(params));  // moves the spheres
     region_of(cli, cp, j);
     return {std::move(j), 0};
   } catch (const usage_error& e) {

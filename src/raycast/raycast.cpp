@@ -260,10 +260,10 @@ struct job::impl {
 };
 
 job::job(const scene& s, const options& o) : p_(std::make_unique<impl>()) {
-  const scene_params sp = to_internal(s);
-  if (auto e = validate(sp)) invalid(path(*e), e->message);
+  const scene_params params = to_internal(s);
+  if (auto e = validate(params)) invalid(path(*e), e->message);
   const render_options ro = to_internal(o);
-  const raycast::scene sc = make_scene(sp);
+  const raycast::scene sc = make_scene(params);
   p_->region = region_of(o, sc.cam);
   try {
     p_->r.emplace(sc, ro);

@@ -426,17 +426,17 @@ void reader::read_spheres(od::value& v, std::vector<sphere>& out) {
     const char* sphere_at = at(item);
     // Where each value is (nullptr: not given), for the errors about it.
     const char *center_at = nullptr, *radius_at = nullptr, *color_at = nullptr;
-    sphere sp;
+    sphere ball;
     static constexpr std::string_view sphere_keys[] = {"center", "radius", "shade", "color"};
     fields(object(item, at_k), at_k, sphere_keys, [&](int key, od::value value) {
       switch (key) {
         case 0:
           center_at = at(value);
-          sp.center = triple(value, [&] { return at_k() + ".center"; });
+          ball.center = triple(value, [&] { return at_k() + ".center"; });
           break;
         case 1:
           radius_at = at(value);
-          sp.radius = number(value, [&] { return at_k() + ".radius"; });
+          ball.radius = number(value, [&] { return at_k() + ".radius"; });
           break;
         case 2: {
           const char* shade_at = at(value);
@@ -445,27 +445,27 @@ void reader::read_spheres(od::value& v, std::vector<sphere>& out) {
           if (e != simdjson::SUCCESS && e != simdjson::INCORRECT_TYPE) fail_json(e, shade_at);
           if (e != simdjson::SUCCESS || (s != "normal" && s != "flat" && s != "lit"))
             fail(at_k() + ".shade", "must be \"normal\", \"flat\" or \"lit\"", shade_at);
-          sp.shade = s == "flat" ? shading::flat : s == "lit" ? shading::lit : shading::normal;
+          ball.shade = s == "flat" ? shading::flat : s == "lit" ? shading::lit : shading::normal;
           break;
         }
         case 3:
           color_at = at(value);
-          sp.flat_color = triple(value, [&] { return at_k() + ".color"; });
+          ball.flat_color = triple(value, [&] { return at_k() + ".color"; });
           break;
       }
     });
     if (!center_at) fail(at_k() + ".center", "is required", sphere_at);
     if (!radius_at) fail(at_k() + ".radius", "is required", sphere_at);
-    if (sp.shade != shading::normal && !color_at)
-      fail(at_k() + ".color", sp.shade == shading::flat ? "is required for flat shading" : "is required for lit shading",
+    if (ball.shade != shading::normal && !color_at)
+      fail(at_k() + ".color", ball.shade == shading::flat ? "is required for flat shading" : "is required for lit shading",
            sphere_at);
-    if (auto e = validate(sp, k)) {
+    if (auto e = validate(ball, k)) {
       const char* blame = e->field == scene_field::sphere_center   ? center_at
                           : e->field == scene_field::sphere_radius ? radius_at
                                                                    : color_at;
       fail(path(*e), e->message, blame);
     }
-    out.push_back(sp);
+    out.push_back(ball);
     if (++k % 4096 == 0) release_text_before(sphere_at);
   }
 }
