@@ -35,12 +35,12 @@ class Row(dict):
         return self.get(k)
 
 
-def pyplot():
-    """matplotlib's pyplot without a display (imported only when a plot is asked for)."""
+def figure(size):
+    """(pyplot, figure, axes) of matplotlib without a display, imported only when a plot is asked for."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    return plt
+    return (plt, *plt.subplots(figsize=size))
 
 
 def load(path):
@@ -160,9 +160,8 @@ def print_rows(rows):
 
 
 def plot_summary(srows, ctx, size, threads, file):
-    plt = pyplot()
     floor = 1e-9
-    fig, ax = plt.subplots(figsize=(9.6, 6.4))
+    plt, fig, ax = figure((9.6, 6.4))
     pts = [s for s in srows if not math.isnan(s["err"])]
     xs = [s["ns"] for s in srows] or [1]
     yhi = max([floor * 10] + [s["err"] for s in pts if math.isfinite(s["err"])])
@@ -340,8 +339,7 @@ def plot_aa(rows, ctx, file):
     pts = aa_points(rows)
     if not pts:
         return False
-    plt = pyplot()
-    fig, ax = plt.subplots(figsize=(9.6, 6.4))
+    plt, fig, ax = figure((9.6, 6.4))
     colours = dict(zip(SAMPLERS, ["#d62728", "#2ca02c", "#1f4e9c"]))
     ns = lambda r: r.t * 1e9 / r.px
     for i, scene in enumerate(scenes_of(pts)):
@@ -443,8 +441,7 @@ def plot_scale(rows, ctx, file):
     cells = scale_cells(rows)
     if not cells:
         return False
-    plt = pyplot()
-    fig, ax = plt.subplots(figsize=(8, 5.5))
+    plt, fig, ax = figure((8, 5.5))
     colours = {"ours": "tab:blue", "embree": "tab:red"}
     for (peer, thr), by_n in sorted(cells.items()):
         n = sorted(by_n)
