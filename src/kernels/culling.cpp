@@ -90,38 +90,53 @@ double widened(const float_spheres& sp, uint32_t k, double spread) {
   return sp.cull_radius[k] + spread * std::sqrt(f2);
 }
 
-// The indices i in [0, count) whose plane may come near the sphere at fk
-// (within w): the plane through the camera origin spanned by a + s step and
-// along, with s = (i - mid) / last -- a row's plane (step = vertical, along =
-// horizontal) or a column's (the other way round). Its normal is a x along +
-// s step x along; the sphere is near where (fk.n)^2 <= w^2 |n|^2, a
-// quadratic in s, in double; the indices are rounded outwards (the radius's
-// margin covers the float rounding of s). False when none is near.
-bool plane_range(const double* a, const double* step, const double* along, const double* fk, double w,
-                 float last, float mid, int64_t count, int64_t& lo, int64_t& hi) {
-  lo = 0;
-  hi = count - 1;
-  double N0[3], N1[3];
-  cross(a, along, N0);
-  cross(step, along, N1);
-  const double w2 = w * w, p0 = dot(fk, N0), p1 = dot(fk, N1);
-  double s0 = -INFINITY, s1 = INFINITY;
-  if (!below_zero(p1 * p1 - w2 * dot(N1, N1), p0 * p1 - w2 * dot(N0, N1), p0 * p0 - w2 * dot(N0, N0), s0, s1))
-    return false;
-  if (count == 1) return true;  // one index: the plane test decides
-  return index_range(s0, s1, last, mid, 0.0, count, lo, hi);
-}
+// A family of planes through the camera origin: plane s is spanned by
+// a + s step and along, with s = (i - mid) / last for index i -- the rows'
+// planes (step = vertical, along = horizontal) or the columns' (the other way
+// round). Plane s has the normal N0 + s N1 (N0 = a x along, N1 = step x
+// along); the products of the normals are the frame's, computed once.
+struct plane_family {
+  double N0[3], N1[3], n00, n01, n11;
+  float last, mid;
+  int64_t count;
 
-// The camera's three vectors in double.
+  plane_family(const double* a, const double* step, const double* along, float last_, float mid_, int64_t count_)
+      : last(last_), mid(mid_), count(count_) {
+    cross(a, along, N0);
+    cross(step, along, N1);
+    n00 = dot(N0, N0);
+    n01 = dot(N0, N1);
+    n11 = dot(N1, N1);
+  }
+
+  // The indices i in [0, count) whose plane may come near the sphere at fk
+  // (within w): where (fk.n)^2 <= w^2 |n|^2, a quadratic in s, in double; the
+  // indices rounded outwards (the radius's margin covers the float rounding
+  // of s). False when none is near.
+  bool range(const double* fk, double w, int64_t& lo, int64_t& hi) const {
+    lo = 0;
+    hi = count - 1;
+    const double w2 = w * w, p0 = dot(fk, N0), p1 = dot(fk, N1);
+    double s0 = -INFINITY, s1 = INFINITY;
+    if (!below_zero(p1 * p1 - w2 * n11, p0 * p1 - w2 * n01, p0 * p0 - w2 * n00, s0, s1)) return false;
+    if (count == 1) return true;  // one index: the plane test decides
+    return index_range(s0, s1, last, mid, 0.0, count, lo, hi);
+  }
+};
+
+// The camera's vectors in double, and what every sphere's box needs of them.
 struct frame_vectors {
   double c[3], h[3], v[3];
-  explicit frame_vectors(const float_scene& f) {
-    for (int i = 0; i < 3; ++i) {
-      c[i] = f.center[i];
-      h[i] = f.horizontal[i];
-      v[i] = f.vertical[i];
-    }
-  }
+  double d_len;  // >= |d| for every ray of the frame
+  plane_family rows, cols;
+
+  explicit frame_vectors(const float_scene& f)
+      : c{f.center[0], f.center[1], f.center[2]},
+        h{f.horizontal[0], f.horizontal[1], f.horizontal[2]},
+        v{f.vertical[0], f.vertical[1], f.vertical[2]},
+        d_len(std::sqrt(dot(c, c)) + std::sqrt(dot(h, h)) + std::sqrt(dot(v, v))),
+        rows(c, v, h, f.last_row, f.mid_row, f.height),
+        cols(c, h, v, f.last_col, f.mid_col, f.width) {}
 };
 
 // Per row, what the exact test of a sphere against the row's rays needs.
@@ -169,31 +184,31 @@ struct row_test {
 constexpr int64_t boxed_rows = 64;
 
 // A sphere's place in the frame: its rows and, for a short one, its columns.
+// (No member initializers: the frame's array of them is filled, not zeroed first.)
 struct frame_box {
-  int32_t r_lo = 1, r_hi = 0;  // rows, top-down (r = H - 1 - j); empty when r_lo > r_hi
-  int32_t c_lo = -1, c_hi = -1;  // columns; -1: tested per row
+  int32_t r_lo, r_hi;  // rows, top-down (r = H - 1 - j); empty when r_lo > r_hi
+  int32_t c_lo, c_hi;  // columns; -1: tested per row
 };
 
 frame_box box_of(const float_scene& f, const frame_vectors& fv, uint32_t k, double spread) {
-  frame_box box;
-  int64_t j_lo = 0, j_hi = 0;
-  if (!sphere_rows(f, k, j_lo, j_hi, spread)) return box;
+  frame_box box{1, 0, -1, -1};  // in no row
   const float_spheres& sp = f.spheres;
   const double fk[3] = {sp.rec[k].fx, sp.rec[k].fy, sp.rec[k].fz};
   const double wide = widened(sp, k, spread), r = std::sqrt(double(sp.rec[k].r2));
+  int64_t j_lo = 0, j_hi = 0;
+  if (!fv.rows.range(fk, wide, j_lo, j_hi)) return box;
   // A sphere the camera is outside of is hit only ahead, f.d < 0; f.d is
   // linear over the viewport, so its least value is at a corner (rays that
   // stray a pixel are covered by the slack, as in columns_near).
   if (dot(fk, fk) > sp.cull_radius[k] * sp.cull_radius[k]) {
     const double least = dot(fk, fv.c) - 0.5 * std::abs(dot(fk, fv.h)) - 0.5 * std::abs(dot(fk, fv.v));
-    const double d_len = std::sqrt(dot(fv.c, fv.c)) + std::sqrt(dot(fv.h, fv.h)) + std::sqrt(dot(fv.v, fv.v));
-    if (least > (wide - r) * d_len) return box;  // behind every ray: NaN kept
+    if (least > (wide - r) * fv.d_len) return box;  // behind every ray: NaN kept
   }
   box.r_lo = int32_t(f.height - 1 - j_hi);
   box.r_hi = int32_t(f.height - 1 - j_lo);
   int64_t c_lo = 0, c_hi = 0;
   if (j_hi - j_lo < boxed_rows) {
-    if (!plane_range(fv.c, fv.h, fv.v, fk, wide, f.last_col, f.mid_col, f.width, c_lo, c_hi)) {
+    if (!fv.cols.range(fk, wide, c_lo, c_hi)) {
       box.r_lo = 1, box.r_hi = 0;  // no column's plane comes near
       return box;
     }
@@ -207,9 +222,8 @@ frame_box box_of(const float_scene& f, const frame_vectors& fv, uint32_t k, doub
 
 bool sphere_rows(const float_scene& f, uint32_t k, int64_t& j_lo, int64_t& j_hi, double spread) {
   const float_spheres& sp = f.spheres;
-  const frame_vectors fv(f);
   const double fk[3] = {sp.rec[k].fx, sp.rec[k].fy, sp.rec[k].fz};
-  return plane_range(fv.c, fv.v, fv.h, fk, widened(sp, k, spread), f.last_row, f.mid_row, f.height, j_lo, j_hi);
+  return frame_vectors(f).rows.range(fk, widened(sp, k, spread), j_lo, j_hi);
 }
 
 size_t spheres_in_row(const float_scene& f, float sv, int batch, sphere_span* out,

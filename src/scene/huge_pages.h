@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <new>
+#include <utility>
 
 namespace raycast {
 
@@ -22,7 +23,9 @@ inline void advise_huge_pages(void* p, size_t n) {
 }
 
 // A standard allocator: arrays of 4 MiB or more are mapped and advised (above),
-// smaller ones come from operator new.
+// smaller ones come from operator new. Elements are default-initialized:
+// resize(n) of a trivial type writes nothing (every user fills what it
+// resizes; a pass of zeros first would cost a sweep over the memory).
 template <class T>
 struct huge_page_allocator {
   using value_type = T;
@@ -45,6 +48,11 @@ struct huge_page_allocator {
     const size_t bytes = n * sizeof(T);
     if (bytes < mapped_from) ::operator delete(p, std::align_val_t(alignof(T)));
     else ::munmap(p, bytes);
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    if constexpr (sizeof...(Args) == 0) ::new (static_cast<void*>(p)) U;
+    else ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
   }
   template <class U>
   bool operator==(const huge_page_allocator<U>&) const noexcept { return true; }
