@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "aa_rows.h"
+#include "cloud.h"
 #include "embree_peer.h"
 #include "embree_rows.h"
 #include "errors.h"
@@ -61,6 +62,7 @@ struct options {
   std::string plot, summary_size;
   int summary_threads = 1;
   std::string aa_reference_dir = default_cache_dir();
+  int64_t write_cloud = 0;  // > 0: print the particle cloud of that many spheres as a scene file
 };
 
 struct size2 {
@@ -261,6 +263,8 @@ void print_help() {
       "  --summary-threads N     threads of the summary table (default 1)\n"
       "  --aa-reference-dir DIR  where the aa/ rows' converged references are cached\n"
       "                          (default %s; '' : not cached)\n"
+      "  --write-cloud N         print the scale rows' particle cloud of N spheres as a\n"
+      "                          scene file (for raycast --scene FILE --stats) and exit\n"
       "The summaries are %s's, from the run's JSON\n"
       "(python3 %s RUN.json --help). Google Benchmark's flags:\n",
       default_cache_dir().c_str(), report_script().c_str(), report_script().c_str());
@@ -302,6 +306,12 @@ options parse_own_flags(int& argc, char** argv) {
       char tail = 0;
       if (std::sscanf(n->c_str(), "%d%c", &o.summary_threads, &tail) != 1 || o.summary_threads < 1)
         usage_error("--summary-threads wants a positive integer, got '" + *n + "'");
+    } else if (auto spheres = value("--write-cloud")) {
+      long long count = 0;
+      char tail = 0;
+      if (std::sscanf(spheres->c_str(), "%lld%c", &count, &tail) != 1 || count < 1 || count > 100000000)
+        usage_error("--write-cloud wants a number of spheres from 1 to 10^8, got '" + *spheres + "'");
+      o.write_cloud = count;
     } else {
       argv[kept++] = argv[i];
     }
@@ -391,6 +401,12 @@ bool run_report(const std::string& json, const options& opt, bool to_stderr) {
 
 int run(int argc, char** argv) {
   const options opt = parse_own_flags(argc, argv);
+  if (opt.write_cloud > 0) {
+    const std::string text = raycast_test::cloud_json(raycast_test::particle_cloud(opt.write_cloud));
+    const bool ok = std::fwrite(text.data(), 1, text.size(), stdout) == text.size() && std::fflush(stdout) == 0;
+    if (!ok) std::perror("raycast-bench: --write-cloud");
+    return ok ? 0 : 1;
+  }
   // Google Benchmark's flags, with a short default min time (the library's
   // is 0.5 s): it keeps a full run's hundreds of rows short (the scale rows
   // are most of its minutes), and a row whose single iteration takes longer

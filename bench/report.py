@@ -422,19 +422,21 @@ def print_scale(rows, ctx):
     get = lambda peer, thr, n, k: (lambda r: (r.t if k == "t" else r.get(k)) if r else None)(cells[(peer, thr)].get(n))
     print(f"\nScale: particle clouds (tests/support/cloud.h, coverage 1.5), 1920x1080, rgb8; ms (medians); tall = "
           f"{ctx.get('available_cores', '?')} threads\n"
-          "                  ours t1           ours      embree t1         embree  embree  speedup tall   ns/px vs 1e3"
-          "  load ns/sphere\n"
-          "         N    prep  render   total    tall   build  render   total    tall   /ours    ours  embree    ours"
-          "  embree   parse    prep")
+          "                  ours t1           ours      embree t1         embree  embree    speedup tall"
+          "          ns/px vs 1e3  load ns/sphere\n"
+          "         N    prep  render   total    tall   build  render   total    tall   /ours    ours  render  embree"
+          "    ours  embree   parse    prep")
     for n in ns:
         o = [get("ours", "1", n, k) for k in ("prepare_s", "render_s", "t")] + [get("ours", "all", n, "t")]
         e = [get("embree", "1", n, k) for k in ("build_s", "render_s", "t")] + [get("embree", "all", n, "t")]
         ld = load.get(n)
-        print(f"  {n:8d}" + "".join(ms(v) for v in o + e) + ratio(e[2], o[2]) + ratio(o[2], o[3]) + ratio(e[2], e[3]) +
+        print(f"  {n:8d}" + "".join(ms(v) for v in o + e) + ratio(e[2], o[2]) + ratio(o[2], o[3]) +
+              ratio(o[1], get("ours", "all", n, "render_s")) + ratio(e[2], e[3]) +
               ratio(get("ours", "1", n, "ns_per_px"), get("ours", "1", 1000, "ns_per_px")) +
               ratio(get("embree", "1", n, "ns_per_px"), get("embree", "1", 1000, "ns_per_px")) +
               "".join(f"{ld[k]:8.1f}" if ld else "       -" for k in ("parse_ns_per_sphere", "prepare_ns_per_sphere")))
-    print("  total = prepare + render; embree / ours and ns/px growth at 1 thread; speedup = t1 / tall")
+    print("  total = prepare + render; embree / ours and ns/px growth at 1 thread; speedup = t1 / tall, of the\n"
+          "  total (ours, embree) and of ours's render alone")
 
 
 def plot_scale(rows, ctx, file):
