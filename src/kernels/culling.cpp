@@ -264,6 +264,8 @@ row_index row_index::build(const float_scene& f, double spread, int threads) {
     ix.first[size_t(r) + 1] = ix.first[size_t(r)] + uint64_t(running);
   }
   ix.list.resize(ix.first.back());
+  while (((f.width - 1) >> ix.shift) >= row_entry::tall) ++ix.shift;
+  const int shift = ix.shift;
   // Filled in scene order by row blocks: each thread owns rows [r0, r1), scans
   // every sphere's rows and writes only its own rows' entries, so the bytes
   // do not depend on the team and no two threads write the same row.
@@ -275,14 +277,17 @@ row_index row_index::build(const float_scene& f, double spread, int threads) {
     for (size_t k = 0; k < n; ++k) {
       const frame_box& b = box[k];
       const int64_t lo = std::max<int64_t>(b.r_lo, r0), hi = std::min<int64_t>(b.r_hi, r1 - 1);
-      for (int64_t r = lo; r <= hi; ++r) ix.list[cursor[size_t(r - r0)]++] = {uint32_t(k), b.c_lo, b.c_hi};
+      if (lo > hi) continue;
+      const row_entry e = b.c_lo < 0 ? row_entry{uint32_t(k), row_entry::tall, 0}
+                                     : row_entry{uint32_t(k), uint16_t(b.c_lo >> shift), uint16_t(b.c_hi >> shift)};
+      for (int64_t r = lo; r <= hi; ++r) ix.list[cursor[size_t(r - r0)]++] = e;
     }
   }
   return ix;
 }
 
-batch_culler::batch_culler(const float_scene& f, size_t most, int batch, double spread)
-    : f_(f), batch_(batch), spread_(spread), batches_((f.width + batch - 1) / batch) {
+batch_culler::batch_culler(const float_scene& f, size_t most, int shift, int batch, double spread)
+    : f_(f), shift_(shift), batch_(batch), spread_(spread), batches_((f.width + batch - 1) / batch) {
   spans_ = static_cast<sphere_span*>(std::malloc(most * sizeof(sphere_span) + 1));
   capacity_ = std::max(4 * most, budget);
   list_ = static_cast<uint32_t*>(std::malloc(capacity_ * sizeof(uint32_t)));
@@ -302,7 +307,7 @@ void batch_culler::release() {
   list_ = first_ = fill_ = nullptr;
 }
 
-size_t batch_culler::row(float sv, const sphere_span* entries, size_t count) {
+size_t batch_culler::row(float sv, const row_entry* entries, size_t count) {
   const int64_t last_batch = batches_ - 1;
   kept_ = 0;
   entries_ = 0;
@@ -313,9 +318,9 @@ size_t batch_culler::row(float sv, const sphere_span* entries, size_t count) {
   };
   std::optional<row_test> exact;  // for the tall spheres, made at the first
   for (size_t x = 0; x < count; ++x) {
-    const sphere_span& e = entries[x];
-    if (e.lo >= 0) {
-      keep(e.sphere, e.lo, e.hi);
+    const row_entry& e = entries[x];
+    if (e.lo != row_entry::tall) {
+      keep(e.sphere, int64_t(e.lo) << shift_, ((int64_t(e.hi) + 1) << shift_) - 1);
       continue;
     }
     if (!exact) exact.emplace(f_, sv, spread_);

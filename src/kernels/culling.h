@@ -7,7 +7,7 @@
 //  - per frame, a row index: for every image row, the spheres whose
 //    bounding rows cover it (sphere_rows), in scene order, each with the
 //    columns it may touch. Built once by the renderer, in parallel over the
-//    spheres, and read-only afterwards. Memory: 8 bytes per row plus 12 bytes
+//    spheres, and read-only afterwards. Memory: 8 bytes per row plus 8 bytes
 //    per entry (an entry is a sphere in a row it may touch: its projected
 //    height in rows plus two), and 16 bytes per sphere while it is built.
 //  - per row, while it is rendered: each listed sphere's batches (from its
@@ -59,20 +59,29 @@ size_t spheres_in_row(const float_scene& f, float sv, int batch, sphere_span* ou
 // it, and a little more; false when none does.
 bool sphere_rows(const float_scene& f, uint32_t k, int64_t& j_lo, int64_t& j_hi, double spread = 0.0);
 
+// A sphere in a row of the row index, with the columns its box may touch:
+// lo << shift .. (hi << shift) + 2^shift - 1, the same in each of its rows,
+// for a sphere at most a few dozen rows tall; lo = tall for a taller one,
+// which is tested exactly in each row. shift (the index's) is 0 for images
+// up to 65,535 columns wide; wider ones round boxes out to 2^shift columns.
+struct row_entry {
+  uint32_t sphere;
+  uint16_t lo, hi;
+  static constexpr uint16_t tall = 0xffff;
+};
+
 // Per frame: for each image row r (r = 0 at the top, as image_band), the
-// spheres whose rows (sphere_rows) include it, in scene order. An entry is a
-// sphere_span in columns (not batches): a sphere at most a few dozen rows
-// tall carries the columns its box may touch (lo..hi, the same in each of its
-// rows); a taller one has lo = hi = -1 and is tested exactly in each row. A
-// sphere every ray passes behind is in no row.
+// spheres whose rows (sphere_rows) include it, in scene order. A sphere every
+// ray passes behind is in no row.
 struct row_index {
   std::vector<uint64_t> first;  // list[first[r] .. first[r + 1]) for row r
-  std::vector<sphere_span, huge_page_allocator<sphere_span>> list;  // 12 bytes per entry
+  std::vector<row_entry, huge_page_allocator<row_entry>> list;  // 8 bytes per entry
   size_t most = 0;                // the longest row's count
+  int shift = 0;                  // the entries' column unit, 2^shift
 
   // Built with up to `threads` threads; the same bytes for any count.
   static row_index build(const float_scene& f, double spread, int threads);
-  size_t bytes() const { return first.size() * sizeof(uint64_t) + list.size() * sizeof(sphere_span); }
+  size_t bytes() const { return first.size() * sizeof(uint64_t) + list.size() * sizeof(row_entry); }
 };
 
 // Per thread, per row: the lists of the spheres each batch of the row may
@@ -82,8 +91,9 @@ struct row_index {
 // false) a kernel tests every sphere, which is slow but right.
 class batch_culler {
  public:
-  // For rows of a frame whose rows have at most `most` candidates each.
-  batch_culler(const float_scene& f, size_t most, int batch, double spread);
+  // For rows of a frame whose rows have at most `most` candidates each, from
+  // a row index whose column unit is 2^shift.
+  batch_culler(const float_scene& f, size_t most, int shift, int batch, double spread);
   ~batch_culler();
   batch_culler(const batch_culler&) = delete;
   batch_culler& operator=(const batch_culler&) = delete;
@@ -91,7 +101,7 @@ class batch_culler {
 
   // The row with this sv, from its entries in the row index: the batches of
   // each sphere its rays may hit; returns how many spheres it keeps.
-  size_t row(float sv, const sphere_span* entries, size_t count);
+  size_t row(float sv, const row_entry* entries, size_t count);
   // How many batches one run of lists may cover (runs keep the lists within
   // their memory however many batches the row's spheres span).
   int64_t run_length() const;
@@ -110,6 +120,7 @@ class batch_culler {
   size_t capacity_ = 0;
   size_t entries_ = 0;  // the kept spheres' batches, added up
   const float_scene& f_;
+  int shift_;
   int batch_;
   double spread_;
   int64_t batches_;

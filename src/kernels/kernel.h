@@ -46,10 +46,12 @@ struct kernel_args {
   sphere_arrays spheres;
   // The frame's row index (kernels/culling.h; built by the renderer, with the
   // sampled path's spread when samples is set): row r's candidate spheres
-  // are row_list[row_first[r] .. row_first[r + 1]), at most row_most.
+  // are row_list[row_first[r] .. row_first[r + 1]), at most row_most, their
+  // columns in units of 2^row_shift.
   const uint64_t* row_first = nullptr;
-  const sphere_span* row_list = nullptr;
+  const row_entry* row_list = nullptr;
   size_t row_most = 0;
+  int row_shift = 0;
   // Many samples per pixel (scene/sampler.h): the sphere kernel's sampled
   // path, for every scene, the sky alone included; null for one sample.
   const sampling::sample_plan* samples = nullptr;

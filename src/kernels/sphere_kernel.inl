@@ -81,7 +81,7 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
   const int64_t batches = (W + N - 1) / N;
   // The batches that hold the band's columns.
   const int64_t first_batch = c0 / N, end_batch = (c1 + N - 1) / N;
-  batch_culler lists(s, a.row_most, N, 0.0);
+  batch_culler lists(s, a.row_most, a.row_shift, N, 0.0);
   const bool mirror = a.mirror && lists.ok() && band.whole_rows(W);
   for (int64_t r = r0; r < r1; ++r) {
     const int64_t j = s.height - 1 - r;
@@ -228,7 +228,7 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
   const int64_t W = s.width, c0 = band.col_begin, c1 = band.cols_end(W);
   const int64_t batches = (W + N - 1) / N;
   const int64_t first_batch = c0 / N, end_batch = (c1 + N - 1) / N;
-  batch_culler lists(s, a.row_most, N, s.pixel_spread);
+  batch_culler lists(s, a.row_most, a.row_shift, N, s.pixel_spread);
   const sample_camera<K> cam(s, sp);
   for (int64_t r = r0; r < r1; ++r) {
     const int64_t j = s.height - 1 - r;

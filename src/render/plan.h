@@ -40,6 +40,7 @@ class plan {
     args_.row_first = rows.first.data();
     args_.row_list = rows.list.data();
     args_.row_most = rows.most;
+    args_.row_shift = rows.shift;
   }
 
  private:
