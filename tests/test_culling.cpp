@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <tuple>
 #include <vector>
 
 #include "cloud.h"
@@ -179,15 +180,17 @@ TEST(Culling, SameBytesForAnyThreadCount) {
 }
 
 // Renders over bands of odd heights and any thread count, exact mode, every
-// SIMD backend this CPU runs: the scalar renderer's bytes.
-void expect_scalar_bytes(const scene& s, const char* what) {
-  const image want = raycast_test::render_with_scalar(s, precision::exact, pixel_format::rgb8);
+// SIMD backend this CPU runs: the scalar renderer's bytes (both with the
+// spheres in row order from sort_from spheres on).
+void expect_scalar_bytes(const scene& s, const char* what, size_t sort_from = sorted_from) {
+  const image want = raycast_test::render_with_scalar(s, precision::exact, pixel_format::rgb8, sort_from);
   for (backend b : simd_backends) {
     if (backend_unavailable(b)) continue;
     for (int threads : {1, 2, 3}) {
       render_options o;
       o.which = b;
       o.threads = threads;
+      o.sort_from = sort_from;
       const renderer r(s, o);
       image got(s.cam.image_width, s.cam.image_height, pixel_format::rgb8);
       for (int64_t y0 = 0, band = 7; y0 < got.height; y0 += band, band = band * 2 + 1) {
@@ -211,6 +214,64 @@ TEST(Culling, CloudMatchesScalarAndReference) {
   const image ref = raycast_test::render_with_reference(s, pixel_format::rgb8);
   const image got = raycast_test::render_with_scalar(s, precision::exact, pixel_format::rgb8);
   EXPECT_LE(raycast_test::compare(got, ref).max, 1);
+}
+
+// The same cloud prepared in the order of its rows (as clouds of 2^15
+// spheres or more are): a reordering of the scene's spheres, bit-identical
+// across backends, threads and bands, within one 8-bit step of the reference.
+TEST(Culling, SortedCloudMatchesScalarAndReference) {
+  scene_params p = raycast_test::particle_cloud(10000);
+  p.camera.image_width = 192;
+  p.camera.image_height = 108;
+  const scene s = make_scene(p);
+  const float_scene sorted = prepare_float_scene(s, 2, 0), as_given = prepare_float_scene(s, 1, size_t(-1));
+  ASSERT_EQ(sorted.spheres.size(), as_given.spheres.size());
+  const auto key = [](const sphere_record& e) { return std::tuple(e.fx, e.fy, e.fz, e.c); };
+  std::vector<std::tuple<float, float, float, float>> a, b;
+  for (size_t k = 0; k < sorted.spheres.size(); ++k) {
+    a.push_back(key(sorted.spheres.rec[k]));
+    b.push_back(key(as_given.spheres.rec[k]));
+  }
+  EXPECT_NE(a, b) << "the order did not change";
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  EXPECT_EQ(a, b) << "not a reordering of the same spheres";
+  expect_scalar_bytes(s, "cloud of 10^4 in row order", 0);
+  const image ref = raycast_test::render_with_reference(s, pixel_format::rgb8);
+  const image got = raycast_test::render_with_scalar(s, precision::exact, pixel_format::rgb8, 0);
+  EXPECT_LE(raycast_test::compare(got, ref).max, 1);
+}
+
+// The row order is stable: of two coincident spheres the later in the scene
+// still wins the tie (float_spheres.h), however many spheres come between.
+TEST(Culling, SortingKeepsTheLaterOfCoincidentSpheres) {
+  scene_params p;
+  p.camera.image_width = 64;
+  p.camera.image_height = 36;
+  const auto flat = [](vec3 at, double r, color c) {
+    sphere b;
+    b.center = at;
+    b.radius = r;
+    b.shade = shading::flat;
+    b.flat_color = c;
+    return b;
+  };
+  p.spheres = {flat(vec3(0.0, -0.2, -2.0), 0.3, color(1.0, 0.0, 0.0)),   // lower in the image
+               flat(vec3(0.0, 0.3, -2.0), 0.2, color(1.0, 0.0, 0.0)),    // upper: sorted first
+               flat(vec3(0.0, -0.2, -2.0), 0.3, color(0.0, 0.0, 1.0))};  // coincides with the first
+  const scene s = make_scene(p);
+  for (backend b : {backend::scalar, backend::sse2, backend::avx2, backend::avx512, backend::neon}) {
+    if (backend_unavailable(b)) continue;
+    render_options o;
+    o.which = b;
+    o.sort_from = 0;
+    const renderer r(s, o);
+    image got(64, 36, pixel_format::rgb8);
+    r.render(got.band());
+    const unsigned char* mid = got.bytes.data() + size_t(19) * got.stride() + 31 * 3;  // the lower pair's centre
+    EXPECT_EQ(mid[0], 0) << to_string(b);
+    EXPECT_EQ(mid[2], 255) << to_string(b) << ": the later sphere should win";
+  }
 }
 
 // Thousands of large spheres over every column of a row: the row's batch

@@ -266,7 +266,7 @@ row_index row_index::build(const float_scene& f, double spread, int threads) {
   ix.list.resize(ix.first.back());
   while (((f.width - 1) >> ix.shift) >= row_entry::tall) ++ix.shift;
   const int shift = ix.shift;
-  // Filled in scene order by row blocks: each thread owns rows [r0, r1), scans
+  // Filled in the float scene's order by row blocks: each thread owns rows [r0, r1), scans
   // every sphere's rows and writes only its own rows' entries, so the bytes
   // do not depend on the team and no two threads write the same row.
 #pragma omp parallel num_threads(team)

@@ -5,7 +5,7 @@
 // Two levels, so that a frame of N spheres costs O(N + entries), whatever
 // the thread count or band size:
 //  - per frame, a row index: for every image row, the spheres whose
-//    bounding rows cover it (sphere_rows), in scene order, each with the
+//    bounding rows cover it (sphere_rows), in the float scene's order, each with the
 //    columns it may touch. Built once by the renderer, in parallel over the
 //    spheres, and read-only afterwards. Memory: 8 bytes per row plus 8 bytes
 //    per entry (an entry is a sphere in a row it may touch: its projected
@@ -36,7 +36,7 @@ struct sphere_span {
 };
 
 // The spheres a ray of the row with this sv (kernels/scalar.h) may hit, in
-// scene order, with their batches. Every ray of a row lies in the plane
+// the float scene's order, with their batches. Every ray of a row lies in the plane
 // through the camera origin spanned by centre + sv * vertical and horizontal,
 // so a sphere whose centre is farther than its radius from that plane is hit
 // by none of them; of the others, a column's ray can hit the sphere only if
@@ -44,7 +44,7 @@ struct sphere_span {
 // The tests are in double on the float renderers' own constants, with a
 // margin (1e-5 of |f| + r) a hundred times the float intersection's
 // rounding. Writes to out (room for every candidate) and returns how many.
-// With candidates, only those spheres (scene order) are considered: the
+// With candidates, only those spheres (in order) are considered: the
 // others are known not to come near this row (sphere_rows).
 // With spread (a float_scene's pixel_spread, for renders with many samples),
 // the spheres a ray of the pixels' whole square of samples may hit: each
@@ -71,7 +71,7 @@ struct row_entry {
 };
 
 // Per frame: for each image row r (r = 0 at the top, as image_band), the
-// spheres whose rows (sphere_rows) include it, in scene order. A sphere every
+// spheres whose rows (sphere_rows) include it, in the float scene's order. A sphere every
 // ray passes behind is in no row.
 struct row_index {
   std::vector<uint64_t> first;  // list[first[r] .. first[r + 1]) for row r

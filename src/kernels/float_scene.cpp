@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <utility>
+#include <vector>
 
 namespace raycast {
 namespace {
@@ -117,9 +118,39 @@ sphere_record record_of(const sphere& b, const point3& origin, float& cull_radiu
   return e;
 }
 
+// The image row (0 at the top) of the centre of sphere k as the camera sees
+// it, clamped to the image; H for a centre not in front of the camera: the
+// key of a large scene's order (prepare_float_scene).
+uint32_t centre_row(const camera& c, const point3& center) {
+  const auto dot = [](const vec3& a, const vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; };
+  const int64_t H = c.image_height;
+  const vec3 p = center - c.origin;
+  const double ahead = -dot(p, c.axis_w);  // the distance along the view
+  const double sv = dot(p, c.vertical) / dot(c.vertical, c.vertical) * (c.focal_length / ahead);  // -1/2 .. 1/2
+  const double j = sv * double(H - 1) + 0.5 * double(H - 1);  // from the bottom, as kernels/scalar.h
+  if (!(ahead > 0.0) || !(j == j)) return uint32_t(H);
+  return uint32_t(H - 1 - std::clamp<int64_t>(std::llround(std::clamp(j, -1.0, double(H))), 0, H - 1));
+}
+
+// The order of the float scene: sphere order[i] of the scene is the float
+// scene's i-th, stably sorted by centre_row (a counting sort).
+using index_array = std::vector<uint32_t, huge_page_allocator<uint32_t>>;
+index_array row_order(const scene& s, int team) {
+  const size_t n = s.sphere_count();
+  const size_t H = size_t(s.cam.image_height);
+  index_array key(n), order(n);
+#pragma omp parallel for schedule(static) num_threads(team)
+  for (size_t k = 0; k < n; ++k) key[k] = centre_row(s.cam, s.sphere_at(k).center);
+  std::vector<size_t> first(H + 2, 0);
+  for (uint32_t r : key) ++first[r + 1];
+  for (size_t r = 0; r <= H; ++r) first[r + 1] += first[r];
+  for (size_t k = 0; k < n; ++k) order[first[key[k]]++] = uint32_t(k);
+  return order;
+}
+
 }  // namespace
 
-float_scene prepare_float_scene(const scene& s, int threads) {
+float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from) {
   const camera& c = s.cam;
   float_scene f;
   prepare_camera(f, s);
@@ -136,10 +167,17 @@ float_scene prepare_float_scene(const scene& s, int threads) {
   sp.blue.resize(n);
   sp.kind.resize(n);
   const int team = n < (size_t(1) << 15) ? 1 : std::max(1, threads);
+  const auto order = n >= sort_from ? row_order(s, team) : index_array();
+  constexpr size_t ahead = 16;
   bool any_inside = false, any_flat = false, any_normal = false, any_lit = false;
 #pragma omp parallel for schedule(static) num_threads(team) reduction(|| : any_inside, any_flat, any_normal, any_lit)
   for (size_t k = 0; k < n; ++k) {
-    const sphere b = s.sphere_at(k);  // a vector's, or a caller's arrays'
+    if (!order.empty() && !s.arrays && k + ahead < n) {  // the gather's loads, started early
+      const char* next = reinterpret_cast<const char*>(&s.spheres[order[k + ahead]]);
+      __builtin_prefetch(next);
+      __builtin_prefetch(next + sizeof(sphere) - 1);
+    }
+    const sphere b = s.sphere_at(order.empty() ? k : order[k]);  // a vector's, or a caller's arrays'
     const sphere_record& e = sp.rec[k] = record_of(b, c.origin, sp.cull_radius[k]);
     any_inside = any_inside || e.inside;
     const bool flat = b.shade == shading::flat, lit = b.shade == shading::lit, colored = flat || lit;

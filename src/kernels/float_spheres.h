@@ -17,7 +17,9 @@
 // Per pixel, the camera direction d of kernels/scalar.h (not normalized: the
 // plan scales the camera so its largest component is in [0.5, 1)), and
 //   n2 = (d.x d.x + d.y d.y) + d.z d.z,   inv_n2 = 1 / n2
-// A ray is P(s) = O + s d; per sphere, in scene order, with closest = FLT_MAX:
+// A ray is P(s) = O + s d; per sphere, in the float scene's order (the
+// scene's; from 2^15 spheres on, stably sorted by the image row of their
+// centres: prepare_float_scene), with closest = FLT_MAX:
 //   b    = (f.x d.x + f.y d.y) + f.z d.z
 //   near:   disc = b b - n2 c                          the textbook discriminant
 //   far:    k = b inv_n2
@@ -31,7 +33,9 @@
 //   t    = s scale                                     exact: a power of two
 //   hit  when disc >= 0 and s >= 0 and t <= closest; then closest = t
 //        (t <= closest: on a tie the later sphere wins, as in the book's
-//        hittable_list; closest starts at FLT_MAX, so no infinite or NaN t hits)
+//        hittable_list -- of two coincident spheres the later in the scene,
+//        as the row order is stable; closest starts at FLT_MAX, so no
+//        infinite or NaN t hits)
 // Shading of the closest hit (its s, f, inv_r), per channel k:
 //   flat:   the sphere's colour
 //   lit:    with N as for normal (below), facing the ray,
@@ -85,8 +89,8 @@ inline constexpr float normal = 0.0f, flat = 1.0f, lit = 2.0f;
 }
 
 // What the intersection reads of one sphere, in one record of half a cache
-// line: a ray batch tests spheres in scene order, which in a large scene
-// jumps about memory, so each test costs one cache line rather than one per
+// line: a ray batch tests spheres in the float scene's order, which jumps
+// about memory, so each test costs one cache line rather than one per
 // constant.
 struct alignas(32) sphere_record {
   float fx, fy, fz;  // f = (O - C) 2^-e
@@ -98,7 +102,7 @@ struct alignas(32) sphere_record {
   uint8_t inside;    // 1: the camera is inside the sphere or on it
 };
 
-// One record per sphere in scene order, and what shading reads of a hit.
+// One record per sphere in the float scene's order, and what shading reads of a hit.
 struct float_spheres {
   template <class T>
   using array = std::vector<T, huge_page_allocator<T>>;  // scene/huge_pages.h

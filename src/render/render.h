@@ -27,6 +27,10 @@ struct render_options {
   uint32_t samples = 1;
   sampler_kind sampler = default_sampler;
   uint64_t seed = 0;
+  // Scenes of this many spheres or more are prepared in the order of their
+  // image rows (kernels/float_scene.h); tests lower it to cover that order on
+  // small scenes.
+  size_t sort_from = sorted_from;
 };
 
 // The most samples per pixel a render takes (the per-sample table is 16

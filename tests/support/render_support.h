@@ -67,10 +67,10 @@ inline image render_with_reference(const raycast::scene& s, raycast::pixel_forma
   return img;
 }
 
-inline image render_with_scalar(const raycast::scene& s, raycast::precision p,
-                                raycast::pixel_format f) {
+inline image render_with_scalar(const raycast::scene& s, raycast::precision p, raycast::pixel_format f,
+                                size_t sort_from = raycast::sorted_from) {
   image img(s.cam.image_width, s.cam.image_height, f);
-  raycast::render_scalar(raycast::prepare_float_scene(s), p, img.band());
+  raycast::render_scalar(raycast::prepare_float_scene(s, 1, sort_from), p, img.band());
   return img;
 }
 
