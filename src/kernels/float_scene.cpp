@@ -172,11 +172,7 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from) {
   bool any_inside = false, any_flat = false, any_normal = false, any_lit = false;
 #pragma omp parallel for schedule(static) num_threads(team) reduction(|| : any_inside, any_flat, any_normal, any_lit)
   for (size_t k = 0; k < n; ++k) {
-    if (!order.empty() && !s.arrays && k + ahead < n) {  // the gather's loads, started early
-      const char* next = reinterpret_cast<const char*>(&s.spheres[order[k + ahead]]);
-      __builtin_prefetch(next);
-      __builtin_prefetch(next + sizeof(sphere) - 1);
-    }
+    if (!order.empty() && k + ahead < n) s.prefetch_sphere(order[k + ahead]);  // the gather's loads, started early
     const sphere b = s.sphere_at(order.empty() ? k : order[k]);  // a vector's, or a caller's arrays'
     const sphere_record& e = sp.rec[k] = record_of(b, c.origin, sp.cull_radius[k]);
     any_inside = any_inside || e.inside;
