@@ -220,7 +220,7 @@ TEST(Culling, CloudMatchesScalarAndReference) {
 // spheres or more are): a reordering of the scene's spheres, bit-identical
 // across backends, threads and bands, within one 8-bit step of the reference.
 TEST(Culling, SortedCloudMatchesScalarAndReference) {
-  scene_params p = raycast_test::particle_cloud(10000);
+  scene_params p = raycast_test::particle_cloud(3000);
   p.camera.image_width = 192;
   p.camera.image_height = 108;
   const scene s = make_scene(p);
@@ -236,7 +236,7 @@ TEST(Culling, SortedCloudMatchesScalarAndReference) {
   std::sort(a.begin(), a.end());
   std::sort(b.begin(), b.end());
   EXPECT_EQ(a, b) << "not a reordering of the same spheres";
-  expect_scalar_bytes(s, "cloud of 10^4 in row order", 0);
+  expect_scalar_bytes(s, "cloud of 3000 in row order", 0);
   const image ref = raycast_test::render_with_reference(s, pixel_format::rgb8);
   const image got = raycast_test::render_with_scalar(s, precision::exact, pixel_format::rgb8, 0);
   EXPECT_LE(raycast_test::compare(got, ref).max, 1);
