@@ -148,6 +148,15 @@ index_array row_order(const scene& s, int team) {
   return order;
 }
 
+// a[i] = a[order[i]] for every i, through a second array.
+template <class T>
+void reorder(float_spheres::array<T>& a, const index_array& order, int team) {
+  float_spheres::array<T> sorted(a.size());
+#pragma omp parallel for schedule(static) num_threads(team)
+  for (size_t i = 0; i < a.size(); ++i) sorted[i] = a[order[i]];
+  a.swap(sorted);
+}
+
 }  // namespace
 
 float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from) {
@@ -167,13 +176,10 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from) {
   sp.blue.resize(n);
   sp.kind.resize(n);
   const int team = n < (size_t(1) << 15) ? 1 : std::max(1, threads);
-  const auto order = n >= sort_from ? row_order(s, team) : index_array();
-  constexpr size_t ahead = 16;
   bool any_inside = false, any_flat = false, any_normal = false, any_lit = false;
 #pragma omp parallel for schedule(static) num_threads(team) reduction(|| : any_inside, any_flat, any_normal, any_lit)
   for (size_t k = 0; k < n; ++k) {
-    if (!order.empty() && k + ahead < n) s.prefetch_sphere(order[k + ahead]);  // the gather's loads, started early
-    const sphere b = s.sphere_at(order.empty() ? k : order[k]);  // a vector's, or a caller's arrays'
+    const sphere b = s.sphere_at(k);  // a vector's, or a caller's arrays'
     const sphere_record& e = sp.rec[k] = record_of(b, c.origin, sp.cull_radius[k]);
     any_inside = any_inside || e.inside;
     const bool flat = b.shade == shading::flat, lit = b.shade == shading::lit, colored = flat || lit;
@@ -189,6 +195,20 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from) {
   sp.any_flat = any_flat;
   sp.any_normal = any_normal;
   sp.any_lit = any_lit;
+  // Reordered after, not read in order: a caller's spheres are read front to
+  // back (read out of order from small pages, a virtual machine's TLB misses
+  // cost microseconds a sphere), the gather reads our own arrays.
+  if (n >= sort_from) {
+    const index_array order = row_order(s, team);
+    reorder(sp.rec, order, team);
+    reorder(sp.cull_radius, order, team);
+    if (any_flat || any_lit) {  // else every colour is 0 and every kind normal
+      reorder(sp.red, order, team);
+      reorder(sp.green, order, team);
+      reorder(sp.blue, order, team);
+      reorder(sp.kind, order, team);
+    }
+  }
   return f;
 }
 

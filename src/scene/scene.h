@@ -29,11 +29,8 @@ struct sphere_view {
     ptrdiff_t stride = 0;            // bytes from one sphere to the next
     ptrdiff_t component_stride = 0;  // bytes from x to y to z (r g b); unused for radii
 
-    const unsigned char* address(size_t k, int c = 0) const {
-      return static_cast<const unsigned char*>(data) + ptrdiff_t(k) * stride + c * component_stride;
-    }
     double get(size_t k, int c = 0) const {
-      const unsigned char* p = address(k, c);
+      const auto* p = static_cast<const unsigned char*>(data) + ptrdiff_t(k) * stride + c * component_stride;
       if (type == element::f32) {
         float v;
         std::memcpy(&v, p, sizeof v);
@@ -59,14 +56,6 @@ struct sphere_view {
     if (colors.data) s.flat_color = color(colors.get(k, 0), colors.get(k, 1), colors.get(k, 2));
     return s;
   }
-  // Asks the caches for sphere k's values (a loop that reads spheres out of
-  // order calls it some spheres ahead).
-  void prefetch(size_t k) const {
-    __builtin_prefetch(centers.address(k, 0));
-    __builtin_prefetch(centers.address(k, 2));
-    __builtin_prefetch(radii.address(k));
-    if (colors.data) __builtin_prefetch(colors.address(k, 1));
-  }
 };
 
 struct scene {
@@ -78,12 +67,6 @@ struct scene {
 
   size_t sphere_count() const { return arrays ? arrays->count : spheres.size(); }
   sphere sphere_at(size_t k) const { return arrays ? arrays->at(k) : spheres[k]; }
-  void prefetch_sphere(size_t k) const {
-    if (arrays) return arrays->prefetch(k);
-    const char* p = reinterpret_cast<const char*>(&spheres[k]);
-    __builtin_prefetch(p);
-    __builtin_prefetch(p + sizeof(sphere) - 1);
-  }
 };
 
 // The spheres as a vector: a copy of the arrays' (the double reference reads
