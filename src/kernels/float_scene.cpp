@@ -133,14 +133,11 @@ uint32_t centre_row(const camera& c, const point3& center) {
 }
 
 // The order of the float scene: sphere order[i] of the scene is the float
-// scene's i-th, stably sorted by centre_row (a counting sort).
+// scene's i-th, stably sorted by their centre_row keys (a counting sort).
 using index_array = std::vector<uint32_t, huge_page_allocator<uint32_t>>;
-index_array row_order(const scene& s, int team) {
-  const size_t n = s.sphere_count();
-  const size_t H = size_t(s.cam.image_height);
-  index_array key(n), order(n);
-#pragma omp parallel for schedule(static) num_threads(team)
-  for (size_t k = 0; k < n; ++k) key[k] = centre_row(s.cam, s.sphere_at(k).center);
+index_array row_order(const index_array& key, size_t H) {
+  const size_t n = key.size();
+  index_array order(n);
   std::vector<size_t> first(H + 2, 0);
   for (uint32_t r : key) ++first[r + 1];
   for (size_t r = 0; r <= H; ++r) first[r + 1] += first[r];
@@ -176,10 +173,13 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from) {
   sp.blue.resize(n);
   sp.kind.resize(n);
   const int team = n < (size_t(1) << 15) ? 1 : std::max(1, threads);
+  const bool sorted = n >= sort_from;
+  index_array key(sorted ? n : 0);
   bool any_inside = false, any_flat = false, any_normal = false, any_lit = false;
 #pragma omp parallel for schedule(static) num_threads(team) reduction(|| : any_inside, any_flat, any_normal, any_lit)
   for (size_t k = 0; k < n; ++k) {
     const sphere b = s.sphere_at(k);  // a vector's, or a caller's arrays'
+    if (sorted) key[k] = centre_row(c, b.center);
     const sphere_record& e = sp.rec[k] = record_of(b, c.origin, sp.cull_radius[k]);
     any_inside = any_inside || e.inside;
     const bool flat = b.shade == shading::flat, lit = b.shade == shading::lit, colored = flat || lit;
@@ -198,8 +198,8 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from) {
   // Reordered after, not read in order: a caller's spheres are read front to
   // back (read out of order from small pages, a virtual machine's TLB misses
   // cost microseconds a sphere), the gather reads our own arrays.
-  if (n >= sort_from) {
-    const index_array order = row_order(s, team);
+  if (sorted) {
+    const index_array order = row_order(key, size_t(c.image_height));
     reorder(sp.rec, order, team);
     reorder(sp.cull_radius, order, team);
     if (any_flat || any_lit) {  // else every colour is 0 and every kind normal
