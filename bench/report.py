@@ -423,9 +423,9 @@ def print_scale(rows, ctx):
     print(f"\nScale: particle clouds (tests/support/cloud.h, coverage 1.5), 1920x1080, rgb8; ms (medians); tall = "
           f"{ctx.get('available_cores', '?')} threads\n"
           "                  ours t1           ours      embree t1         embree  embree    speedup tall"
-          "          ns/px vs 1e3  load ns/sphere\n"
+          "          ns/px vs 1e3    load ns/sphere\n"
           "         N    prep  render   total    tall   build  render   total    tall   /ours    ours  render  embree"
-          "    ours  embree   parse    prep")
+          "    ours  embree   parse    bare    prep")
     for n in ns:
         o = [get("ours", "1", n, k) for k in ("prepare_s", "render_s", "t")] + [get("ours", "all", n, "t")]
         e = [get("embree", "1", n, k) for k in ("build_s", "render_s", "t")] + [get("embree", "all", n, "t")]
@@ -434,9 +434,11 @@ def print_scale(rows, ctx):
               ratio(o[1], get("ours", "all", n, "render_s")) + ratio(e[2], e[3]) +
               ratio(get("ours", "1", n, "ns_per_px"), get("ours", "1", 1000, "ns_per_px")) +
               ratio(get("embree", "1", n, "ns_per_px"), get("embree", "1", 1000, "ns_per_px")) +
-              "".join(f"{ld[k]:8.1f}" if ld else "       -" for k in ("parse_ns_per_sphere", "prepare_ns_per_sphere")))
+              "".join(f"{ld[k]:8.1f}" if ld and k in ld else "       -"
+                      for k in ("parse_ns_per_sphere", "bare_simdjson_ns_per_sphere", "prepare_ns_per_sphere")))
     print("  total = prepare + render; embree / ours and ns/px growth at 1 thread; speedup = t1 / tall, of the\n"
-          "  total (ours, embree) and of ours's render alone")
+          "  total (ours, embree) and of ours's render alone; load: our parse, simdjson's bare loop over the\n"
+          "  same text (no checks), our preparation")
 
 
 def plot_scale(rows, ctx, file):

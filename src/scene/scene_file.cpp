@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <new>
@@ -47,14 +48,24 @@ struct failure {
 };
 
 // The input, padded as simdjson needs (SIMDJSON_PADDING readable bytes after
-// the text), unmapped when the parse returns. Mapped rather than allocated so
-// that its pages stay untouched until the text is read into them.
+// the text), freed when the parse returns. A big text is mapped rather than
+// allocated, so that its pages stay untouched until the text is read into
+// them and can be handed back as the parse passes them (mapped()); a small
+// one comes from the heap, whose pages a long-lived caller (the library, the
+// bench) reuses rather than faulting in fresh ones for every file.
 class padded_text {
  public:
+  static constexpr size_t mapped_from = size_t(16) << 20;
+
   // Room for n bytes and the padding, or nullopt.
   static std::optional<padded_text> allocate(size_t n) {
     padded_text t;
     t.capacity_ = n + simdjson::SIMDJSON_PADDING;
+    if (t.capacity_ < mapped_from) {
+      t.data_ = static_cast<char*>(std::malloc(t.capacity_));
+      if (!t.data_) return std::nullopt;
+      return t;
+    }
     void* p = ::mmap(nullptr, t.capacity_, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
     if (p == MAP_FAILED) return std::nullopt;
     advise_huge_pages(p, t.capacity_);
@@ -65,9 +76,12 @@ class padded_text {
       : data_(std::exchange(o.data_, nullptr)), size_(o.size_), capacity_(o.capacity_) {}
   padded_text& operator=(padded_text&&) = delete;
   ~padded_text() {
-    if (data_) ::munmap(data_, capacity_);
+    if (!data_) return;
+    if (mapped()) ::munmap(data_, capacity_);
+    else std::free(data_);
   }
 
+  bool mapped() const { return capacity_ >= mapped_from; }
   char* data() const { return data_; }
   size_t size() const { return size_; }
   size_t capacity() const { return capacity_; }
@@ -130,9 +144,10 @@ std::string json_error(error_code e) {
 
 class reader {
  public:
-  // text: page-aligned memory of ours (padded_text), released as it is read.
-  reader(const char* text, size_t size, od::document& doc)
-      : text_(text), size_(size), doc_(doc), released_to_(text), released_line_start_(text) {}
+  // text: memory of ours (padded_text); page-aligned and released as it is
+  // read when `release`.
+  reader(const char* text, size_t size, bool release, od::document& doc)
+      : text_(text), size_(size), release_(release), doc_(doc), released_to_(text), released_line_start_(text) {}
 
   scene_file_contents read();
 
@@ -171,7 +186,7 @@ class reader {
   // reads text behind it again; a 1 MiB margin keeps the current token whole.
   void release_text_before(const char* cursor) {
     constexpr size_t page = 4096, margin = size_t(1) << 20, step = size_t(8) << 20;
-    if (cursor < released_to_ + margin + step) return;
+    if (!release_ || cursor < released_to_ + margin + step) return;
     const uintptr_t to = (reinterpret_cast<uintptr_t>(cursor) - margin) & ~uintptr_t(page - 1);
     const char* end = reinterpret_cast<const char*>(to);
     for (const char* p = released_to_; (p = static_cast<const char*>(std::memchr(p, '\n', size_t(end - p)))); ++p) {
@@ -306,6 +321,7 @@ class reader {
 
   const char* text_;
   size_t size_;
+  bool release_;
   od::document& doc_;
   const char* released_to_;          // text before this was handed back (release_text_before)
   size_t released_lines_ = 0;        // newlines before released_to_
@@ -501,7 +517,7 @@ std::variant<scene_file_contents, scene_file_error> parse_padded(const padded_te
   if (error_code e = parser.iterate(t.data(), t.size(), t.capacity()).get(doc))
     return scene_file_error{"", "not valid JSON: " + json_error(e)};
   try {
-    return reader(t.data(), t.size(), doc).read();
+    return reader(t.data(), t.size(), t.mapped(), doc).read();
   } catch (const failure& x) {
     return x.e;
   } catch (const std::bad_alloc&) {
