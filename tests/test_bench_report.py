@@ -94,3 +94,24 @@ def test_plots(run_json, tmp_path):
     for f in ["p.svg", "p-aa.svg", "p-scale.svg"]:
         assert (tmp_path / f).read_text().startswith("<?xml"), f
     assert "Antialiasing plot written to" in text
+
+
+def test_the_load_rows_carry_the_bare_simdjson_peer(run_json):
+    load = [b for b in json.loads(run_json.read_text())["benchmarks"] if b["name"].startswith("load/1")]
+    assert load and all(b["bare_simdjson_ns_per_sphere"] > 0 for b in load)
+    line = next(l for l in run_report(run_json).splitlines() if l.split()[:1] == ["1"] and "-" in l)
+    assert len(line.split()[-3:]) == 3 and "-" not in line.split()[-2]  # parse, bare, prep
+
+
+def test_write_cloud_prints_the_scale_rows_cloud():
+    bench = os.environ.get("RAYCAST_BENCH")
+    if not bench:
+        pytest.skip("RAYCAST_BENCH (the raycast-bench binary) not set")
+    out = subprocess.run([bench, "--write-cloud", "50"], check=True, capture_output=True, text=True).stdout
+    scene = json.loads(out)
+    assert len(scene["spheres"]) == 50 and scene["camera"]["width"] == 1920
+    assert len({s["radius"] for s in scene["spheres"]}) == 1  # one radius, the coverage's
+    for bad in ["0", "x", "1e9", "200000000"]:
+        r = subprocess.run([bench, "--write-cloud", bad], capture_output=True, text=True)
+        assert r.returncode == 2 and r.stdout == "" and r.stderr.count("\n") == 1, (bad, r)
+        assert "--write-cloud" in r.stderr
