@@ -1,6 +1,7 @@
 #include "scale_rows.h"
 
 #include <benchmark/benchmark.h>
+#include <simdjson.h>
 
 #include <chrono>
 #include <memory>
@@ -15,8 +16,6 @@
 #include "errors.h"
 #include "rows.h"
 #include "scene/scene_file.h"
-
-#include <simdjson.h>
 
 namespace raycast::bench {
 namespace {

@@ -115,12 +115,12 @@ TEST(Culling, EveryHitIsListed) {
 
 // An image wider than the index's 16-bit columns: boxes round out to pairs
 // of columns, and every hit is still listed (a row of 66,001 columns seeing
-// spheres across its plane, a few hundred columns wide each).
+// spheres across its plane, tens of columns wide each).
 TEST(Culling, WideImagesRoundBoxesOutwards) {
   scene_params p;
   p.camera.image_width = 66001;
   p.camera.image_height = 1;
-  p.camera.vfov_degrees = 0.005;  // 1.2 degrees of the view a thousand columns
+  p.camera.vfov_degrees = 0.005;  // one row: near the centre, 5 degrees of the view a thousand columns
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int k = 0; k < 60; ++k) {

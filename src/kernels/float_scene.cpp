@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include <glm/geometric.hpp>
+
 namespace raycast {
 namespace {
 
@@ -118,11 +120,11 @@ sphere_record record_of(const sphere& b, const point3& origin, float& cull_radiu
   return e;
 }
 
-// The image row (0 at the top) of the centre of sphere k as the camera sees
-// it, clamped to the image; H for a centre not in front of the camera: the
-// key of a large scene's order (prepare_float_scene).
+// The image row (0 at the top) of a sphere's centre as the camera sees it,
+// clamped to the image; H for a centre not in front of the camera: the key
+// of a large scene's order (prepare_float_scene).
 uint32_t centre_row(const camera& c, const point3& center) {
-  const auto dot = [](const vec3& a, const vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; };
+  using glm::dot;
   const int64_t H = c.image_height;
   const vec3 p = center - c.origin;
   const double ahead = -dot(p, c.axis_w);  // the distance along the view
