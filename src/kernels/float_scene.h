@@ -53,8 +53,8 @@ struct float_scene {
 // reordered (float_spheres.h): its spheres stably sorted by the image row of
 // their centres, so that the spheres one row of rays tests lie together in
 // memory (the sort holds 8 bytes a sphere, and the gather a second copy of
-// what it moves, while they run). Scenes of a few thousand spheres fit in the caches as they come and
-// keep the scene's order.
+// what it moves, while they run). Scenes of a few thousand spheres fit in the
+// caches as they come and keep the scene's order.
 inline constexpr size_t sorted_from = size_t(1) << 15;
 float_scene prepare_float_scene(const scene& s, int threads = 1, size_t sort_from = sorted_from);
 
