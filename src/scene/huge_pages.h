@@ -14,22 +14,42 @@
 
 namespace raycast {
 
+inline constexpr size_t huge_page_bytes = size_t(2) << 20;
+
 // Asks for huge pages over the 2 MiB pages inside [p, p + n).
 inline void advise_huge_pages(void* p, size_t n) {
-  constexpr uintptr_t huge = uintptr_t(2) << 20;
+  constexpr uintptr_t huge = huge_page_bytes;
   const uintptr_t begin = (reinterpret_cast<uintptr_t>(p) + huge - 1) & ~(huge - 1);
   const uintptr_t end = (reinterpret_cast<uintptr_t>(p) + n) & ~(huge - 1);
   if (end > begin) ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
 }
 
-// A standard allocator: arrays of 4 MiB or more are mapped and advised (above),
-// smaller ones come from operator new. Elements are default-initialized:
-// resize(n) of a trivial type writes nothing (every user fills what it
-// resizes; a pass of zeros first would cost a sweep over the memory).
+// n bytes rounded up to whole huge pages.
+inline size_t huge_mapping_bytes(size_t n) { return (n + huge_page_bytes - 1) & ~(huge_page_bytes - 1); }
+
+// Fresh zeroed memory for n bytes (n > 0), mapped at a 2 MiB boundary in whole
+// huge pages and advised, or nullptr. Both ends aligned matter: a mapping
+// that starts or ends inside a huge page is faulted in 4 KiB pages there,
+// and 4 MiB arrays (a million floats) would take half their pages that way.
+// Free with unmap_huge(p, n).
+inline void* map_huge(size_t n) {
+  const size_t bytes = huge_mapping_bytes(n);
+  if (bytes < n) return nullptr;
+  void* raw = ::mmap(nullptr, bytes + huge_page_bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (raw == MAP_FAILED) return nullptr;
+  const uintptr_t start = reinterpret_cast<uintptr_t>(raw);
+  const uintptr_t aligned = (start + huge_page_bytes - 1) & ~uintptr_t(huge_page_bytes - 1);
+  if (aligned > start) ::munmap(raw, aligned - start);
+  if (const size_t tail = start + huge_page_bytes - aligned) ::munmap(reinterpret_cast<void*>(aligned + bytes), tail);
+  ::madvise(reinterpret_cast<void*>(aligned), bytes, MADV_HUGEPAGE);
+  return reinterpret_cast<void*>(aligned);
+}
+inline void unmap_huge(void* p, size_t n) { ::munmap(p, huge_mapping_bytes(n)); }
+
 template <class T>
 struct huge_page_allocator {
   using value_type = T;
-  static constexpr size_t mapped_from = size_t(4) << 20;
+  static constexpr size_t mapped_from = size_t(1) << 20;
 
   huge_page_allocator() = default;
   template <class U>
@@ -39,15 +59,14 @@ struct huge_page_allocator {
     const size_t bytes = n * sizeof(T);
     if (n > size_t(-1) / sizeof(T)) throw std::bad_alloc();
     if (bytes < mapped_from) return static_cast<T*>(::operator new(bytes, std::align_val_t(alignof(T))));
-    void* p = ::mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-    if (p == MAP_FAILED) throw std::bad_alloc();
-    advise_huge_pages(p, bytes);
+    void* p = map_huge(bytes);
+    if (!p) throw std::bad_alloc();
     return static_cast<T*>(p);
   }
   void deallocate(T* p, size_t n) noexcept {
     const size_t bytes = n * sizeof(T);
     if (bytes < mapped_from) ::operator delete(p, std::align_val_t(alignof(T)));
-    else ::munmap(p, bytes);
+    else unmap_huge(p, bytes);
   }
   template <class U, class... Args>
   void construct(U* p, Args&&... args) {

@@ -66,9 +66,8 @@ class padded_text {
       if (!t.data_) return std::nullopt;
       return t;
     }
-    void* p = ::mmap(nullptr, t.capacity_, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-    if (p == MAP_FAILED) return std::nullopt;
-    advise_huge_pages(p, t.capacity_);
+    void* p = map_huge(t.capacity_);
+    if (!p) return std::nullopt;
     t.data_ = static_cast<char*>(p);
     return t;
   }
@@ -77,7 +76,7 @@ class padded_text {
   padded_text& operator=(padded_text&&) = delete;
   ~padded_text() {
     if (!data_) return;
-    if (mapped()) ::munmap(data_, capacity_);
+    if (mapped()) unmap_huge(data_, capacity_);
     else std::free(data_);
   }
 
@@ -185,7 +184,7 @@ class reader {
   // simdjson's index rather than that plus every sphere. The iterator never
   // reads text behind it again; a 1 MiB margin keeps the current token whole.
   void release_text_before(const char* cursor) {
-    constexpr size_t page = 4096, margin = size_t(1) << 20, step = size_t(8) << 20;
+    constexpr size_t page = huge_page_bytes, margin = size_t(1) << 20, step = size_t(8) << 20;
     if (!release_ || cursor < released_to_ + margin + step) return;
     const uintptr_t to = (reinterpret_cast<uintptr_t>(cursor) - margin) & ~uintptr_t(page - 1);
     const char* end = reinterpret_cast<const char*>(to);
