@@ -170,10 +170,6 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from) {
   const size_t n = s.sphere_count();
   sp.rec.resize(n);
   sp.cull_radius.resize(n);
-  sp.red.resize(n);
-  sp.green.resize(n);
-  sp.blue.resize(n);
-  sp.kind.resize(n);
   const int team = n < (size_t(1) << 15) ? 1 : std::max(1, threads);
   const bool sorted = n >= sort_from;
   index_array key(sorted ? n : 0);
@@ -184,19 +180,31 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from) {
     if (sorted) key[k] = centre_row(c, b.center);
     const sphere_record& e = sp.rec[k] = record_of(b, c.origin, sp.cull_radius[k]);
     any_inside = any_inside || e.inside;
-    const bool flat = b.shade == shading::flat, lit = b.shade == shading::lit, colored = flat || lit;
-    sp.red[k] = colored ? flush(b.flat_color.r) + 0.0f : 0.0f;
-    sp.green[k] = colored ? flush(b.flat_color.g) + 0.0f : 0.0f;
-    sp.blue[k] = colored ? flush(b.flat_color.b) + 0.0f : 0.0f;
-    sp.kind[k] = flat ? shading_kind::flat : lit ? shading_kind::lit : shading_kind::normal;
-    any_flat = any_flat || flat;
-    any_lit = any_lit || lit;
-    any_normal = any_normal || !colored;
+    any_flat = any_flat || b.shade == shading::flat;
+    any_lit = any_lit || b.shade == shading::lit;
+    any_normal = any_normal || b.shade == shading::normal;
   }
   sp.any_inside = any_inside;
   sp.any_flat = any_flat;
   sp.any_normal = any_normal;
   sp.any_lit = any_lit;
+  // Colours only where some sphere has one: a second pass, which a cloud of
+  // normal-shaded spheres (13 bytes a sphere) does without.
+  if (any_flat || any_lit) {
+    sp.red.resize(n);
+    sp.green.resize(n);
+    sp.blue.resize(n);
+    sp.kind.resize(n);
+#pragma omp parallel for schedule(static) num_threads(team)
+    for (size_t k = 0; k < n; ++k) {
+      const sphere b = s.sphere_at(k);
+      const bool flat = b.shade == shading::flat, lit = b.shade == shading::lit, colored = flat || lit;
+      sp.red[k] = colored ? flush(b.flat_color.r) + 0.0f : 0.0f;
+      sp.green[k] = colored ? flush(b.flat_color.g) + 0.0f : 0.0f;
+      sp.blue[k] = colored ? flush(b.flat_color.b) + 0.0f : 0.0f;
+      sp.kind[k] = flat ? shading_kind::flat : lit ? shading_kind::lit : shading_kind::normal;
+    }
+  }
   // Reordered after, not read in order: a caller's spheres are read front to
   // back (read out of order from small pages, a virtual machine's TLB misses
   // cost microseconds a sphere), the gather reads our own arrays.

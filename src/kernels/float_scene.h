@@ -48,8 +48,8 @@ struct float_scene {
 };
 
 // With up to `threads` threads for large scenes; the same bytes for any count.
-// Memory: 52 bytes a sphere (float_spheres: a 32-byte record, the culling
-// radius, the colour and the kind). A scene of sort_from spheres or more is
+// Memory: 36 bytes a sphere (float_spheres: a 32-byte record and the culling
+// radius), 52 when some sphere is flat or lit (the colours and kinds). A scene of sort_from spheres or more is
 // reordered (float_spheres.h): its spheres stably sorted by the image row of
 // their centres, so that the spheres one row of rays tests lie together in
 // memory (the sort holds 8 bytes a sphere, and the gather a second copy of

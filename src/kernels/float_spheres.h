@@ -107,14 +107,17 @@ struct float_spheres {
   template <class T>
   using array = std::vector<T, huge_page_allocator<T>>;  // scene/huge_pages.h
   array<sphere_record> rec;
-  array<float> red, green, blue;  // flat colour (0 for normal-shaded spheres)
-  array<float> kind;              // shading_kind: 0 normal, 1 flat, 2 lit
+  // Empty when every sphere is normal-shaded (!any_flat && !any_lit): the
+  // colour (0 for normal-shaded spheres) and shading_kind of each sphere.
+  array<float> red, green, blue;
+  array<float> kind;
   bool any_flat = false, any_normal = false, any_lit = false, any_inside = false;
   // For culling (kernels/culling.h), in the sphere's unit: the radius
   // widened by a margin far above float's rounding, 1e-5 (|f| + r).
   array<float> cull_radius;
 
   size_t size() const { return rec.size(); }
+  float kind_of(size_t k) const { return kind.empty() ? shading_kind::normal : kind[k]; }
   bool empty() const { return rec.empty(); }
 };
 

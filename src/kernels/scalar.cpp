@@ -128,14 +128,16 @@ void hit_normal(const float_scene& f, const traced& tr, float n[3]) {
 void hit_color(const float_scene& f, const traced& tr, float out[3]) {
   const float_spheres& sp = f.spheres;
   const size_t hit = tr.hit;
-  const float albedo[3] = {sp.red[hit], sp.green[hit], sp.blue[hit]};
-  if (sp.kind[hit] == shading_kind::flat) {
+  const float kind = sp.kind_of(hit);
+  const float albedo[3] = {kind == shading_kind::normal ? 0.0f : sp.red[hit], kind == shading_kind::normal ? 0.0f : sp.green[hit],
+                           kind == shading_kind::normal ? 0.0f : sp.blue[hit]};
+  if (kind == shading_kind::flat) {
     for (int k = 0; k < 3; ++k) out[k] = albedo[k];
     return;
   }
   float n[3];
   hit_normal(f, tr, n);
-  if (sp.kind[hit] == shading_kind::lit) {
+  if (kind == shading_kind::lit) {
     const float* d = tr.d;
     const float facing = -((n[0] * d[0] + n[1] * d[1]) + n[2] * d[2]) / std::sqrt(tr.n2);
     const float light = lit_ambient + lit_diffuse * vmax(facing, 0.0f);
@@ -209,7 +211,7 @@ void scalar_pixel_samples(const float_scene& f, const sampling::sample_plan& pla
     if (tr.hit == spheres.size()) {
       sky_sum = sky_sum + sampling::sky_u<float, uint32_t>(tr.d[1], tr.n2);
       sky_count = sky_count + 1.0f;
-    } else if (spheres.kind[tr.hit] != shading_kind::normal) {
+    } else if (spheres.kind_of(tr.hit) != shading_kind::normal) {
       float c[3];
       hit_color(f, tr, c);  // the flat or lit colour
       for (int k = 0; k < 3; ++k) flat[k] = flat[k] + c[k];

@@ -273,7 +273,8 @@ class reader {
       }
       if (seen & (1u << index)) fail(child(path(), key), "duplicate key", key_at);
       seen |= 1u << index;
-      f(index, fld.value());
+      od::value value = fld.value();
+      f(index, value);
     }
   }
 
@@ -416,7 +417,7 @@ void reader::read_settings(od::value& v, std::string_view object_name, settings&
   static const std::vector<std::string_view> camera_keys = known_of("camera"), sky_keys = known_of("sky");
   const std::vector<std::string_view>& known = object_name == "camera" ? camera_keys : sky_keys;
   const auto object_path = [&] { return std::string(object_name); };
-  fields(object(v, object_path), object_path, known, [&](int key, od::value value) {
+  fields(object(v, object_path), object_path, known, [&](int key, od::value& value) {
     const setting& row = *find_file_key(std::string(object_name) + "." + std::string(known[size_t(key)]));
     given g;
     read_setting(value, row, g);
@@ -443,7 +444,7 @@ void reader::read_spheres(od::value& v, std::vector<sphere>& out) {
     const char *center_at = nullptr, *radius_at = nullptr, *color_at = nullptr;
     sphere ball;
     static constexpr std::string_view sphere_keys[] = {"center", "radius", "shade", "color"};
-    fields(object(item, at_k), at_k, sphere_keys, [&](int key, od::value value) {
+    fields(object(item, at_k), at_k, sphere_keys, [&](int key, od::value& value) {
       switch (key) {
         case 0:
           center_at = at(value);
@@ -493,7 +494,7 @@ scene_file_contents reader::read() {
     fail_json(e, here());
   }
   static constexpr std::string_view root_keys[] = {"camera", "sky", "spheres"};
-  fields(root, [] { return std::string(); }, root_keys, [&](int key, od::value value) {
+  fields(root, [] { return std::string(); }, root_keys, [&](int key, od::value& value) {
     if (key == 0) read_settings(value, "camera", p.keys);
     if (key == 1) read_settings(value, "sky", p.keys);
     if (key == 2) read_spheres(value, p.scene.spheres);
