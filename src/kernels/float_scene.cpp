@@ -88,8 +88,8 @@ float next_up(float x) {  // for x >= +0
 }
 
 // One sphere's constants in double, each rounded to float once
-// (float_spheres.h), and its culling radius.
-sphere_record record_of(const sphere& b, const point3& origin, float& cull_radius) {
+// (float_spheres.h).
+sphere_record record_of(const sphere& b, const point3& origin) {
   const vec3 fo = origin - b.center;
   // The sphere's own unit, 2^e: max(|f|, r) 2^-e in [0.5, 1) (exact in
   // double for every finite scene; the float constants then neither
@@ -111,13 +111,16 @@ sphere_record record_of(const sphere& b, const point3& origin, float& cull_radiu
   e.scale = float(power_of_two(unit));
   e.near = f2 < 2.0 * r * r ? 1 : 0;
   e.inside = cc <= 0.0 ? 1 : 0;
-  {  // from the float constants, as the renderers see the sphere; rounded up
-    const double ff[3] = {e.fx, e.fy, e.fz};
-    const double rf = std::sqrt(double(e.r2));
-    const double wide = rf + 1e-5 * (std::sqrt(ff[0] * ff[0] + ff[1] * ff[1] + ff[2] * ff[2]) + rf);
-    cull_radius = next_up(float(wide));
-  }
   return e;
+}
+
+// Its culling radius: from the float constants, as the renderers see the
+// sphere; rounded up.
+float cull_radius_of(const sphere_record& e) {
+  const double ff[3] = {e.fx, e.fy, e.fz};
+  const double rf = std::sqrt(double(e.r2));
+  const double wide = rf + 1e-5 * (std::sqrt(ff[0] * ff[0] + ff[1] * ff[1] + ff[2] * ff[2]) + rf);
+  return next_up(float(wide));
 }
 
 // The image row (0 at the top) of a sphere's centre as the camera sees it,
@@ -169,7 +172,6 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from) {
   float_spheres& sp = f.spheres;
   const size_t n = s.sphere_count();
   sp.rec.resize(n);
-  sp.cull_radius.resize(n);
   const int team = n < (size_t(1) << 15) ? 1 : std::max(1, threads);
   const bool sorted = n >= sort_from;
   index_array key(sorted ? n : 0);
@@ -178,7 +180,7 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from) {
   for (size_t k = 0; k < n; ++k) {
     const sphere b = s.sphere_at(k);  // a vector's, or a caller's arrays'
     if (sorted) key[k] = centre_row(c, b.center);
-    const sphere_record& e = sp.rec[k] = record_of(b, c.origin, sp.cull_radius[k]);
+    const sphere_record& e = sp.rec[k] = record_of(b, c.origin);
     any_inside = any_inside || e.inside;
     any_flat = any_flat || b.shade == shading::flat;
     any_lit = any_lit || b.shade == shading::lit;
@@ -190,7 +192,8 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from) {
   sp.any_lit = any_lit;
   // Colours only where some sphere has one: a second pass, which a cloud of
   // normal-shaded spheres (13 bytes a sphere) does without.
-  if (any_flat || any_lit) {
+  const bool colored = any_flat || any_lit;
+  if (colored) {
     sp.red.resize(n);
     sp.green.resize(n);
     sp.blue.resize(n);
@@ -198,10 +201,10 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from) {
 #pragma omp parallel for schedule(static) num_threads(team)
     for (size_t k = 0; k < n; ++k) {
       const sphere b = s.sphere_at(k);
-      const bool flat = b.shade == shading::flat, lit = b.shade == shading::lit, colored = flat || lit;
-      sp.red[k] = colored ? flush(b.flat_color.r) + 0.0f : 0.0f;
-      sp.green[k] = colored ? flush(b.flat_color.g) + 0.0f : 0.0f;
-      sp.blue[k] = colored ? flush(b.flat_color.b) + 0.0f : 0.0f;
+      const bool flat = b.shade == shading::flat, lit = b.shade == shading::lit;
+      sp.red[k] = flat || lit ? flush(b.flat_color.r) + 0.0f : 0.0f;
+      sp.green[k] = flat || lit ? flush(b.flat_color.g) + 0.0f : 0.0f;
+      sp.blue[k] = flat || lit ? flush(b.flat_color.b) + 0.0f : 0.0f;
       sp.kind[k] = flat ? shading_kind::flat : lit ? shading_kind::lit : shading_kind::normal;
     }
   }
@@ -210,15 +213,19 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from) {
   // cost microseconds a sphere), the gather reads our own arrays.
   if (sorted) {
     const index_array order = row_order(key, size_t(c.image_height));
+    index_array().swap(key);
     reorder(sp.rec, order, team);
-    reorder(sp.cull_radius, order, team);
-    if (any_flat || any_lit) {  // else every colour is 0 and every kind normal
+    if (colored) {
       reorder(sp.red, order, team);
       reorder(sp.green, order, team);
       reorder(sp.blue, order, team);
       reorder(sp.kind, order, team);
     }
   }
+  // The culling radii, from the records in their final order.
+  sp.cull_radius.resize(n);
+#pragma omp parallel for schedule(static) num_threads(team)
+  for (size_t k = 0; k < n; ++k) sp.cull_radius[k] = cull_radius_of(sp.rec[k]);
   return f;
 }
 
