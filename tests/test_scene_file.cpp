@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <variant>
 
@@ -180,15 +181,18 @@ TEST(SceneFile, ErrorsSayWhereWithAShortQuote) {
 // A file of tens of megabytes hands its text back as the spheres fill
 // memory: every sphere still arrives, and an error past the released text
 // still says its line and column (counted before the text went).
+// Over windowed_from bytes: parsed a window at a time, and parsed whole for
+// its errors (read_scene_text).
 TEST(SceneFile, ErrorsFarIntoABigFileSayTheirLine) {
   std::string text = "{\"spheres\": [\n";
-  constexpr int n = 300000;
+  constexpr int n = 380000;
   for (int k = 0; k < n; ++k)
     text += "  {\"center\": [" + std::to_string(k % 1000) + ", " + std::to_string(k / 1000) + ", -3], \"radius\": 0.25},\n";
   const std::string good = text.substr(0, text.size() - 2) + "\n],\n\"camera\": {\"width\": 40}}";
+  ASSERT_GE(good.size(), windowed_from);
   const scene_params p = parsed(good);
   ASSERT_EQ(p.spheres.size(), size_t(n));
-  EXPECT_EQ(p.spheres.back().center, point3(999, 299, -3));
+  EXPECT_EQ(p.spheres.back().center, point3(999, (n - 1) / 1000, -3));
   EXPECT_EQ(p.camera.image_width, 40);
   // Line 1 is "{"spheres": [", sphere k is on line k + 2; the camera after them.
   std::string late_text = good.substr(0, good.size() - 4);
@@ -201,6 +205,85 @@ TEST(SceneFile, ErrorsFarIntoABigFileSayTheirLine) {
   EXPECT_EQ(last.path, "spheres[" + std::to_string(n) + "].radius");
   EXPECT_NE(last.message.find("line " + std::to_string(n + 2) + ", column 36: -1)"), std::string::npos)
       << last.message;
+}
+
+// The windowed reader of large texts (read_scene_windows) against the whole
+// parse, for window sizes from one byte (every sphere larger than its first
+// window) to the whole text: the same spheres, and the same keys down to the
+// places their errors would quote ("at line L, column C"), before and after
+// the array, on its last line or below it.
+bool same_contents(const scene_file_contents& a, const scene_file_contents& b) {
+  if (a.scene.spheres.size() != b.scene.spheres.size()) return false;
+  for (size_t k = 0; k < a.scene.spheres.size(); ++k) {
+    const sphere &x = a.scene.spheres[k], &y = b.scene.spheres[k];
+    if (x.center != y.center || x.radius != y.radius || x.shade != y.shade || x.flat_color != y.flat_color) return false;
+  }
+  for (size_t id = 0; id < a.keys.at.size(); ++id) {
+    const auto &x = a.keys.at[id], &y = b.keys.at[id];
+    if (x.has_value() != y.has_value()) return false;
+    if (x && (x->source != y->source || x->where != y->where || x->tokens != y->tokens)) return false;
+  }
+  return true;
+}
+
+constexpr size_t window_sizes[] = {1, 2, 3, 7, 16, 50, 64, 100, 333, 4096};
+
+TEST(SceneFile, WindowsGiveTheWholeParsesResult) {
+  std::string cloud = "{\"camera\": {\"width\": 64, \"height\": 36, \"vfov\": 50},\n \"spheres\": [\n";
+  for (int k = 0; k < 40; ++k)
+    cloud += std::string(k ? ",\n" : "") + "  {\"center\": [" + std::to_string(k * 0.1 - 2) + ", 0.5, -3], \"radius\": 0.05}";
+  cloud += "\n]}";
+  const std::string texts[] = {
+      cloud,
+      // One line; the camera after the array, its places after it on the same line.
+      R"({"spheres":[{"center":[0,0,-1],"radius":0.5},{"radius":2,"center":[1,2,-3]}],"camera":{"width":80,"vfov":30}})",
+      // The camera on the array's last line and below it.
+      "{\"spheres\": [{\"center\": [0, 0, -1], \"radius\": 0.5},\r\n\t{\"center\": [0, 1, -1], \"radius\": 0.25}"
+      "  ] , \"camera\": {\"width\": 80,\n \"aspect\": \"4:3\"}, \"sky\": {\"top\": [0.1, 0.2, 0.3]}}",
+      // Colours, escapes, strings with brackets and braces in them.
+      R"({"sky": {"bottom": [1, 1, 1]}, "spheres": [ {"shade": "flat", "color": [1, 0.5, 0], "cent\u0065r": [0, 0, -2],)"
+      R"( "radius": 1e-1}, {"center": [0.5, 0, -2], "radius": 0.125, "shade": "lit", "color": [0, 0, 1]} ],)"
+      R"( "camera": {"aspect": "16:9"}})",
+      R"({"spheres": []})",
+      "{\"spheres\":[ \n ], \"camera\": {\"width\": 8}}",
+  };
+  for (const std::string& text : texts) {
+    SCOPED_TRACE(text.substr(0, 120));
+    const auto whole = read_scene_text(text);
+    ASSERT_TRUE(std::holds_alternative<scene_file_contents>(whole)) << std::get<scene_file_error>(whole).message;
+    for (size_t w : window_sizes) {
+      const std::optional<scene_file_contents> got = read_scene_windows(text, w);
+      ASSERT_TRUE(got.has_value()) << "window " << w << " gave up";
+      EXPECT_TRUE(same_contents(*got, std::get<scene_file_contents>(whole))) << "window " << w;
+    }
+  }
+}
+
+// Every error, in the array or out of it, makes the windows give up: the
+// whole parse then reports it with its place.
+TEST(SceneFile, WindowsGiveUpOnEveryError) {
+  const std::string ball = R"({"center": [0, 0, -1], "radius": 0.5})";
+  const std::string bad[] = {
+      R"({"spheres": [)" + ball + "," + ball + R"(, {"center": [0, 0, -1], "radius": -1}, )" + ball + "]}",
+      R"({"spheres": [)" + ball + " " + ball + "]}",          // no comma
+      R"({"spheres": [)" + ball + ",," + ball + "]}",         // two
+      R"({"spheres": [)" + ball + "," + ball + ",]}",         // a trailing comma
+      R"({"spheres": [)" + ball + "," + ball,                 // never closed
+      R"({"spheres": [)" + ball + "]",                        // nor the root
+      R"({"spheres": [)" + ball + R"(], "spheres": [)" + ball + "]}",
+      R"({"spheres": [)" + ball + R"(], "camera": {"width": "wide"}})",
+      R"({"spheres": [)" + ball + R"(], "camera": {"width": 4}} [])",
+      R"({"spheres": [{"center": [0, 0, -1], "radius": 0.5, "mass": 1}]})",
+      R"({"spheres": [{"center": {"x": 0}, "radius": 0.5}]})",
+      R"({"spheres": [)" + ball + R"(, [1, 2]]})",
+      R"({"spheres": [)" + ball + R"(, {"center": [0, 0, -1], "radius": 0.5, "shade": "glossy"}]})",
+      "{\"spheres\": [{\"center\": [0, 0, -1], \"radius\": 0.5, \"shade\": \"\xff\"}]}",
+  };
+  for (const std::string& text : bad) {
+    SCOPED_TRACE(text);
+    EXPECT_TRUE(std::holds_alternative<scene_file_error>(read_scene_text(text)));
+    for (size_t w : window_sizes) EXPECT_FALSE(read_scene_windows(text, w).has_value()) << "window " << w;
+  }
 }
 
 // Numbers and nesting far beyond any scene: refused quickly, with a quote of

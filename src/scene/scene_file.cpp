@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <memory>
 #include <new>
 #include <optional>
@@ -46,6 +47,22 @@ constexpr size_t excerpt_bytes = 32;
 struct failure {
   scene_file_error e;
 };
+// Thrown instead by a reader of one window of a large text (read_windowed),
+// whose errors are never reported: the whole text is parsed again for them.
+struct window_failed {};
+
+// The spheres array left out of a skeleton text (read_windowed): the reader
+// of the skeleton reports places after it as they are in the whole text.
+struct text_gap {
+  const char* at = nullptr;  // in the skeleton: just after the array's '['
+  size_t bytes = 0;          // left out there
+  size_t lines = 0;          // newlines among them
+  size_t tail = 0;           // bytes after the last of them (all, if none)
+  // The whole text's first bytes from `at` on (up to quote_span), for quotes
+  // that start just before the gap and run into it.
+  std::string_view head;
+};
+constexpr size_t quote_span = 64;
 
 // The input, padded as simdjson needs (SIMDJSON_PADDING readable bytes after
 // the text), freed when the parse returns. A big text is mapped rather than
@@ -150,6 +167,16 @@ class reader {
 
   scene_file_contents read();
 
+  // A skeleton's reader (places after `gap` as in the whole text), or a
+  // window's (failures thrown as window_failed).
+  void skeleton_of(const text_gap& gap) { gap_ = gap; }
+  void window() { quiet_ = true; }
+
+  // The spheres of a window ("[" + whole spheres + "]"), numbered on from k,
+  // up to the first that fails; the place after the last one read (its ','
+  // or ']'), or nullptr when none was.
+  const char* read_window(std::vector<sphere>& out, size_t& k);
+
  private:
   using keys = std::span<const std::string_view>;
 
@@ -169,10 +196,19 @@ class reader {
       line_start_ = p + 1;
     }
     counted_ = at;
-    const size_t line = line_;
-    const char* line_start = line_start_;
-    std::string r = " (at line " + std::to_string(line) + ", column " + std::to_string(at - line_start + 1);
-    std::string quote = excerpt(std::string_view(at, size_t(text_ + size_ - at)));
+    size_t line = line_, column = size_t(at - line_start_) + 1;
+    if (gap_.at && at >= gap_.at) {  // a skeleton's place after its gap
+      if (line_start_ <= gap_.at) column = gap_.lines ? gap_.tail + size_t(at - gap_.at) + 1 : column + gap_.bytes;
+      line += gap_.lines;
+    }
+    std::string r = " (at line " + std::to_string(line) + ", column " + std::to_string(column);
+    std::string_view rest(at, size_t(text_ + size_ - at));
+    std::string joined;
+    if (gap_.at && at < gap_.at && size_t(gap_.at - at) < quote_span) {  // as in the whole text
+      joined = std::string(at, gap_.at) + std::string(gap_.head);
+      rest = joined;
+    }
+    std::string quote = excerpt(rest);
     while (!quote.empty() && (quote.back() == ' ' || quote.back() == '\t')) quote.pop_back();
     if (!quote.empty()) r += ": " + quote;
     return r + ")";
@@ -209,6 +245,7 @@ class reader {
   }
 
   [[noreturn]] void fail(std::string path, const std::string& why, const char* at) const {
+    if (quiet_) throw window_failed{};
     throw failure{{std::move(path), why + where(at)}};
   }
 
@@ -217,6 +254,7 @@ class reader {
     fail_json(json_error(e), at);
   }
   [[noreturn]] void fail_json(const std::string& why, const char* at) const {
+    if (quiet_) throw window_failed{};
     throw failure{{"", "not valid JSON: " + why + where(at)}};
   }
 
@@ -313,6 +351,7 @@ class reader {
   }
 
   void read_spheres(od::value& v, std::vector<sphere>& out);
+  sphere read_sphere(od::value& item, size_t k);
 
   // The camera and sky keys as the input table parses them (scene/settings.h).
   void read_settings(od::value& v, std::string_view object_name, settings& out);
@@ -322,6 +361,8 @@ class reader {
   const char* text_;
   size_t size_;
   bool release_;
+  bool quiet_ = false;
+  text_gap gap_;
   od::document& doc_;
   const char* released_to_;          // text before this was handed back (release_text_before)
   size_t released_lines_ = 0;        // newlines before released_to_
@@ -438,52 +479,77 @@ void reader::read_spheres(od::value& v, std::vector<sphere>& out) {
   for (auto result : list) {
     od::value item;
     if (error_code e = std::move(result).get(item)) fail_json(e, here());
-    const auto at_k = [&k] { return "spheres[" + std::to_string(k) + "]"; };
     const char* sphere_at = at(item);
-    // Where each value is (nullptr: not given), for the errors about it.
-    const char *center_at = nullptr, *radius_at = nullptr, *color_at = nullptr;
-    sphere ball;
-    static constexpr std::string_view sphere_keys[] = {"center", "radius", "shade", "color"};
-    fields(object(item, at_k), at_k, sphere_keys, [&](int key, od::value& value) {
-      switch (key) {
-        case 0:
-          center_at = at(value);
-          ball.center = triple(value, [&] { return at_k() + ".center"; });
-          break;
-        case 1:
-          radius_at = at(value);
-          ball.radius = number(value, [&] { return at_k() + ".radius"; });
-          break;
-        case 2: {
-          const char* shade_at = at(value);
-          std::string_view s;
-          const error_code e = value.get_string().get(s);
-          if (e != simdjson::SUCCESS && e != simdjson::INCORRECT_TYPE) fail_json(e, shade_at);
-          if (e != simdjson::SUCCESS || (s != "normal" && s != "flat" && s != "lit"))
-            fail(at_k() + ".shade", "must be \"normal\", \"flat\" or \"lit\"", shade_at);
-          ball.shade = s == "flat" ? shading::flat : s == "lit" ? shading::lit : shading::normal;
-          break;
-        }
-        case 3:
-          color_at = at(value);
-          ball.flat_color = triple(value, [&] { return at_k() + ".color"; });
-          break;
-      }
-    });
-    if (!center_at) fail(at_k() + ".center", "is required", sphere_at);
-    if (!radius_at) fail(at_k() + ".radius", "is required", sphere_at);
-    if (ball.shade != shading::normal && !color_at)
-      fail(at_k() + ".color", ball.shade == shading::flat ? "is required for flat shading" : "is required for lit shading",
-           sphere_at);
-    if (auto e = validate(ball, k)) {
-      const char* blame = e->field == scene_field::sphere_center   ? center_at
-                          : e->field == scene_field::sphere_radius ? radius_at
-                                                                   : color_at;
-      fail(path(*e), e->message, blame);
-    }
-    out.push_back(ball);
+    out.push_back(read_sphere(item, k));
     if (++k % 4096 == 0) release_text_before(sphere_at);
   }
+}
+
+sphere reader::read_sphere(od::value& item, size_t k) {
+  const auto at_k = [&k] { return "spheres[" + std::to_string(k) + "]"; };
+  const char* sphere_at = at(item);
+  // Where each value is (nullptr: not given), for the errors about it.
+  const char *center_at = nullptr, *radius_at = nullptr, *color_at = nullptr;
+  sphere ball;
+  static constexpr std::string_view sphere_keys[] = {"center", "radius", "shade", "color"};
+  fields(object(item, at_k), at_k, sphere_keys, [&](int key, od::value& value) {
+    switch (key) {
+      case 0:
+        center_at = at(value);
+        ball.center = triple(value, [&] { return at_k() + ".center"; });
+        break;
+      case 1:
+        radius_at = at(value);
+        ball.radius = number(value, [&] { return at_k() + ".radius"; });
+        break;
+      case 2: {
+        const char* shade_at = at(value);
+        std::string_view s;
+        const error_code e = value.get_string().get(s);
+        if (e != simdjson::SUCCESS && e != simdjson::INCORRECT_TYPE) fail_json(e, shade_at);
+        if (e != simdjson::SUCCESS || (s != "normal" && s != "flat" && s != "lit"))
+          fail(at_k() + ".shade", "must be \"normal\", \"flat\" or \"lit\"", shade_at);
+        ball.shade = s == "flat" ? shading::flat : s == "lit" ? shading::lit : shading::normal;
+        break;
+      }
+      case 3:
+        color_at = at(value);
+        ball.flat_color = triple(value, [&] { return at_k() + ".color"; });
+        break;
+    }
+  });
+  if (!center_at) fail(at_k() + ".center", "is required", sphere_at);
+  if (!radius_at) fail(at_k() + ".radius", "is required", sphere_at);
+  if (ball.shade != shading::normal && !color_at)
+    fail(at_k() + ".color", ball.shade == shading::flat ? "is required for flat shading" : "is required for lit shading",
+         sphere_at);
+  if (auto e = validate(ball, k)) {
+    const char* blame = e->field == scene_field::sphere_center   ? center_at
+                        : e->field == scene_field::sphere_radius ? radius_at
+                                                                 : color_at;
+    fail(path(*e), e->message, blame);
+  }
+  return ball;
+}
+
+const char* reader::read_window(std::vector<sphere>& out, size_t& k) {
+  const char* after = nullptr;
+  od::array list;
+  if (doc_.get_array().get(list) != simdjson::SUCCESS) return after;
+  try {
+    for (auto result : list) {
+      od::value item;
+      if (std::move(result).get(item) != simdjson::SUCCESS) break;
+      const sphere b = read_sphere(item, k);
+      const char* next = here();
+      if (!next) break;
+      out.push_back(b);
+      ++k;
+      after = next;
+    }
+  } catch (const window_failed&) {
+  }
+  return after;
 }
 
 scene_file_contents reader::read() {
@@ -525,6 +591,193 @@ std::variant<scene_file_contents, scene_file_error> parse_padded(const padded_te
   }
 }
 
+// A large text is parsed without an index of all of it: simdjson's index
+// holds 4 bytes for each of its ~20 structural characters a sphere, which
+// for a million spheres is 80 MB of fresh memory, slower to fault in on some
+// virtual machines than the parse itself. Instead the spheres array is read
+// a window at a time: each run of whole spheres (up to the window's last
+// '}') is indexed and parsed as an array of its own ("[" + run + "]") with the
+// same code as the whole text's, into one reused buffer and index. The rest
+// of the text, with the array's contents left out, is then parsed as a
+// skeleton by the whole-text reader, whose places after the array are
+// reported as in the whole text (text_gap).
+//
+// Any doubt ends it: a sphere or window that does not parse, a separator
+// other than one comma, a skeleton error, a text that changed while read.
+// The whole text is then parsed the usual way, which gives the same result
+// or the error with its place. So the windows only ever have to get right
+// what parses; they never report.
+
+// Where a window's bytes come from: copied out of a text in memory, or read
+// from a file at an offset. False when fewer than n bytes were there.
+using text_source = std::function<bool(size_t offset, size_t n, char* to)>;
+
+// Texts from windowed_from bytes on are read a window of default_window
+// bytes at a time (scene_file.h).
+constexpr size_t default_window = size_t(512) << 10;
+
+// How far into the text the "spheres" key is looked for.
+constexpr size_t skim_bytes = size_t(64) << 10;
+
+bool json_space(char c) { return c == ' ' || c == '\n' || c == '\r' || c == '\t'; }
+
+// The offset of the '[' of the root object's "spheres" array, found in the
+// text's first bytes by a skim that follows strings and nesting, or nullopt.
+std::optional<size_t> spheres_array_at(std::string_view t) {
+  size_t i = 0, depth = 0;
+  while (i < t.size() && json_space(t[i])) ++i;
+  if (i == t.size() || t[i] != '{') return std::nullopt;
+  for (; i < t.size(); ++i) {
+    const char c = t[i];
+    if (c == '{' || c == '[') {
+      ++depth;
+    } else if (c == '}' || c == ']') {
+      if (depth-- == 1) return std::nullopt;  // the root ended
+    } else if (c == '"') {
+      const size_t from = ++i;
+      for (; i < t.size() && t[i] != '"'; ++i)
+        if (t[i] == '\\') ++i;
+      if (i >= t.size()) return std::nullopt;
+      if (depth != 1 || t.substr(from, i - from) != "spheres") continue;
+      size_t j = i + 1;
+      while (j < t.size() && json_space(t[j])) ++j;
+      if (j == t.size() || t[j] != ':') continue;  // a value, not the key
+      ++j;
+      while (j < t.size() && json_space(t[j])) ++j;
+      if (j == t.size() || t[j] != '[') return std::nullopt;
+      return j;
+    }
+  }
+  return std::nullopt;
+}
+
+// The scene of a text of `size` bytes read from `source` a window of about
+// `window` bytes at a time, or nullopt (the caller parses the whole text).
+std::optional<scene_file_contents> windows(const text_source& source, size_t size, size_t window);
+std::optional<scene_file_contents> read_windowed(const text_source& source, size_t size, size_t window) {
+  try {
+    return windows(source, size, window);
+  } catch (const std::bad_alloc&) {
+    return std::nullopt;
+  }
+}
+std::optional<scene_file_contents> windows(const text_source& source, size_t size, size_t window) {
+  constexpr size_t pad = simdjson::SIMDJSON_PADDING;
+  std::string head(std::min(size, skim_bytes), '\0');
+  if (!source(0, head.size(), head.data())) return std::nullopt;
+  // (Not in the last quote_span bytes of a cut head: gap.head comes from it.)
+  const std::optional<size_t> open =
+      spheres_array_at(std::string_view(head).substr(0, head.size() == size ? size : head.size() - quote_span));
+  if (!open) return std::nullopt;
+
+  std::vector<sphere> spheres;
+  // Room for as many as the rest could hold; pages no sphere fills are never touched.
+  constexpr size_t min_sphere_bytes = sizeof(R"({"center":[0,0,0],"radius":1},)") - 1;
+  spheres.reserve((size - *open) / min_sphere_bytes + 1);
+  advise_huge_pages(spheres.data(), spheres.capacity() * sizeof(sphere));
+  od::parser parser(max_scene_file_bytes);
+  std::vector<char> buf;
+  text_gap gap;
+  size_t pos = *open + 1, k = 0, w = window, close = 0;
+  enum { first, after_sphere, after_comma } expect = first;
+  // The gap's newlines, counted as its bytes are passed.
+  const auto pass = [&](const char* from, const char* to) {
+    gap.bytes += size_t(to - from);
+    gap.tail += size_t(to - from);
+    for (const char* p = from; (p = static_cast<const char*>(std::memchr(p, '\n', size_t(to - p)))); ++p) {
+      ++gap.lines;
+      gap.tail = size_t(to - p - 1);
+    }
+  };
+  for (;;) {
+    const size_t n = std::min(w, size - pos);
+    if (n == 0) return std::nullopt;  // the array never closes
+    buf.resize(n + 2 + pad);
+    char* const text = buf.data() + 1;  // text[i] is the whole text's pos + i
+    if (!source(pos, n, text)) return std::nullopt;
+    // Separators: whitespace, then one comma between spheres, then the ']'.
+    const char* s = text;
+    const char* const end = text + n;
+    for (;;) {
+      while (s < end && json_space(*s)) ++s;
+      if (s == end || expect != after_sphere || *s != ',') break;
+      expect = after_comma;
+      ++s;
+    }
+    pass(text, s);
+    if (s == end) {  // all separators: on to the next window
+      pos += n;
+      continue;
+    }
+    if (*s == ']') {
+      if (expect == after_comma) return std::nullopt;  // a trailing comma
+      close = pos + size_t(s - text);
+      break;
+    }
+    if (expect == after_sphere) return std::nullopt;  // no comma between spheres
+    // The run of whole spheres: up to the window's last '}'.
+    const char* last = static_cast<const char*>(memrchr(s, '}', size_t(end - s)));
+    const bool at_end = pos + n == size;
+    const char* after = nullptr;
+    if (last) {
+      char* const doc_begin = const_cast<char*>(s) - 1;  // a byte already passed, or buf[0]
+      *doc_begin = '[';
+      char* const doc_end = const_cast<char*>(last) + 2;
+      doc_end[-1] = ']';
+      std::memset(doc_end, 0, pad);
+      od::document doc;
+      const size_t len = size_t(doc_end - doc_begin);
+      if (parser.iterate(doc_begin, len, len + pad).get(doc) == simdjson::SUCCESS) {
+        reader r(doc_begin, len, false, doc);
+        r.window();
+        after = r.read_window(spheres, k);
+      }
+      if (after && (after < s || after >= doc_end)) return std::nullopt;
+    }
+    if (!after) {  // not even one whole sphere: a longer window, or the whole text's parse
+      if (at_end) return std::nullopt;
+      pos += size_t(s - text);
+      w *= 2;
+      continue;
+    }
+    w = window;
+    expect = after_sphere;
+    if (*after == ']' && after != last + 1) {  // the array's own ']'
+      pass(s, after);
+      close = pos + size_t(after - text);
+      break;
+    }
+    if (*after != ']' && *after != ',') return std::nullopt;
+    // On from the ',' after the last sphere read, or from just after the run.
+    const char* next = *after == ',' ? after : last + 1;
+    pass(s, next);
+    pos += size_t(next - text);
+  }
+
+  // The skeleton: the text with the array's contents left out.
+  const size_t kept = *open + 1;
+  auto skeleton = padded_text::allocate(kept + (size - close));
+  if (!skeleton) return std::nullopt;
+  std::memcpy(skeleton->data(), head.data(), kept);
+  if (!source(close, size - close, skeleton->data() + kept)) return std::nullopt;
+  skeleton->finish(kept + (size - close));
+  gap.at = skeleton->data() + kept;
+  gap.head = std::string_view(head).substr(kept, quote_span);  // head holds skim_bytes or the whole text
+  od::document doc;
+  if (parser.iterate(skeleton->data(), skeleton->size(), skeleton->capacity()).get(doc) != simdjson::SUCCESS)
+    return std::nullopt;
+  try {
+    reader r(skeleton->data(), skeleton->size(), false, doc);
+    r.skeleton_of(gap);
+    scene_file_contents c = r.read();
+    if (!c.scene.spheres.empty()) return std::nullopt;
+    c.scene.spheres = std::move(spheres);
+    return c;
+  } catch (const failure&) {
+    return std::nullopt;
+  }
+}
+
 std::string describe(mode_t mode) {
   if (S_ISDIR(mode)) return "is a directory, not a scene file";
   if (S_ISCHR(mode)) return "is a character device, not a regular file";
@@ -543,8 +796,18 @@ struct fd_closer {
 
 }  // namespace
 
+std::optional<scene_file_contents> read_scene_windows(std::string_view text, size_t window) {
+  const auto copy = [&](size_t offset, size_t n, char* to) {
+    std::memcpy(to, text.data() + offset, n);
+    return true;
+  };
+  return read_windowed(copy, text.size(), std::max<size_t>(window, 1));
+}
+
 std::variant<scene_file_contents, scene_file_error> read_scene_text(std::string_view text) {
   if (text.size() > max_scene_file_bytes) return too_large(text.size());
+  if (text.size() >= windowed_from)
+    if (auto c = read_scene_windows(text, default_window)) return std::move(*c);
   auto t = padded_text::allocate(text.size());
   if (!t) return scene_file_error{"", "out of memory copying " + bytes_text(text.size())};
   std::memcpy(t->data(), text.data(), text.size());
@@ -566,13 +829,32 @@ std::variant<scene_file_contents, scene_file_error> read_scene_file(const std::s
   if (!S_ISREG(st.st_mode)) return error(describe(st.st_mode));
   if (st.st_size < 0 || uint64_t(st.st_size) > max_scene_file_bytes) return too_large(uint64_t(st.st_size));
   const size_t size = size_t(st.st_size);
+  if (size >= windowed_from) {
+    // Read at offsets, a window at a time; a file that changes length meanwhile
+    // is left to the whole read below, which reports it.
+    const auto at = [&](size_t offset, size_t n, char* to) {
+      while (n > 0) {
+        const ssize_t got = ::pread(f.fd, to, n, off_t(offset));
+        if (got < 0 && errno == EINTR) continue;
+        if (got <= 0) return false;
+        to += got;
+        offset += size_t(got);
+        n -= size_t(got);
+      }
+      return true;
+    };
+    if (auto c = read_windowed(at, size, default_window)) {
+      char more;
+      if (::pread(f.fd, &more, 1, off_t(size)) == 0) return std::move(*c);
+    }
+  }
   // Room for the size fstat gave and one byte more: a file that grows while
   // read is refused at that byte, so memory never exceeds what was checked.
   auto t = padded_text::allocate(size);
   if (!t) return error("out of memory reading " + bytes_text(size));
   size_t got = 0;
   while (got <= size) {
-    const ssize_t n = ::read(f.fd, t->data() + got, size + 1 - got);
+    const ssize_t n = ::pread(f.fd, t->data() + got, size + 1 - got, off_t(got));
     if (n < 0) {
       if (errno == EINTR) continue;
       return error(std::strerror(errno));

@@ -21,10 +21,13 @@
 // after, and path() of its error is the JSON path too.
 //
 // The text is streamed with simdjson's On-Demand API straight into
-// scene_params: no document tree; while parsing, memory is the text (padded)
-// and simdjson's index of it, both freed before returning.
+// scene_params: no document tree. While parsing, memory is the text (padded)
+// and simdjson's index of it, both freed before returning; a file of
+// windowed_from bytes or more is read and indexed a window at a time instead
+// (read_scene_text), so memory is the spheres and two windows.
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -52,8 +55,17 @@ struct scene_file_contents {
 inline constexpr uint64_t max_scene_file_bytes = (uint64_t(1) << 32) - 1;
 
 // Parses the text of a scene file and validates its spheres. The text is
-// copied into a padded buffer first.
+// copied into a padded buffer first, or, from windowed_from bytes on, read
+// as read_scene_windows does, which gives the same result without an index
+// of all of it (and parses the whole text when it gives up).
+inline constexpr size_t windowed_from = size_t(16) << 20;
 std::variant<scene_file_contents, scene_file_error> read_scene_text(std::string_view text);
+
+// The spheres array parsed a window of about `window` bytes at a time (each
+// run of whole spheres indexed and parsed on its own), then the rest of the
+// text; nullopt where it gives up (any error, or a layout it does not
+// follow: the "spheres" key beyond the text's first 64 KiB, escapes in it).
+std::optional<scene_file_contents> read_scene_windows(std::string_view text, size_t window);
 
 // The same, with the file's keys resolved (ranges checked; as on the command
 // line, a "vup" without "lookat" looks down -z from "lookfrom").
