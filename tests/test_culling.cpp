@@ -242,6 +242,24 @@ TEST(Culling, SortedCloudMatchesScalarAndReference) {
   EXPECT_LE(raycast_test::compare(got, ref).max, 1);
 }
 
+// A large scene is sorted in chunks, one a thread: the order (and so every
+// record) is the one-thread order for any thread count.
+TEST(Culling, RowOrderIsTheSameForAnyThreadCount) {
+  scene_params p = raycast_test::particle_cloud(int64_t(sorted_from) + 4321);
+  p.camera.image_width = 96;
+  p.camera.image_height = 54;
+  const scene s = make_scene(p);
+  const float_scene one = prepare_float_scene(s, 1);
+  const auto bytes = [](const float_scene& f) {
+    const auto* b = reinterpret_cast<const unsigned char*>(f.spheres.rec.data());
+    std::vector<unsigned char> v(b, b + f.spheres.size() * sizeof(sphere_record));
+    const auto* c = reinterpret_cast<const unsigned char*>(f.spheres.cull_radius.data());
+    v.insert(v.end(), c, c + f.spheres.size() * sizeof(float));
+    return v;
+  };
+  for (int threads : {2, 3, 7}) EXPECT_TRUE(bytes(prepare_float_scene(s, threads)) == bytes(one)) << threads << " threads";
+}
+
 // The row order is stable: of two coincident spheres the later in the scene
 // still wins the tie (float_spheres.h), however many spheres come between.
 TEST(Culling, SortingKeepsTheLaterOfCoincidentSpheres) {

@@ -137,27 +137,8 @@ uint32_t centre_row(const camera& c, const point3& center) {
   return uint32_t(H - 1 - std::clamp<int64_t>(std::llround(std::clamp(j, -1.0, double(H))), 0, H - 1));
 }
 
-// The order of the float scene: sphere order[i] of the scene is the float
-// scene's i-th, stably sorted by their centre_row keys (a counting sort).
-using index_array = std::vector<uint32_t, huge_page_allocator<uint32_t>>;
-index_array row_order(const index_array& key, size_t H) {
-  const size_t n = key.size();
-  index_array order(n);
-  std::vector<size_t> first(H + 2, 0);
-  for (uint32_t r : key) ++first[r + 1];
-  for (size_t r = 0; r <= H; ++r) first[r + 1] += first[r];
-  for (size_t k = 0; k < n; ++k) order[first[key[k]]++] = uint32_t(k);
-  return order;
-}
-
-// a[i] = a[order[i]] for every i, through a second array.
-template <class T>
-void reorder(float_spheres::array<T>& a, const index_array& order, int team) {
-  float_spheres::array<T> sorted(a.size());
-#pragma omp parallel for schedule(static) num_threads(team)
-  for (size_t i = 0; i < a.size(); ++i) sorted[i] = a[order[i]];
-  a.swap(sorted);
-}
+// The spheres [begin, end) of chunk t of `chunks` equal ones.
+std::pair<size_t, size_t> chunk(size_t n, size_t t, size_t chunks) { return {n * t / chunks, n * (t + 1) / chunks}; }
 
 }  // namespace
 
@@ -167,61 +148,66 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from) {
   prepare_camera(f, s);
 
   // Per-sphere constants in double, each rounded to float once
-  // (kernels/float_spheres.h); in parallel for large scenes (each sphere's
-  // are its own, so the bytes do not depend on the threads).
+  // (kernels/float_spheres.h); in parallel for large scenes, over chunks of
+  // the spheres (each sphere's are its own, so the bytes do not depend on the
+  // threads). A large scene is put in row order on the way: a stable counting
+  // sort whose first pass takes each sphere's key, the image row of its
+  // centre, and counts the keys per chunk; the second writes each record
+  // straight to its place. The caller's spheres are read front to back
+  // twice (out of order, from small pages, a virtual machine's TLB misses
+  // cost microseconds a sphere); only our own records are written out of
+  // order.
   float_spheres& sp = f.spheres;
   const size_t n = s.sphere_count();
-  sp.rec.resize(n);
-  const int team = n < (size_t(1) << 15) ? 1 : std::max(1, threads);
+  const size_t team = n < (size_t(1) << 15) ? 1 : size_t(std::max(1, threads));
   const bool sorted = n >= sort_from;
-  index_array key(sorted ? n : 0);
-  bool any_inside = false, any_flat = false, any_normal = false, any_lit = false;
-#pragma omp parallel for schedule(static) num_threads(team) reduction(|| : any_inside, any_flat, any_normal, any_lit)
-  for (size_t k = 0; k < n; ++k) {
-    const sphere b = s.sphere_at(k);  // a vector's, or a caller's arrays'
-    if (sorted) key[k] = centre_row(c, b.center);
-    const sphere_record& e = sp.rec[k] = record_of(b, c.origin);
-    any_inside = any_inside || e.inside;
-    any_flat = any_flat || b.shade == shading::flat;
-    any_lit = any_lit || b.shade == shading::lit;
-    any_normal = any_normal || b.shade == shading::normal;
+  const size_t rows = size_t(c.image_height) + 1;  // the keys: 0 .. H (H: not ahead)
+  std::vector<uint32_t, huge_page_allocator<uint32_t>> key(sorted ? n : 0);
+  std::vector<size_t> next(sorted ? team * rows : 0);  // chunk t's next place for key r: next[t * rows + r]
+  bool any_flat = false, any_normal = false, any_lit = false;
+#pragma omp parallel for schedule(static, 1) num_threads(int(team)) reduction(|| : any_flat, any_normal, any_lit)
+  for (size_t t = 0; t < team; ++t) {
+    const auto [begin, end] = chunk(n, t, team);
+    for (size_t k = begin; k < end; ++k) {
+      const sphere b = s.sphere_at(k);  // a vector's, or a caller's arrays'
+      any_flat = any_flat || b.shade == shading::flat;
+      any_lit = any_lit || b.shade == shading::lit;
+      any_normal = any_normal || b.shade == shading::normal;
+      if (sorted) ++next[t * rows + (key[k] = centre_row(c, b.center))];
+    }
   }
-  sp.any_inside = any_inside;
-  sp.any_flat = any_flat;
-  sp.any_normal = any_normal;
-  sp.any_lit = any_lit;
-  // Colours only where some sphere has one: a second pass, which a cloud of
-  // normal-shaded spheres (13 bytes a sphere) does without.
+  for (size_t r = 0, place = 0; sorted && r < rows; ++r)  // row by row, chunk by chunk: stable
+    for (size_t t = 0; t < team; ++t) place += std::exchange(next[t * rows + r], place);
+  // Colours only where some sphere has one (13 bytes a sphere a cloud of
+  // normal-shaded spheres does without).
   const bool colored = any_flat || any_lit;
+  sp.rec.resize(n);
   if (colored) {
     sp.red.resize(n);
     sp.green.resize(n);
     sp.blue.resize(n);
     sp.kind.resize(n);
-#pragma omp parallel for schedule(static) num_threads(team)
-    for (size_t k = 0; k < n; ++k) {
+  }
+  bool any_inside = false;
+#pragma omp parallel for schedule(static, 1) num_threads(int(team)) reduction(|| : any_inside)
+  for (size_t t = 0; t < team; ++t) {
+    const auto [begin, end] = chunk(n, t, team);
+    for (size_t k = begin; k < end; ++k) {
       const sphere b = s.sphere_at(k);
+      const size_t i = sorted ? next[t * rows + key[k]]++ : k;
+      any_inside = (sp.rec[i] = record_of(b, c.origin)).inside || any_inside;
+      if (!colored) continue;
       const bool flat = b.shade == shading::flat, lit = b.shade == shading::lit;
-      sp.red[k] = flat || lit ? flush(b.flat_color.r) + 0.0f : 0.0f;
-      sp.green[k] = flat || lit ? flush(b.flat_color.g) + 0.0f : 0.0f;
-      sp.blue[k] = flat || lit ? flush(b.flat_color.b) + 0.0f : 0.0f;
-      sp.kind[k] = flat ? shading_kind::flat : lit ? shading_kind::lit : shading_kind::normal;
+      sp.red[i] = flat || lit ? flush(b.flat_color.r) + 0.0f : 0.0f;
+      sp.green[i] = flat || lit ? flush(b.flat_color.g) + 0.0f : 0.0f;
+      sp.blue[i] = flat || lit ? flush(b.flat_color.b) + 0.0f : 0.0f;
+      sp.kind[i] = flat ? shading_kind::flat : lit ? shading_kind::lit : shading_kind::normal;
     }
   }
-  // Reordered after, not read in order: a caller's spheres are read front to
-  // back (read out of order from small pages, a virtual machine's TLB misses
-  // cost microseconds a sphere), the gather reads our own arrays.
-  if (sorted) {
-    const index_array order = row_order(key, size_t(c.image_height));
-    index_array().swap(key);
-    reorder(sp.rec, order, team);
-    if (colored) {
-      reorder(sp.red, order, team);
-      reorder(sp.green, order, team);
-      reorder(sp.blue, order, team);
-      reorder(sp.kind, order, team);
-    }
-  }
+  sp.any_inside = any_inside;
+  sp.any_flat = any_flat;
+  sp.any_normal = any_normal;
+  sp.any_lit = any_lit;
   // The culling radii, from the records in their final order.
   sp.cull_radius.resize(n);
 #pragma omp parallel for schedule(static) num_threads(team)

@@ -49,12 +49,14 @@ struct float_scene {
 
 // With up to `threads` threads for large scenes; the same bytes for any count.
 // Memory: 36 bytes a sphere (float_spheres: a 32-byte record and the culling
-// radius), 52 when some sphere is flat or lit (the colours and kinds). A scene of sort_from spheres or more is
-// reordered (float_spheres.h): its spheres stably sorted by the image row of
-// their centres, so that the spheres one row of rays tests lie together in
-// memory (the sort holds 8 bytes a sphere, and the gather a second copy of
-// what it moves, while they run). Scenes of a few thousand spheres fit in the
-// caches as they come and keep the scene's order.
+// radius), 52 when some sphere is flat or lit (the colours and kinds). A
+// scene of sort_from spheres or more is reordered (float_spheres.h): its
+// spheres stably sorted by the image row of their centres, so that the
+// spheres one row of rays tests lie together in memory. The sort writes each
+// record once, in its place (a counting sort); while it runs it holds 4 bytes
+// a sphere (the keys) and 8 bytes an image row a thread (the counts). Scenes
+// of a few thousand spheres fit in the caches as they come and keep the
+// scene's order.
 inline constexpr size_t sorted_from = size_t(1) << 15;
 float_scene prepare_float_scene(const scene& s, int threads = 1, size_t sort_from = sorted_from);
 
