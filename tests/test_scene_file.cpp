@@ -185,7 +185,7 @@ TEST(SceneFile, ErrorsSayWhereWithAShortQuote) {
 // its errors (read_scene_text).
 TEST(SceneFile, ErrorsFarIntoABigFileSayTheirLine) {
   std::string text = "{\"spheres\": [\n";
-  constexpr int n = 380000;
+  constexpr int n = 300000;
   for (int k = 0; k < n; ++k)
     text += "  {\"center\": [" + std::to_string(k % 1000) + ", " + std::to_string(k / 1000) + ", -3], \"radius\": 0.25},\n";
   const std::string good = text.substr(0, text.size() - 2) + "\n],\n\"camera\": {\"width\": 40}}";

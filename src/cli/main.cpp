@@ -124,7 +124,7 @@ bool standard_output_flushed() {
 
 // A large scene file (more than 16 MiB: about 200,000 spheres) costs more
 // in first-touch page faults than in parsing on some virtual machines: the
-// parser's index and the scene's arrays are hundreds of megabytes. glibc's
+// loaded spheres and the scene's arrays are a hundred megabytes and more. glibc's
 // malloc asks for transparent huge pages when GLIBC_TUNABLES holds
 // glibc.malloc.hugetlb=1, which it reads only at start, so for such a file
 // raycast starts itself again once with it (load and prepare of 10^6 spheres

@@ -58,7 +58,7 @@ inline constexpr uint64_t max_scene_file_bytes = (uint64_t(1) << 32) - 1;
 // copied into a padded buffer first, or, from windowed_from bytes on, read
 // as read_scene_windows does, which gives the same result without an index
 // of all of it (and parses the whole text when it gives up).
-inline constexpr size_t windowed_from = size_t(16) << 20;
+inline constexpr size_t windowed_from = size_t(1) << 20;
 std::variant<scene_file_contents, scene_file_error> read_scene_text(std::string_view text);
 
 // The spheres array parsed a window of about `window` bytes at a time (each
