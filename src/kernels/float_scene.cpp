@@ -159,11 +159,14 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from) {
   // order.
   float_spheres& sp = f.spheres;
   const size_t n = s.sphere_count();
-  const size_t team = n < (size_t(1) << 15) ? 1 : size_t(std::max(1, threads));
   const bool sorted = n >= sort_from;
   const size_t rows = size_t(c.image_height) + 1;  // the keys: 0 .. H (H: not ahead)
+  // Chunks: one a thread, but no more than spheres per row when sorting (the
+  // counts take 4 bytes a row a chunk; an image 2^24 rows tall sorts in one).
+  size_t team = n < (size_t(1) << 15) ? 1 : size_t(std::max(1, threads));
+  if (sorted) team = std::clamp<size_t>(n / rows, 1, team);
   std::vector<uint32_t, huge_page_allocator<uint32_t>> key(sorted ? n : 0);
-  std::vector<size_t> next(sorted ? team * rows : 0);  // chunk t's next place for key r: next[t * rows + r]
+  std::vector<uint32_t> next(sorted ? team * rows : 0);  // chunk t's next place for key r: next[t * rows + r]
   bool any_flat = false, any_normal = false, any_lit = false;
 #pragma omp parallel for schedule(static, 1) num_threads(int(team)) reduction(|| : any_flat, any_normal, any_lit)
   for (size_t t = 0; t < team; ++t) {
@@ -177,7 +180,7 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from) {
     }
   }
   for (size_t r = 0, place = 0; sorted && r < rows; ++r)  // row by row, chunk by chunk: stable
-    for (size_t t = 0; t < team; ++t) place += std::exchange(next[t * rows + r], place);
+    for (size_t t = 0; t < team; ++t) place += std::exchange(next[t * rows + r], uint32_t(place));
   // Colours only where some sphere has one (13 bytes a sphere a cloud of
   // normal-shaded spheres does without).
   const bool colored = any_flat || any_lit;

@@ -54,7 +54,7 @@ struct float_scene {
 // spheres stably sorted by the image row of their centres, so that the
 // spheres one row of rays tests lie together in memory. The sort writes each
 // record once, in its place (a counting sort); while it runs it holds 4 bytes
-// a sphere (the keys) and 8 bytes an image row a thread (the counts). Scenes
+// a sphere (the keys) and 4 bytes an image row a thread (the counts). Scenes
 // of a few thousand spheres fit in the caches as they come and keep the
 // scene's order.
 inline constexpr size_t sorted_from = size_t(1) << 15;

@@ -734,8 +734,11 @@ std::optional<scene_file_contents> windows(const text_source& source, size_t siz
       }
       if (after && (after < s || after >= doc_end)) return std::nullopt;
     }
-    if (!after) {  // not even one whole sphere: a longer window, or the whole text's parse
-      if (at_end) return std::nullopt;
+    if (!after) {
+      // A run that did not give one whole sphere: in a scene every '}' ends a
+      // sphere or an object of the skeleton, so its first sphere is bad.
+      if (last || at_end) return std::nullopt;
+      // No '}' at all: a sphere longer than the window.
       pos += size_t(s - text);
       w *= 2;
       continue;
@@ -844,8 +847,13 @@ std::variant<scene_file_contents, scene_file_error> read_scene_file(const std::s
       return true;
     };
     if (auto c = read_windowed(at, size, default_window)) {
+      // Unchanged meanwhile: no byte past the end, the same size and times.
+      struct stat after {};
       char more;
-      if (::pread(f.fd, &more, 1, off_t(size)) == 0) return std::move(*c);
+      if (::pread(f.fd, &more, 1, off_t(size)) == 0 && ::fstat(f.fd, &after) == 0 && after.st_size == st.st_size &&
+          after.st_mtim.tv_sec == st.st_mtim.tv_sec && after.st_mtim.tv_nsec == st.st_mtim.tv_nsec &&
+          after.st_ctim.tv_sec == st.st_ctim.tv_sec && after.st_ctim.tv_nsec == st.st_ctim.tv_nsec)
+        return std::move(*c);
     }
   }
   // Room for the size fstat gave and one byte more: a file that grows while
