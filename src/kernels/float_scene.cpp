@@ -153,10 +153,10 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from) {
   // threads). A large scene is put in row order on the way: a stable counting
   // sort whose first pass takes each sphere's key, the image row of its
   // centre, and counts the keys per chunk; the second writes each record
-  // straight to its place. The caller's spheres are read front to back
-  // twice (out of order, from small pages, a virtual machine's TLB misses
-  // cost microseconds a sphere); only our own records are written out of
-  // order.
+  // straight to its place. The caller's spheres are read front to back,
+  // twice: read out of order from small pages, a virtual machine's TLB
+  // misses cost microseconds a sphere. Only our own records are written out
+  // of order.
   float_spheres& sp = f.spheres;
   const size_t n = s.sphere_count();
   const bool sorted = n >= sort_from;

@@ -129,22 +129,22 @@ void hit_color(const float_scene& f, const traced& tr, float out[3]) {
   const float_spheres& sp = f.spheres;
   const size_t hit = tr.hit;
   const float kind = sp.kind_of(hit);
-  const float albedo[3] = {kind == shading_kind::normal ? 0.0f : sp.red[hit], kind == shading_kind::normal ? 0.0f : sp.green[hit],
-                           kind == shading_kind::normal ? 0.0f : sp.blue[hit]};
+  float n[3];
+  if (kind == shading_kind::normal) {
+    hit_normal(f, tr, n);
+    for (int k = 0; k < 3; ++k) out[k] = (n[k] + 1.0f) * 0.5f;
+    return;
+  }
+  const float albedo[3] = {sp.red[hit], sp.green[hit], sp.blue[hit]};  // there for flat and lit spheres
   if (kind == shading_kind::flat) {
     for (int k = 0; k < 3; ++k) out[k] = albedo[k];
     return;
   }
-  float n[3];
   hit_normal(f, tr, n);
-  if (kind == shading_kind::lit) {
-    const float* d = tr.d;
-    const float facing = -((n[0] * d[0] + n[1] * d[1]) + n[2] * d[2]) / std::sqrt(tr.n2);
-    const float light = lit_ambient + lit_diffuse * vmax(facing, 0.0f);
-    for (int k = 0; k < 3; ++k) out[k] = albedo[k] * light;
-    return;
-  }
-  for (int k = 0; k < 3; ++k) out[k] = (n[k] + 1.0f) * 0.5f;
+  const float* d = tr.d;
+  const float facing = -((n[0] * d[0] + n[1] * d[1]) + n[2] * d[2]) / std::sqrt(tr.n2);
+  const float light = lit_ambient + lit_diffuse * vmax(facing, 0.0f);
+  for (int k = 0; k < 3; ++k) out[k] = albedo[k] * light;
 }
 
 // The colour of the ray at (su, sv), exact: the closest sphere's shading, else the sky.

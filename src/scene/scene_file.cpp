@@ -653,15 +653,7 @@ std::optional<size_t> spheres_array_at(std::string_view t) {
 
 // The scene of a text of `size` bytes read from `source` a window of about
 // `window` bytes at a time, or nullopt (the caller parses the whole text).
-std::optional<scene_file_contents> windows(const text_source& source, size_t size, size_t window);
-std::optional<scene_file_contents> read_windowed(const text_source& source, size_t size, size_t window) {
-  try {
-    return windows(source, size, window);
-  } catch (const std::bad_alloc&) {
-    return std::nullopt;
-  }
-}
-std::optional<scene_file_contents> windows(const text_source& source, size_t size, size_t window) {
+std::optional<scene_file_contents> read_windowed(const text_source& source, size_t size, size_t window) try {
   constexpr size_t pad = simdjson::SIMDJSON_PADDING;
   std::string head(std::min(size, skim_bytes), '\0');
   if (!source(0, head.size(), head.data())) return std::nullopt;
@@ -779,6 +771,8 @@ std::optional<scene_file_contents> windows(const text_source& source, size_t siz
   } catch (const failure&) {
     return std::nullopt;
   }
+} catch (const std::bad_alloc&) {
+  return std::nullopt;
 }
 
 std::string describe(mode_t mode) {
