@@ -196,10 +196,9 @@ render_options sampled(backend b, precision p, uint32_t n, sampler_kind k, int t
 }
 
 image scalar_samples(const scene& s, pixel_format f, uint32_t n, sampler_kind k, uint64_t seed = 0) {
-  const sampling::sample_table t(k, n, seed);
-  image img(s.cam.image_width, s.cam.image_height, f);
-  render_scalar(prepare_float_scene(s), precision::exact, img.band(), &t.plan());
-  return img;
+  render_options o = sampled(backend::scalar, precision::exact, n, k, 1, seed);
+  o.shortcuts = shortcut::none;
+  return raycast_test::render_with(renderer(s, o), f);
 }
 
 struct backend_param {

@@ -278,7 +278,7 @@ TEST(Culling, SortingKeepsTheLaterOfCoincidentSpheres) {
                flat(vec3(0.0, 0.3, -2.0), 0.2, color(1.0, 0.0, 0.0)),    // upper: sorted first
                flat(vec3(0.0, -0.2, -2.0), 0.3, color(0.0, 0.0, 1.0))};  // coincides with the first
   const scene s = make_scene(p);
-  for (backend b : {backend::scalar, backend::sse2, backend::avx2, backend::avx512, backend::neon}) {
+  for (backend b : target_backends) {
     if (backend_unavailable(b)) continue;
     render_options o;
     o.which = b;

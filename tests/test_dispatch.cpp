@@ -34,8 +34,8 @@ std::string expected_auto(const std::string& cap) {
   if (cap == "scalar") return "scalar";
   if (f.neon) return "neon";  // AArch64: any cap above scalar leaves NEON
   if (cap == "sse2") return f.sse2 ? "sse2" : "scalar";
-  if (cap == "avx2") return f.avx2_fma ? "avx2" : f.sse2 ? "sse2" : "scalar";
-  return f.avx512 ? "avx512" : f.avx2_fma ? "avx2" : f.sse2 ? "sse2" : "scalar";
+  if (cap == "avx2") return f.avx2 ? "avx2" : f.sse2 ? "sse2" : "scalar";
+  return f.avx512 ? "avx512" : f.avx2 ? "avx2" : f.sse2 ? "sse2" : "scalar";
 }
 
 TEST(Dispatch, AutoPicksTheBestBackendTheCappedCpuRuns) {

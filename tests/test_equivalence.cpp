@@ -83,8 +83,7 @@ std::string param_name(const ::testing::TestParamInfo<param>& info) {
 
 std::vector<param> all_params() {
   std::vector<param> v;
-  for (backend b : {backend::scalar, backend::sse2, backend::avx2, backend::avx512,
-                    backend::neon})
+  for (backend b : target_backends)
     for (precision p : {precision::exact, precision::fast})
       for (size_t c = 0; c < cameras().size(); ++c) v.push_back({b, p, c});
   return v;
@@ -163,8 +162,7 @@ TEST_P(ThreadEquivalence, AnyThreadCountGivesTheSameBytes) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllBackends, ThreadEquivalence,
-                         ::testing::Values(backend::scalar, backend::sse2, backend::avx2,
-                                           backend::avx512, backend::neon),
+                         ::testing::ValuesIn(target_backends),
                          [](const ::testing::TestParamInfo<backend>& i) {
                            return std::string(to_string(i.param));
                          });

@@ -157,8 +157,7 @@ TEST(PositionableCamera, FarLookfromIsTheSameImageAsNearOrigin) {
   camera_params near = to_params(cameras()[5].cam, 64, 36), far = near;
   near.origin = point3(0, 0, 0);
   near.lookat = point3(0, 1, -1);
-  for (backend b : {backend::scalar, backend::sse2, backend::avx2, backend::avx512,
-                    backend::neon}) {
+  for (backend b : target_backends) {
     if (backend_unavailable(b)) continue;
     EXPECT_EQ(raycast_test::render_with(renderer(raycast_test::make_scene(near), {b}), pixel_format::rgb_f32).bytes,
               raycast_test::render_with(renderer(raycast_test::make_scene(far), {b}), pixel_format::rgb_f32).bytes)

@@ -1,6 +1,6 @@
 // Each operation of the vector layer (src/simd/) on its own, on every
-// instruction set this build has (x86-64: SSE2, AVX2, AVX-512; AArch64:
-// NEON, under qemu in the cross build), against the scalar meaning the kernels
+// target this build has (simd/targets.h: the 1-lane scalar target; x86-64:
+// SSE2, AVX2, AVX-512; AArch64: NEON, under qemu in the cross build), against the scalar meaning the kernels
 // rely on, so that a wrong reverse, pack or hash step fails here by name
 // instead of as a pixel difference somewhere in an image: lane order, packing
 // and interleaving, comparisons and masks, max and min with the scalar
@@ -211,9 +211,10 @@ TEST_P(SimdOps, ComparisonsAndMasks) {
     EXPECT_EQ(not_ge[i], x >= 1.0f ? 0.0f : 1.0f) << "lane " << i;
     EXPECT_EQ(empty[i], 0.0f) << "lane " << i;
   }
-  EXPECT_TRUE(any_ge);
-  EXPECT_FALSE(none_ge);
-  EXPECT_FALSE(all_ge);
+  const auto at_least_one = [](float x) { return x >= 1.0f; };
+  EXPECT_EQ(any_ge, std::any_of(a.begin(), a.end(), at_least_one));  // lanes 0 (0) and 1 (1): 1 lane, false
+  EXPECT_EQ(none_ge, std::none_of(a.begin(), a.end(), at_least_one));
+  EXPECT_EQ(all_ge, std::all_of(a.begin(), a.end(), at_least_one));
   std::fill(a.begin(), a.end(), 2.0f);
   ops->compare(a.data(), b.data(), ge.data(), le.data(), both.data(), either.data(), &any_ge, &none_ge,
                &all_ge, not_ge.data(), empty.data());
@@ -453,16 +454,11 @@ std::string isa_name(const ::testing::TestParamInfo<isa>& p) {
   return std::string(to_string(p.param.which));
 }
 
-// The instruction sets this build compiles for (src/simd/CMakeLists.txt).
+// The targets this build compiles for (simd/targets.h), the 1-lane one included.
 const isa compiled_isas[] = {
-#if RAYCAST_HAVE_X86_KERNELS
-    {backend::sse2, &raycast_test::sse2::ops},
-    {backend::avx2, &raycast_test::avx2::ops},
-    {backend::avx512, &raycast_test::avx512::ops},
-#endif
-#if RAYCAST_HAVE_NEON_KERNELS
-    {backend::neon, &raycast_test::neon::ops},
-#endif
+#define RAYCAST_COMPILED(name, arch, lanes, needs, flags) RAYCAST_ON_##arch({backend::name, &raycast_test::name::ops}, )
+    RAYCAST_TARGETS(RAYCAST_COMPILED)
+#undef RAYCAST_COMPILED
 };
 
 INSTANTIATE_TEST_SUITE_P(EveryIsa, SimdOps, ::testing::ValuesIn(compiled_isas), isa_name);

@@ -61,7 +61,7 @@ std::string param_name(const ::testing::TestParamInfo<param>& info) {
 
 std::vector<param> backend_params() {
   std::vector<param> v;
-  for (backend b : {backend::sse2, backend::avx2, backend::avx512, backend::neon})
+  for (backend b : simd_backends)
     for (size_t c = 0; c < sphere_stiff_cases().size(); ++c) v.push_back({b, c});
   return v;
 }

@@ -9,6 +9,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "kernels/kernel.h"
+
 namespace raycast {
 namespace {
 
@@ -216,6 +218,10 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from) {
 #pragma omp parallel for schedule(static) num_threads(team)
   for (size_t k = 0; k < n; ++k) sp.cull_radius[k] = cull_radius_of(sp.rec[k]);
   return f;
+}
+
+scalar_hit scalar_trace(const float_scene& f, int64_t i, int64_t j) {
+  return kernels::scalar::trace_pixel(f, arrays_of(f.spheres), i, j);
 }
 
 }  // namespace raycast

@@ -12,6 +12,7 @@
 
 #include "kernels/float_spheres.h"
 #include "scene/scene.h"
+#include "simd/inline.h"
 
 namespace raycast {
 
@@ -46,6 +47,16 @@ struct float_scene {
   // The scene's spheres; empty for the sky alone (today's sky paths).
   float_spheres spheres;
 };
+
+// su and sv of column i and row j (kernels/scalar.h): 0 for a single column
+// or row. Always inlined: the per-target kernels call them, and no copy built
+// with one target's flags may stand in for another's.
+RAYCAST_INLINE float pixel_su(const float_scene& f, int64_t i) {
+  return f.width == 1 ? 0.0f : (float(i) - f.mid_col) / f.last_col;
+}
+RAYCAST_INLINE float pixel_sv(const float_scene& f, int64_t j) {
+  return f.height == 1 ? 0.0f : (float(j) - f.mid_row) / f.last_row;
+}
 
 // With up to `threads` threads for large scenes; the same bytes for any count.
 // Memory: 36 bytes a sphere (float_spheres: a 32-byte record and the culling

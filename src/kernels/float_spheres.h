@@ -80,6 +80,7 @@
 #include <vector>
 
 #include "scene/huge_pages.h"
+#include "simd/inline.h"
 
 namespace raycast {
 

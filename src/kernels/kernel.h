@@ -6,7 +6,9 @@
 #include "kernels/culling.h"
 #include "kernels/float_scene.h"
 #include "kernels/precision.h"
+#include "kernels/scalar.h"
 #include "scene/sampler.h"
+#include "simd/targets.h"
 
 namespace raycast::kernels {
 
@@ -57,26 +59,32 @@ struct kernel_args {
   const sampling::sample_plan* samples = nullptr;
 };
 
-// The sky kernel (kernels/sky_kernel.inl), one per instruction set: fills
-// rows [r0, r1) of the band (its column window: image_band); single-threaded.
-// With `paired` (shortcut `mirror` only; the band must hold both), each row r
-// also fills its mirror row H-1-r, which shares every |d|.
+// The kernels of each target of simd/targets.h (namespace raycast::kernels::<target>;
+// sky_kernel.cpp and sphere_kernel.cpp, compiled once per target):
+//
+// render_sky_rows: the sky kernel; fills rows [r0, r1) of the band (its
+// column window: image_band); single-threaded. With `paired` (shortcut
+// `mirror` only; the band must hold both), each row r also fills its mirror
+// row H-1-r, which shares every |d|.
+//
+// render_sphere_rows: scenes with spheres, and every render of many samples
+// per pixel; the same rows. The plan builds the three per-column direction
+// tables and takes the shortcuts that apply to the sky (`channels`,
+// `clamps`, `mirror`); both precisions give float_spheres.h's bits.
+//
+// trace_pixel: what the ray through pixel (i, j) hits (scalar.h's scalar_hit),
+// every sphere of sp (arrays_of the scene's) tested in order; every target
+// gives the same answer.
 using sky_rows_fn = void (*)(const kernel_args& args, const image_band& band, int64_t r0, int64_t r1,
                              bool paired);
-namespace sse2 { void render_sky_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
-namespace avx2 { void render_sky_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
-namespace avx512 { void render_sky_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
-namespace neon { void render_sky_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool); }
-
-// Scenes with spheres, and every render of many samples per pixel
-// (kernels/sphere_kernel.inl), one per instruction set: the same rows; the
-// plan builds the three per-column direction tables and takes the shortcuts
-// that apply to the sky (`channels`, `clamps`, `mirror`); both precisions
-// give float_spheres.h's bits.
 using sphere_rows_fn = void (*)(const kernel_args& args, const image_band& band, int64_t r0, int64_t r1);
-namespace sse2 { void render_sphere_rows(const kernel_args&, const image_band&, int64_t, int64_t); }
-namespace avx2 { void render_sphere_rows(const kernel_args&, const image_band&, int64_t, int64_t); }
-namespace avx512 { void render_sphere_rows(const kernel_args&, const image_band&, int64_t, int64_t); }
-namespace neon { void render_sphere_rows(const kernel_args&, const image_band&, int64_t, int64_t); }
+#define RAYCAST_DECLARE_KERNELS(name, arch, lanes, needs, flags)                            \
+  namespace name {                                                                          \
+  void render_sky_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool);      \
+  void render_sphere_rows(const kernel_args&, const image_band&, int64_t, int64_t);         \
+  scalar_hit trace_pixel(const float_scene&, const sphere_arrays&, int64_t i, int64_t j);                         \
+  }
+RAYCAST_TARGETS(RAYCAST_DECLARE_KERNELS)
+#undef RAYCAST_DECLARE_KERNELS
 
 }  // namespace raycast::kernels

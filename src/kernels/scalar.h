@@ -1,5 +1,7 @@
-// The float renderer: the reference's formulas in float, in one fixed order
-// that every SIMD backend reproduces bit for bit in exact mode.
+// The float renderer's contract: the reference's formulas in float, in one
+// fixed order that every target (simd/targets.h: the 1-lane scalar target
+// and every SIMD one) computes bit for bit in exact mode. The kernels are
+// that order written once (kernels/sky_kernel.cpp, sphere_kernel.cpp).
 //
 // For pixel column i, row j (j = 0 at the bottom), with the float_scene f:
 //   su = W == 1 ? 0 : (float(i) - f.mid_col) / f.last_col   (= u - 1/2, in [-1/2, 1/2])
@@ -37,35 +39,6 @@
 // Scenes with spheres: kernels/float_spheres.h gives their order (the
 // direction d above, not normalized; the sky as in exact mode where no sphere is hit).
 //
-// Every operation is a single IEEE operation; this file is compiled with
-// -ffp-contract=off, so no fused multiply-add changes a rounding.
-#pragma once
-#include "image/image.h"
-#include "kernels/float_scene.h"
-#include "kernels/precision.h"
-#include "scene/sampler.h"
-
-namespace raycast {
-
-// su and sv above.
-float pixel_su(const float_scene& f, int64_t i);
-float pixel_sv(const float_scene& f, int64_t j);
-
-// Colour of pixel (i, j) in the documented order; out receives r, g, b.
-void scalar_pixel(const float_scene& f, precision p, int64_t i, int64_t j, float out[3]);
-
-// What the float renderer's ray through pixel (i, j) hits, for measuring its
-// numerics against the double reference (the bench's stiff-sphere table and
-// tests): sphere = the index of the closest sphere hit, -1 for none;
-// distance = the float renderer's hit distance from the camera origin in
-// world units, widened to double (0 when nothing is hit). Exact mode; every
-// backend renders these hits bit for bit.
-struct scalar_hit {
-  int64_t sphere = -1;
-  double distance = 0.0;
-};
-scalar_hit scalar_trace(const float_scene& f, int64_t i, int64_t j);
-
 // Many samples per pixel (scene/sampler.h gives where they fall). Per
 // pixel, its one-sample direction base = (centre + su_i h) + sv_j v (as
 // above) and the steps step_x = (du unit) h, step_y = (dv unit) v (du, dv:
@@ -75,18 +48,32 @@ scalar_hit scalar_trace(const float_scene& f, int64_t i, int64_t j);
 // (xi = eta = 0 is the one-sample ray), its hit as above. In sample order
 // from 0, per pixel: a hit on a normal-shaded sphere adds its normal N (facing
 // the ray inside a sphere) to `normals` and 1 to `normal count`; a hit on a
-// flat sphere adds its colour to `flat`; a sample that hits nothing adds to
+// flat or lit sphere adds its colour to `flat`; a sample that hits nothing adds to
 // the sky sum instead (kernels/sampled_sky.h). Then, per channel,
 //   pixel = ((flat + (normals + normal count) 0.5) + (sky count sky_mid + sky sum sky_half)) / float(N)
 // -- the average of the samples' colours 0.5 (N + 1), flat colours and sky,
 // with each affine map applied once per pixel rather than per sample.
 // Both precisions: fast mode has no sampled path of its own.
-void scalar_pixel_samples(const float_scene& f, const sampling::sample_plan& plan, int64_t i, int64_t j,
-                          float out[3]);
+//
+// Every operation is a single IEEE operation; the kernels are compiled with
+// -ffp-contract=off, so no fused multiply-add changes a rounding.
+#pragma once
+#include <cstdint>
 
-// Fills the band's pixels (its rows, and its columns: image_band); with
-// samples, each pixel the average of its samples. Single-threaded.
-void render_scalar(const float_scene& f, precision p, const image_band& band,
-                   const sampling::sample_plan* samples = nullptr);
+namespace raycast {
+
+// What the float renderer's ray through pixel (i, j) hits, for measuring its
+// numerics against the double reference (the bench's stiff-sphere table and
+// tests): sphere = the index of the closest sphere hit, -1 for none;
+// distance = the float renderer's hit distance from the camera origin in
+// world units, widened to double (0 when nothing is hit). Exact mode; every
+// backend renders these hits bit for bit. scalar_trace is the 1-lane
+// target's trace_pixel (kernels/kernel.h).
+struct scalar_hit {
+  int64_t sphere = -1;
+  double distance = 0.0;
+};
+struct float_scene;
+scalar_hit scalar_trace(const float_scene& f, int64_t i, int64_t j);
 
 }  // namespace raycast

@@ -6,13 +6,10 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "kernels/kernel.h"
+#include "kernels/target.inl"
 
 namespace raycast::kernels::RAYCAST_ISA {
 namespace {
-
-using namespace raycast::simd::RAYCAST_ISA;
-constexpr int N = vfloat::size;
 
 // Which shadings the scene's spheres use (bit 0: normal, bit 1: flat, bit 2:
 // lit). A scene with lit spheres runs the general path, all three.

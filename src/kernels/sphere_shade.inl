@@ -5,41 +5,28 @@
 #include <cfloat>
 
 #include "kernels/sampled_sky.h"
+#include "kernels/sky_shade.inl"
 #include "kernels/sphere_hit.inl"
 
 namespace raycast::kernels::RAYCAST_ISA {
 namespace {
 
-// The sky's constants in registers, loaded once per call, and the sky
+// The sky of the sphere kernel's misses (sky_shade.inl), with the sky
 // kernel's shortcuts `channels` and `clamps` (render/plan.h), which the plan
 // decides for sphere scenes too.
 struct sky_shader {
-  vfloat bottom[3], top[3], delta[3], lo[3], hi[3];
+  sky_colors colors;
   bool constant[3];
   bool lerp_exact;
-  explicit sky_shader(const kernel_args& a) : lerp_exact(a.lerp_exact) {
-    const float_scene& s = *a.scene;
-    for (int k = 0; k < 3; ++k) {
-      bottom[k] = s.bottom[k];
-      top[k] = s.top[k];
-      delta[k] = s.delta[k];
-      lo[k] = s.lo[k];
-      hi[k] = s.hi[k];
-      constant[k] = a.constant[k];
-    }
+  explicit sky_shader(const kernel_args& a) : colors(*a.scene), lerp_exact(a.lerp_exact) {
+    for (int k = 0; k < 3; ++k) constant[k] = a.constant[k];
   }
-  // scalar.h's exact sky: uy = d.y / sqrt(max(n2, FLT_MIN)),
-  // t = clamp((uy + 1) 0.5, 0, 1), then clamp(t == 1 ? top : bottom + t delta, lo, hi).
-  // |d.y| <= sqrt(fl(n2)), so t is in [0, 1] already and its clamp is left
-  // out (as in sky_kernel.inl); so are a constant channel's lerp and, when
-  // the lerp is exact at its ends, its select and clamp.
   void shade(const rays& r, vfloat out[3]) const {
-    const vfloat uy = r.d[1] / sqrt(max(r.n2, FLT_MIN));
-    const vfloat t = (uy + 1.0f) * 0.5f;
+    const vfloat t = sky_t(exact_uy(r.d[1], r.n2));
     for (int k = 0; k < 3; ++k) {
-      if (constant[k]) out[k] = bottom[k];
-      else if (lerp_exact) out[k] = bottom[k] + t * delta[k];
-      else out[k] = clamp(select(t == 1.0f, top[k], bottom[k] + t * delta[k]), lo[k], hi[k]);
+      if (constant[k]) out[k] = colors.bottom[k];
+      else if (lerp_exact) out[k] = colors.channel<true>(k, t);
+      else out[k] = colors.channel<false>(k, t);
     }
   }
 };

@@ -8,11 +8,10 @@ std::string_view to_string(backend b) {
   switch (b) {
     case backend::automatic: return "auto";
     case backend::reference: return "reference";
-    case backend::scalar: return "scalar";
-    case backend::sse2: return "sse2";
-    case backend::avx2: return "avx2";
-    case backend::avx512: return "avx512";
-    case backend::neon: return "neon";
+#define RAYCAST_NAME(name, arch, lanes, needs, flags) \
+  case backend::name: return #name;
+      RAYCAST_TARGETS(RAYCAST_NAME)
+#undef RAYCAST_NAME
   }
   return "?";
 }
@@ -34,62 +33,41 @@ std::optional<precision> parse_precision(std::string_view name) {
 
 std::optional<std::string> backend_unavailable(backend b) {
   const cpu_features& f = cpu();
-#if RAYCAST_HAVE_X86_KERNELS
   switch (b) {
-    case backend::sse2:
-      if (!f.sse2) return std::string("this CPU cannot run SSE2");
-      break;
-    case backend::avx2:
-      if (!f.avx2_fma) return std::string("this CPU (or OS) cannot run AVX2 + FMA");
-      break;
-    case backend::avx512:
-      if (!f.avx512) return std::string("this CPU (or OS) cannot run AVX-512 F+BW+VL");
-      break;
-    default: break;
+#define RAYCAST_AVAILABLE(name, arch, lanes, needs, flags)                                   \
+  case backend::name:                                                                        \
+    RAYCAST_ON_##arch(if (!f.name) return std::string("this CPU (or OS) cannot run ") + needs; \
+                      return std::nullopt;)                                                  \
+    return std::string(#name " exists only in " RAYCAST_ARCH_NAME_##arch " builds");
+    RAYCAST_TARGETS(RAYCAST_AVAILABLE)
+#undef RAYCAST_AVAILABLE
+    default: return std::nullopt;
   }
-#else
-  if (b == backend::sse2 || b == backend::avx2 || b == backend::avx512)
-    return std::string(to_string(b)) + " exists only in x86-64 builds";
-#endif
-#if RAYCAST_HAVE_NEON_KERNELS
-  if (b == backend::neon && !f.neon) return std::string("this CPU cannot run NEON");
-#else
-  if (b == backend::neon) return std::string("neon exists only in AArch64 builds");
-#endif
-  (void)f;
-  return std::nullopt;
 }
 
 backend best_backend() {
-  for (backend b : {backend::avx512, backend::avx2, backend::sse2, backend::neon})
-    if (!backend_unavailable(b)) return b;
-  return backend::scalar;
+  backend best = backend::scalar;  // targets.h: the last one this CPU runs
+  for (backend b : simd_backends)
+    if (!backend_unavailable(b)) best = b;
+  return best;
 }
 
 kernels::sky_rows_fn sky_kernel_for(backend b) {
   switch (b) {
-#if RAYCAST_HAVE_X86_KERNELS
-    case backend::sse2: return kernels::sse2::render_sky_rows;
-    case backend::avx2: return kernels::avx2::render_sky_rows;
-    case backend::avx512: return kernels::avx512::render_sky_rows;
-#endif
-#if RAYCAST_HAVE_NEON_KERNELS
-    case backend::neon: return kernels::neon::render_sky_rows;
-#endif
+#define RAYCAST_KERNEL(name, arch, lanes, needs, flags) \
+  case backend::name: RAYCAST_ON_##arch(return kernels::name::render_sky_rows;) return nullptr;
+    RAYCAST_TARGETS(RAYCAST_KERNEL)
+#undef RAYCAST_KERNEL
     default: return nullptr;
   }
 }
 
 kernels::sphere_rows_fn sphere_kernel_for(backend b) {
   switch (b) {
-#if RAYCAST_HAVE_X86_KERNELS
-    case backend::sse2: return kernels::sse2::render_sphere_rows;
-    case backend::avx2: return kernels::avx2::render_sphere_rows;
-    case backend::avx512: return kernels::avx512::render_sphere_rows;
-#endif
-#if RAYCAST_HAVE_NEON_KERNELS
-    case backend::neon: return kernels::neon::render_sphere_rows;
-#endif
+#define RAYCAST_KERNEL(name, arch, lanes, needs, flags) \
+  case backend::name: RAYCAST_ON_##arch(return kernels::name::render_sphere_rows;) return nullptr;
+    RAYCAST_TARGETS(RAYCAST_KERNEL)
+#undef RAYCAST_KERNEL
     default: return nullptr;
   }
 }

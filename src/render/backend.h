@@ -5,31 +5,40 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <span>
 #include <string_view>
 
 #include "kernels/kernel.h"
 #include "kernels/precision.h"
+#include "simd/targets.h"
 
 namespace raycast {
 
+// The double reference, and one backend per target of simd/targets.h (the
+// 1-lane scalar target, then the vector ones), each named as its target.
 enum class backend : uint8_t {
   automatic,  // the best one this CPU runs
   reference,  // double, the oracle (reference/reference.h)
-  scalar,     // float, one pixel at a time (kernels/scalar.h)
-  sse2,       // 8 pixels a batch as two 4-lane halves; any x86-64
-  avx2,       // 8 pixels a batch; AVX2 + FMA
-  avx512,     // 16 pixels a batch; AVX-512 F + BW + VL
-  neon,       // 8 pixels a batch as two 4-lane halves; any AArch64
+#define RAYCAST_BACKEND(name, arch, lanes, needs, flags) name,
+  RAYCAST_TARGETS(RAYCAST_BACKEND)
+#undef RAYCAST_BACKEND
 };
 
-// Every backend, x86's best last, then AArch64's. A build has the SIMD
-// backends of its own architecture only; backend_unavailable says why not.
-inline constexpr backend all_backends[] = {backend::reference, backend::scalar, backend::sse2,
-                                           backend::avx2, backend::avx512, backend::neon};
-// The vector backends, each tested against the scalar renderer (or skipped
-// with the reason where this machine cannot run it).
-inline constexpr backend simd_backends[] = {backend::sse2, backend::avx2, backend::avx512,
-                                            backend::neon};
+// Every backend: the reference, then the targets in targets.h's order. A
+// build has the targets of its own architecture only; backend_unavailable
+// says why not.
+inline constexpr backend all_backends[] = {
+    backend::reference,
+#define RAYCAST_BACKEND(name, arch, lanes, needs, flags) backend::name,
+    RAYCAST_TARGETS(RAYCAST_BACKEND)
+#undef RAYCAST_BACKEND
+};
+// The targets' backends (every one but the reference), and the vector ones:
+// every target but the 1-lane one (targets.h lists it first), each tested
+// against it (or skipped with the reason where this machine cannot run it).
+static_assert(all_backends[1] == backend::scalar);
+inline constexpr std::span<const backend> target_backends{all_backends + 1, std::size(all_backends) - 1};
+inline constexpr std::span<const backend> simd_backends = target_backends.subspan(1);
 
 std::string_view to_string(backend b);
 std::string_view to_string(precision p);
@@ -48,8 +57,8 @@ struct unsupported_backend : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// The SIMD kernel behind a backend; null for reference and scalar, which
-// render a pixel at a time without one (and for another architecture's).
+// The kernel behind a backend; null for the reference (and for another
+// architecture's targets).
 kernels::sky_rows_fn sky_kernel_for(backend b);
 // The same for scenes with spheres (kernels/sphere_kernel.inl).
 kernels::sphere_rows_fn sphere_kernel_for(backend b);

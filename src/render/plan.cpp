@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <new>
 
-#include "kernels/scalar.h"
+#include "kernels/float_scene.h"
 
 namespace raycast {
 

@@ -12,7 +12,6 @@
 
 #include <omp.h>
 
-#include "kernels/scalar.h"
 #include "reference/reference.h"
 
 namespace raycast {
@@ -116,11 +115,14 @@ renderer::renderer(const scene& s, const render_options& opts)
   const bool spheres = !fscene_.spheres.empty();
   if (spheres || samples_) sphere_kernel_ = sphere_kernel_for(which_);
   else sky_kernel_ = sky_kernel_for(which_);
-  if (sky_kernel_ || sphere_kernel_) {  // reference and scalar need no plan
+  if (sky_kernel_ || sphere_kernel_) {  // the reference needs no plan
     plan_.emplace(fscene_, prec_, opts.shortcuts);
     if (samples_) plan_->set_samples(&samples_->plan());
     // The frame's culling (kernels/culling.h), once, shared by every thread.
-    if (spheres || samples_) {
+    // Not for the 1-lane target: it tests every sphere at every pixel, so
+    // that the vector targets' culled renders are checked against a render
+    // that culls nothing.
+    if ((spheres || samples_) && which_ != backend::scalar) {
       rows_ = row_index::build(fscene_, samples_ ? fscene_.pixel_spread : 0.0, preparation_threads(s, threads_));
       plan_->set_rows(rows_);
     }
@@ -134,9 +136,7 @@ void renderer::render_rows(const image_band& band, int64_t r0, int64_t r1, bool 
   part.data = band.row(r0);
   part.row_begin = r0;
   part.row_end = r1;
-  const sampling::sample_plan* samples = samples_ ? &samples_->plan() : nullptr;
-  if (which_ == backend::reference) render_reference(scene_, part, samples);
-  else render_scalar(fscene_, prec_, part, samples);
+  render_reference(scene_, part, samples_ ? &samples_->plan() : nullptr);
 }
 
 void renderer::render(const image_band& band) const {

@@ -62,7 +62,7 @@ class renderer {
   backend which_;
   precision prec_;
   int threads_;
-  // At most one of the two kernels: none for the reference and scalar backends.
+  // At most one of the two kernels: none for the reference backend.
   kernels::sky_rows_fn sky_kernel_ = nullptr;
   kernels::sphere_rows_fn sphere_kernel_ = nullptr;
   std::optional<plan> plan_;  // SIMD backends only

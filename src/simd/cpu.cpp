@@ -1,5 +1,7 @@
 #include "simd/cpu.h"
 
+#include "simd/targets.h"
+
 #include <cstdlib>
 #include <string>
 
@@ -34,8 +36,8 @@ cpu_features detect() {
   if (!__get_cpuid_count(7, 0, &a, &b, &c, &d)) return f;
   const bool avx2 = (b >> 5) & 1;
   const bool avx512f = (b >> 16) & 1, avx512bw = (b >> 30) & 1, avx512vl = (b >> 31) & 1;
-  f.avx2_fma = os_ymm && avx2 && fma;
-  f.avx512 = f.avx2_fma && os_zmm && avx512f && avx512bw && avx512vl;
+  f.avx2 = os_ymm && avx2 && fma;
+  f.avx512 = f.avx2 && os_zmm && avx512f && avx512bw && avx512vl;
   return f;
 }
 #elif defined(__aarch64__)
@@ -50,16 +52,31 @@ cpu_features detect() {
 cpu_features detect() { return {}; }
 #endif
 
-// RAYCAST_MAX_ISA=sse2|avx2|avx512|neon|scalar caps what this process believes the
-// CPU has, so the dispatch and the refusal of unsupported backends can be
-// exercised as on an older CPU (tests, and users comparing paths).
+// The targets (simd/targets.h): their names and architectures, and the
+// flag of each in cpu_features.
+struct target_entry {
+  const char* name;
+  const char* arch;
+  bool cpu_features::*runs;
+};
+#define RAYCAST_ENTRY(name, arch, lanes, needs, flags) {#name, #arch, &cpu_features::name},
+constexpr target_entry targets[] = {RAYCAST_TARGETS(RAYCAST_ENTRY)};
+#undef RAYCAST_ENTRY
+
+// RAYCAST_MAX_ISA=<target> caps what this process believes the CPU has, so
+// the dispatch and the refusal of unsupported backends can be exercised as on
+// an older CPU (tests, and users comparing paths): every target listed after
+// it, of its architecture, is off (after `scalar`, of any: every vector one).
 cpu_features capped(cpu_features f) {
   const char* cap = std::getenv("RAYCAST_MAX_ISA");
   if (!cap) return f;
   const std::string c = cap;
-  if (c == "scalar") f = cpu_features{};
-  if (c == "sse2") f.avx2_fma = f.avx512 = false;
-  if (c == "avx2") f.avx512 = false;
+  bool after = false;
+  std::string arch;
+  for (const target_entry& t : targets) {
+    if (after && (arch == "any" || arch == t.arch)) f.*t.runs = false;
+    if (c == t.name) after = true, arch = t.arch;
+  }
   return f;
 }
 
@@ -69,8 +86,12 @@ std::optional<std::string> max_isa_error() {
   const char* cap = std::getenv("RAYCAST_MAX_ISA");
   if (!cap || !*cap) return std::nullopt;
   const std::string c = cap;
-  if (c == "scalar" || c == "sse2" || c == "avx2" || c == "avx512" || c == "neon") return std::nullopt;
-  return "'" + c + "' is not one of scalar, sse2, avx2, avx512, neon";
+  std::string names;
+  for (const target_entry& t : targets) {
+    if (c == t.name) return std::nullopt;
+    names += names.empty() ? t.name : std::string(", ") + t.name;
+  }
+  return "'" + c + "' is not one of " + names;
 }
 
 const cpu_features& cpu() {

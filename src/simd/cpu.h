@@ -6,15 +6,18 @@
 
 namespace raycast {
 
+// One flag per target of simd/targets.h, named as the target.
 struct cpu_features {
+  bool scalar = true;   // the 1-lane target: every CPU
   bool sse2 = false;
-  bool avx2_fma = false;  // AVX2 + FMA, with the OS saving YMM state
-  bool avx512 = false;    // AVX-512 F + BW + VL, with the OS saving ZMM and mask state
-  bool neon = false;      // AArch64 Advanced SIMD (always there on AArch64)
+  bool avx2 = false;    // AVX2 + FMA, with the OS saving YMM state
+  bool avx512 = false;  // AVX-512 F + BW + VL, with the OS saving ZMM and mask state
+  bool neon = false;    // AArch64 Advanced SIMD (always there on AArch64)
 };
 
-// Detected once. The environment variable RAYCAST_MAX_ISA (scalar, sse2,
-// avx2; scalar on AArch64) caps it, to run this machine as an older one would.
+// Detected once. The environment variable RAYCAST_MAX_ISA (a target's name)
+// caps it, to run this machine as an older one would: the targets after it
+// in targets.h's list, of its architecture, are off (scalar: every vector one).
 const cpu_features& cpu();
 
 // Why RAYCAST_MAX_ISA's value is not one it knows, or nothing (unset, empty

@@ -7,6 +7,8 @@
 #pragma once
 #include <cstdint>
 
+#include "simd/targets.h"
+
 namespace raycast_test {
 
 // Arrays hold `lanes` floats (or 32-bit integers) per channel; byte outputs
@@ -63,9 +65,11 @@ struct simd_ops {
   void (*float_bits)(const float* in, uint32_t* bits, float* back);
 };
 
-namespace sse2 { extern const simd_ops ops; }
-namespace avx2 { extern const simd_ops ops; }
-namespace avx512 { extern const simd_ops ops; }
-namespace neon { extern const simd_ops ops; }
+#define RAYCAST_OPS_TABLE(name, arch, lanes, needs, flags) \
+  namespace name {                                          \
+  extern const simd_ops ops;                                \
+  }
+RAYCAST_TARGETS(RAYCAST_OPS_TABLE)
+#undef RAYCAST_OPS_TABLE
 
 }  // namespace raycast_test

@@ -69,9 +69,13 @@ inline image render_with_reference(const raycast::scene& s, raycast::pixel_forma
 
 inline image render_with_scalar(const raycast::scene& s, raycast::precision p, raycast::pixel_format f,
                                 size_t sort_from = raycast::sorted_from) {
-  image img(s.cam.image_width, s.cam.image_height, f);
-  raycast::render_scalar(raycast::prepare_float_scene(s, 1, sort_from), p, img.band());
-  return img;
+  raycast::render_options o;
+  o.which = raycast::backend::scalar;  // the 1-lane target, with no shortcut and no culling
+  o.prec = p;
+  o.threads = 1;
+  o.shortcuts = raycast::shortcut::none;
+  o.sort_from = sort_from;
+  return render_with(raycast::renderer(s, o), f);
 }
 
 // The largest difference between two images of the same size and format, and

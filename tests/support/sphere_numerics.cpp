@@ -11,6 +11,7 @@
 #include "kernels/scalar.h"
 #include "reference/hittable.h"
 #include "reference/reference.h"
+#include "render/render.h"
 
 namespace raycast_test {
 namespace {
@@ -183,7 +184,10 @@ traced_image trace_reference(const scene& s) {
 traced_image trace_ours(const scene& s) {
   traced_image t = blank(s);
   const float_scene f = prepare_float_scene(s);
-  render_scalar(f, precision::exact, image_band{t.rgb8.data(), size_t(t.width) * 3, pixel_format::rgb8, 0, t.height});
+  render_options o;
+  o.which = backend::scalar;
+  o.threads = 1;
+  renderer(s, o).render(image_band{t.rgb8.data(), size_t(t.width) * 3, pixel_format::rgb8, 0, t.height});
   for (int64_t row = 0; row < t.height; ++row)
     for (int64_t i = 0; i < t.width; ++i) {
       const scalar_hit h = scalar_trace(f, i, t.height - 1 - row);

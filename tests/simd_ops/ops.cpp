@@ -1,5 +1,9 @@
-// ops.h's table for one instruction set: ops_<isa>.cpp defines RAYCAST_ISA
-// and includes its simd/ header first. Intrinsics and arrays only.
+// ops.h's table for one target, compiled once per target of simd/targets.h
+// with its flags (tests/CMakeLists.txt: RAYCAST_ISA is its name,
+// RAYCAST_TARGET_HEADER its vector layer, included first). Intrinsics and
+// arrays only.
+#include RAYCAST_TARGET_HEADER
+
 #include "ops.h"
 
 namespace raycast_test::RAYCAST_ISA {

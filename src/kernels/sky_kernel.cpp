@@ -1,26 +1,19 @@
 // The sky kernel, written once against the width-generic vector layer and
-// compiled per instruction set (sky_sse2.cpp, sky_avx2.cpp, sky_avx512.cpp and,
-// on AArch64, sky_neon.cpp each define RAYCAST_ISA and include their simd/
-// header first).
+// compiled per target (kernels/target.inl).
 //
-// One batch is vfloat::size pixels of a row (8, or 16 with AVX-512), a
-// structure of arrays in registers: the rays (ray_batch), then t, then the
-// channels, then bytes or floats stored interleaved -- no float image in
-// memory for 8-bit output.
-// Exact mode performs scalar.h's operations in scalar.h's order, so its output
-// is bit-identical to render_scalar; fast mode swaps sqrt + divide for an
-// estimate refined by Newton.
-#include <cfloat>
+// One batch is vfloat::size pixels of a row (1, 8 or 16), a structure of
+// arrays in registers: the rays (ray_batch), then t, then the channels, then
+// bytes or floats stored interleaved -- no float image in memory for 8-bit
+// output. Exact mode performs scalar.h's operations in scalar.h's order, so
+// every target's output is the same bits; fast mode swaps sqrt + divide for
+// an estimate refined by Newton.
 #include <type_traits>
 
-#include "kernels/kernel.h"
 #include "kernels/newton.h"
+#include "kernels/sky_shade.inl"
 
 namespace raycast::kernels::RAYCAST_ISA {
 namespace {
-
-using namespace raycast::simd::RAYCAST_ISA;
-constexpr int N = vfloat::size;
 
 struct row_setup {
   // Per row: sv * vertical[k] (the rest of scalar.h's direction), and for the
@@ -56,11 +49,6 @@ inline ray_batch generate(const kernel_args& a, const row_setup& rs, int64_t i0)
   }
 }
 
-// Exact mode: uy = y / |d|, |d| = sqrt(max(n2, FLT_MIN)) (scalar.h). Since
-// |y| <= sqrt(fl(y^2)) <= |d|, t = (uy + 1) * 0.5 is already in [0, 1]:
-// scalar.h's clamp of t cannot change it and is left out.
-inline vfloat exact_uy(const ray_batch& b) { return b.dir_y / sqrt(max(b.len2, FLT_MIN)); }
-
 // Fast mode: y / |d| from the estimate and one (biased) Newton step, clamped
 // to [-1, 1] (scalar.h). The lesson camera's y is constant along the row, so
 // it is folded into the Newton constants.
@@ -80,23 +68,17 @@ inline vfloat fast_uy(const row_setup& rs, const ray_batch& b) {
 constexpr int all_channels = 0b111;
 constexpr int red_green = 0b011;  // the lesson's sky: blue is 1 at both ends
 
-// The shading constants in registers, loaded once per call (stores to the
-// image may alias anything, so nothing is re-read from the scene per batch).
+// The shading constants in registers, loaded once per call.
 template <bool NoClamps, int Computed>
 struct shader {
-  vfloat bottom[3], top[3], delta[3], lo[3], hi[3];
+  sky_colors sky;
   vfloat constant_value[3];
   vint constant_byte[3];
   vfloat fast_qa[3], fast_qb[3];
 
-  explicit shader(const kernel_args& a) {
+  explicit shader(const kernel_args& a) : sky(*a.scene) {
     const float_scene& s = *a.scene;
     for (int k = 0; k < 3; ++k) {
-      bottom[k] = s.bottom[k];
-      top[k] = s.top[k];
-      delta[k] = s.delta[k];
-      lo[k] = s.lo[k];
-      hi[k] = s.hi[k];
       constant_value[k] = a.constant_value[k];
       constant_byte[k] = splat_int(a.constant_byte[k]);
       fast_qa[k] = s.fast_qa[k];
@@ -104,15 +86,11 @@ struct shader {
     }
   }
 
-  // scalar.h: clamp(t == 1 ? top : bottom + t * delta, lo, hi). The lerp is
-  // monotone in t, so when its end points are exact (NoClamps: shortcut `clamps`) the select and
-  // the clamp are no-ops and are left out; a constant channel is not computed.
+  // sky_colors' channel; a constant channel is not computed.
   template <int K>
   vfloat channel(vfloat t) const {
     if constexpr (!(Computed & (1 << K))) return constant_value[K];
-    const vfloat c = bottom[K] + t * delta[K];
-    if constexpr (NoClamps) return c;
-    return clamp(select(t == 1.0f, top[K], c), lo[K], hi[K]);
+    return sky.channel<NoClamps>(K, t);
   }
   template <int K>
   vint byte(vfloat c) const {
@@ -138,7 +116,7 @@ inline rgb8_pack shade_rgb8(const shader<NoClamps, Computed>& sh, vfloat uy) {
     return pack_rgb8<Reversed>(sh.template fast_byte<0>(uy), sh.template fast_byte<1>(uy),
                                sh.template fast_byte<2>(uy));
   } else {
-    const vfloat t = (uy + 1.0f) * 0.5f;
+    const vfloat t = sky_t(uy);
     return pack_rgb8<Reversed>(sh.template byte<0>(sh.template channel<0>(t)),
                                sh.template byte<1>(sh.template channel<1>(t)),
                                sh.template byte<2>(sh.template channel<2>(t)));
@@ -151,7 +129,7 @@ inline rgb8_pack shade_rgb8(const shader<NoClamps, Computed>& sh, vfloat uy) {
 template <bool NoClamps, int Computed>
 inline void shade_store_f32(const shader<NoClamps, Computed>& sh, vfloat uy, unsigned char* out,
                             int64_t i0, int n, bool mirrored) {
-  const vfloat t = (uy + 1.0f) * 0.5f;
+  const vfloat t = sky_t(uy);
   vfloat c0 = sh.template channel<0>(t), c1 = sh.template channel<1>(t), c2 = sh.template channel<2>(t);
   if (mirrored) {
     if constexpr ((Computed & 1) != 0) c0 = reverse(c0);
@@ -220,7 +198,7 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
   const int64_t mirrored = Lanes && a.mirror && whole_rows ? W / (2 * N) * N : 0;
   for (int64_t r = r0; r < r1; ++r) {
     const int64_t j = s.height - 1 - r;
-    const float sv = s.height == 1 ? 0.0f : (float(j) - s.mid_row) / s.last_row;  // scalar.h
+    const float sv = pixel_sv(s, j);
     row_setup rs;
     for (int k = 0; k < 3; ++k) rs.row_part[k] = sv * s.vertical[k];
     // Lesson camera: centre = (0, 0, -f), horizontal = (hx, 0, 0), vertical =
@@ -236,7 +214,7 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
         band.row(r), paired && s.height - 1 - r != r ? band.row(s.height - 1 - r) : nullptr};
     const auto uy_at = [&](int64_t i0) {
       const ray_batch rays = generate<Lanes, Fast>(a, rs, i0);
-      return Fast ? fast_uy<Lanes>(rs, rays) : exact_uy(rays);
+      return Fast ? fast_uy<Lanes>(rs, rays) : exact_uy(rays.dir_y, rays.len2);
     };
     // The mirrored row's y is -y (and so its uy is -uy, sign for sign).
     const auto row_uy = [](vfloat uy, int k) { return k == 0 ? uy : -uy; };

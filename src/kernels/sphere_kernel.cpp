@@ -1,9 +1,7 @@
 // The sphere kernel, written once against the width-generic vector layer and
-// compiled per instruction set (sphere_sse2.cpp, sphere_avx2.cpp,
-// sphere_avx512.cpp each define RAYCAST_ISA and include their simd/ header
-// first), as the sky kernel is.
+// compiled per target (kernels/target.inl), as the sky kernel is.
 //
-// One batch is vfloat::size pixels of a row (8, or 16 with AVX-512). The rays
+// One batch is vfloat::size pixels of a row (1, 8 or 16). The rays
 // are a structure of arrays in registers (the camera direction d, not
 // normalized; the origin is shared by every primary ray and lives in the
 // spheres' constants); the spheres are a structure of arrays in memory
@@ -11,7 +9,7 @@
 // Closest hit with masks: per lane, the nearest t so far and what shading
 // needs of the sphere that gave it. Both precisions perform
 // kernels/float_spheres.h's operations in its order, so the output is
-// bit-identical to render_scalar.
+// the same bits on every target.
 //
 // Left out where the scene does not need it: the frame's row index lists,
 // per row, the spheres that may come near it (kernels/culling.h, built once
@@ -30,6 +28,7 @@
 #include <cstdint>
 #include <cstdlib>
 
+#include "kernels/target.inl"  // first: the target's vector layer
 #include "kernels/sphere_hit.inl"
 #include "kernels/sphere_shade.inl"
 #include "kernels/sphere_store.inl"
@@ -82,12 +81,13 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
   // The batches that hold the band's columns.
   const int64_t first_batch = c0 / N, end_batch = (c1 + N - 1) / N;
   batch_culler lists(s, a.row_most, a.row_shift, N, 0.0);
-  const bool mirror = a.mirror && lists.ok() && band.whole_rows(W);
+  const bool cull = a.row_first && lists.ok();  // else every batch tests every sphere
+  const bool mirror = a.mirror && cull && band.whole_rows(W);
   for (int64_t r = r0; r < r1; ++r) {
     const int64_t j = s.height - 1 - r;
-    const float sv = s.height == 1 ? 0.0f : (float(j) - s.mid_row) / s.last_row;  // scalar.h
-    if (lists.ok()) lists.row(sv, a.row_list + a.row_first[r], size_t(a.row_first[r + 1] - a.row_first[r]));
-    const int64_t run = lists.ok() ? lists.run_length() : batches;
+    const float sv = pixel_sv(s, j);
+    if (cull) lists.row(sv, a.row_list + a.row_first[r], size_t(a.row_first[r + 1] - a.row_first[r]));
+    const int64_t run = cull ? lists.run_length() : batches;
     const vfloat row_part[3] = {sv * s.vertical[0], sv * s.vertical[1], sv * s.vertical[2]};
     unsigned char* const out = band.row(r);
     // Shortcut `lanes` (the axis-aligned camera): every column's d.y and d.z
@@ -112,19 +112,19 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
     const int64_t ends = built ? store_mirrored_ends<Float>(s, sky, lists, out, rays_at) : 0;
     for (int64_t b0 = ends > first_batch ? ends : first_batch; b0 < end_batch; b0 += run) {
       const int64_t b1 = b0 + run < end_batch ? b0 + run : end_batch;
-      if (!built && lists.ok()) lists.build(b0, b1);
+      if (!built && cull) lists.build(b0, b1);
       for (int64_t b = b0; b < b1; ++b) {
         const int64_t i0 = b * N;
         if (i0 >= W - ends * N) break;  // the mirrored end, already stored
         // The ray batch: scalar.h's direction and its squared length.
         rays ry = rays_at(i0);
-        const size_t tests = lists.ok() ? lists.tests(b) : sp.n;
+        const size_t tests = cull ? lists.tests(b) : sp.n;
         vfloat c[3];
         if (tests == 0) {
           sky.shade(ry, c);  // no sphere comes near these rays
         } else {
           closest_hit<Shades> h;
-          intersect(sp, lists.ok() ? lists.list(b) : nullptr, tests, ry, h);
+          intersect(sp, cull ? lists.list(b) : nullptr, tests, ry, h);
           shade(sky, sp, h, ry, c);
         }
         store_window<Float>(out, i0, c0, c1, c);
@@ -229,20 +229,21 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
   const int64_t batches = (W + N - 1) / N;
   const int64_t first_batch = c0 / N, end_batch = (c1 + N - 1) / N;
   batch_culler lists(s, a.row_most, a.row_shift, N, s.pixel_spread);
+  const bool cull = a.row_first && lists.ok();  // else every batch tests every sphere
   const sample_camera<K> cam(s, sp);
   for (int64_t r = r0; r < r1; ++r) {
     const int64_t j = s.height - 1 - r;
-    const float sv_j = s.height == 1 ? 0.0f : (float(j) - s.mid_row) / s.last_row;  // scalar.h
-    if (lists.ok()) lists.row(sv_j, a.row_list + a.row_first[r], size_t(a.row_first[r + 1] - a.row_first[r]));
-    const int64_t run = lists.ok() ? lists.run_length() : batches;
+    const float sv_j = pixel_sv(s, j);
+    if (cull) lists.row(sv_j, a.row_list + a.row_first[r], size_t(a.row_first[r + 1] - a.row_first[r]));
+    const int64_t run = cull ? lists.run_length() : batches;
     unsigned char* const out = band.row(r);
     for (int64_t b0 = first_batch; b0 < end_batch; b0 += run) {
       const int64_t b1 = b0 + run < end_batch ? b0 + run : end_batch;
-      if (lists.ok()) lists.build(b0, b1);
+      if (cull) lists.build(b0, b1);
       for (int64_t b = b0; b < b1; ++b) {
         const int64_t i0 = b * N;
-        const size_t tests = lists.ok() ? lists.tests(b) : sp.n;
-        const uint32_t* list = lists.ok() && tests > 0 ? lists.list(b) : nullptr;
+        const size_t tests = cull ? lists.tests(b) : sp.n;
+        const uint32_t* list = cull && tests > 0 ? lists.list(b) : nullptr;
         const vuint column = vuint::iota(uint32_t(i0));
         const vfloat su_i = W == 1 ? vfloat(0.0f) : (to_float(column) - s.mid_col) / s.last_col;  // scalar.h
         vfloat base[3];  // the pixels' one-sample directions
@@ -284,6 +285,31 @@ void render_shades(const kernel_args& a, const image_band& band, int64_t r0, int
 }
 
 }  // namespace
+
+scalar_hit trace_pixel(const float_scene& s, const sphere_arrays& sp, int64_t i, int64_t j) {
+  const float su = pixel_su(s, i), sv = pixel_sv(s, j);
+  float d[3];
+  rays r;
+  for (int k = 0; k < 3; ++k) r.d[k] = d[k] = (s.center[k] + su * s.horizontal[k]) + sv * s.vertical[k];
+  r.n2 = (r.d[0] * r.d[0] + r.d[1] * r.d[1]) + r.d[2] * r.d[2];
+  // Every sphere in order, each against the closest hit so far (the same
+  // test as the batches'); the last that took a lane is the hit.
+  closest_hit<normal_shading> h;
+  int64_t hit = -1;
+  for (size_t k = 0; k < sp.n; ++k) {
+    closest_hit<normal_shading> probe;
+    probe.t = h.t;
+    const uint32_t one = uint32_t(k);
+    intersect(sp, &one, 1, r, probe);
+    if (any(probe.hit)) h = probe, hit = int64_t(k);
+  }
+  if (hit < 0) return {};
+  alignas(64) float t[N];
+  store(t, h.t);
+  // P = O + t d in world units, so the distance is t |d|.
+  const double d_len = std::sqrt(double(d[0]) * d[0] + double(d[1]) * d[1] + double(d[2]) * d[2]);
+  return {hit, double(t[0]) * d_len};
+}
 
 void render_sphere_rows(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
   const sphere_arrays& sp = a.spheres;

@@ -1,5 +1,0 @@
-// The sphere kernel for avx512; compiled with that instruction set's flags (CMakeLists.txt).
-#include "simd/avx512.h"
-#define RAYCAST_ISA avx512
-
-#include "kernels/sphere_kernel.inl"

@@ -1,6 +1,0 @@
-// The sphere kernel for neon (AArch64, where NEON is always there: no extra
-// flags). The kernels room's -ffp-contract=off keeps exact mode unfused.
-#include "simd/neon.h"
-#define RAYCAST_ISA neon
-
-#include "kernels/sphere_kernel.inl"
