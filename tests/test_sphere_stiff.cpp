@@ -95,9 +95,15 @@ TEST_P(SphereStiffNumerics, ExactAwayFromSilhouettesAndNoWorseThanTheBookInFloat
   EXPECT_EQ(ours.false_hits_away, 0);
   EXPECT_EQ(ours.false_misses_away, 0);
   EXPECT_EQ(ours.wrong_object_away, 0);
-  EXPECT_LE(ours.false_hits, naive.false_hits);
-  EXPECT_LE(ours.false_misses, naive.false_misses);
-  EXPECT_LE(ours.wrong_object, naive.wrong_object);
+  // Counts at silhouettes too, against the book in float where it is a
+  // yardstick (right away from silhouettes; not where it fills the view with
+  // false hits, as at 10^4 radii and beyond).
+  const bool yardstick = naive.false_hits_away + naive.false_misses_away + naive.wrong_object_away == 0;
+  if (yardstick) {
+    EXPECT_LE(ours.false_hits, naive.false_hits);
+    EXPECT_LE(ours.false_misses, naive.false_misses);
+    EXPECT_LE(ours.wrong_object, naive.wrong_object);
+  }
   // src/kernels/README.md, "Spheres: stiff cases": within 7e-7 relative everywhere. Where both are at
   // float's own rounding (a few units in the last place of the distance, as
   // inside a sphere), which of two maxima of rounding noise is larger says
@@ -105,10 +111,12 @@ TEST_P(SphereStiffNumerics, ExactAwayFromSilhouettesAndNoWorseThanTheBookInFloat
   // naive formula hit nothing right (overflow: its maximum is over no pixel,
   // and how it fails differs between x86 and AArch64), it is no yardstick.
   EXPECT_LE(ours.max_rel_distance_err, 7e-7);
-  if (naive.false_hits_away + naive.false_misses_away + naive.wrong_object_away == 0) {
+  if (yardstick) {
     EXPECT_LE(ours.max_rel_distance_err, std::max(naive.max_rel_distance_err, 0x1p-22));
   }
   EXPECT_LE(ours.max_lsb_away, naive.max_lsb_away);
+  EXPECT_LE(ours.max_lsb_away, raycast_test::contract_lsb(raycast_test::farthest_in_radii(c)))
+      << "the contract's LSB bound at " << raycast_test::farthest_in_radii(c) << " radii";
   EXPECT_LE(ours.max_lsb, naive.max_lsb);
   RecordProperty("ours", describe(ours));
   RecordProperty("naive", describe(naive));

@@ -464,9 +464,12 @@ TEST(SphereStiffCases, WithinOneLsbAwayFromSilhouettes) {
     const scene s = raycast_test::scene_of(c);
     const silhouette_stats st = against_reference(s);
     const int64_t pixels = s.cam.image_width * s.cam.image_height;
-    EXPECT_EQ(st.beyond_one_lsb_inside, 0) << c.name;
     EXPECT_LE(st.max_float_error_inside, max_float_error(c)) << c.name;
-    EXPECT_LE(st.beyond_one_lsb, pixels / 100) << c.name;
+    // Beyond 10^5 radii the contract's bound is wider (test_sphere_stiff checks it).
+    if (raycast_test::contract_lsb(raycast_test::farthest_in_radii(c)) == 1) {
+      EXPECT_EQ(st.beyond_one_lsb_inside, 0) << c.name;
+      EXPECT_LE(st.beyond_one_lsb, pixels / 100) << c.name;
+    }
     RecordProperty(c.name + "_silhouette_channels", int(st.beyond_one_lsb));
     RecordProperty(c.name + "_max_float_error_e9", int(st.max_float_error_inside * 1e9));
   }
@@ -505,6 +508,24 @@ TEST(Scenes, InvalidSpheresNameTheirPath) {
   p.spheres[0].shade = shading::normal;  // a normal-shaded sphere's colour is not read
   EXPECT_FALSE(validate(p));
   EXPECT_EQ(path({scene_field::vfov, "", 0}), "camera.vfov");
+}
+
+// The renderers index spheres with 32 bits: a larger count (a caller's
+// arrays) is refused by name before any sphere is read, not cut short.
+TEST(Scenes, MoreSpheresThanTheIndicesHoldAreRefused) {
+  const float one[4] = {0.0f, 0.0f, -1.0f, 0.5f};
+  scene_params p;
+  sphere_view v;
+  v.centers = {one, sphere_view::element::f32, 12, 4};
+  v.radii = {one + 3, sphere_view::element::f32, 4, 0};
+  v.count = 1;
+  p.arrays = v;
+  EXPECT_FALSE(validate(p));
+  p.arrays->count = max_spheres + 1;  // 2^32: the arrays are not that long, and are not read
+  const auto e = validate(p);
+  ASSERT_TRUE(e);
+  EXPECT_EQ(path(*e), "spheres");
+  EXPECT_NE(e->message.find("at most 4294967295 spheres"), std::string::npos) << e->message;
 }
 
 }  // namespace

@@ -14,11 +14,17 @@
 namespace raycast {
 namespace {
 
-// Values below 2^-64 (camera components relative to the largest, and sky
-// colours) become 0. They cannot change a float result, but as denormals
-// somewhere in the arithmetic they could make the output depend on the
-// FTZ/DAZ bits; above 2^-64 no product or sum in scalar.h is denormal.
+// Sky colours below 2^-64 become 0: they cannot change a float result, but as
+// denormals somewhere in the arithmetic they could make the output depend on
+// the FTZ/DAZ bits.
 float flush(double x) { return std::abs(x) < 0x1p-64 ? 0.0f : float(x); }
+
+// Camera components below 2^-100 of the largest become 0: above it, every
+// product su * component is normal (|su| >= 2^-24). A direction whose every
+// component is tiny (a degenerate camera's centre ray, a focal length down to
+// 2^-100 of the viewport) keeps its direction: the sky reads it through
+// max(n2, FLT_MIN), the sphere kernel scales it up (sphere_hit.inl).
+float flush_camera(double x) { return std::abs(x) < 0x1p-100 ? 0.0f : float(x); }
 
 // The camera and the sky, scaled and rounded once (float_scene.h).
 void prepare_camera(float_scene& f, const scene& s) {
@@ -40,9 +46,9 @@ void prepare_camera(float_scene& f, const scene& s) {
   std::frexp(m, &e);  // m = x * 2^e with x in [0.5, 1)
   const double scale = std::ldexp(1.0, -e);
   for (int k = 0; k < 3; ++k) {
-    f.center[k] = flush(center[k] * scale);
-    f.horizontal[k] = flush(c.horizontal[k] * scale);
-    f.vertical[k] = flush(c.vertical[k] * scale);
+    f.center[k] = flush_camera(center[k] * scale);
+    f.horizontal[k] = flush_camera(c.horizontal[k] * scale);
+    f.vertical[k] = flush_camera(c.vertical[k] * scale);
     f.bottom[k] = flush(s.sky.bottom[k]) + 0.0f;  // + 0: a -0 colour becomes +0
     f.top[k] = flush(s.sky.top[k]) + 0.0f;
     f.delta[k] = f.top[k] - f.bottom[k];

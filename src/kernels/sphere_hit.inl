@@ -37,6 +37,21 @@ struct closest_hit {
 struct rays {
   vfloat d[3];
   vfloat n2;  // |d|^2 in scalar.h's order
+
+  // n2 from d, and the guard of everything the intersection and shading
+  // divide by it: a lane whose n2 is below 2^-64 (only a degenerate camera's
+  // centre ray: a focal length 10^-19 of the viewport) has its d scaled by
+  // 2^64 first. That is exact, and changes nothing a ray shows (hits compare
+  // s along one ray, the normal and the sky are homogeneous in d), but no
+  // n2 is then zero or denormal: the far root, 1 / n2 and the headlight are
+  // those of the reference's direction, on every target and under FTZ/DAZ.
+  RAYCAST_INLINE void set_length() {
+    n2 = (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2];
+    const vmask tiny = !(n2 >= 0x1p-64f);
+    if (none(tiny)) return;
+    for (int k = 0; k < 3; ++k) d[k] = select(tiny, d[k] * 0x1p64f, d[k]);
+    n2 = select(tiny, (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2], n2);
+  }
   // 1 / n2, computed the first time a far sphere needs it: a division is a
   // large part of a batch's cost.
   vfloat inv_n2() {

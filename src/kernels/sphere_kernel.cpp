@@ -94,18 +94,17 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
     // are the first column's, bit for bit (scalar.h: centre + su * 0), so
     // they and their squares are per row.
     const float dy = a.column_part[1][0] + sv * s.vertical[1], dz = a.column_part[2][0] + sv * s.vertical[2];
-    const vfloat row_y = dy, row_z = dz, row_y2 = dy * dy, row_z2 = dz * dz;
+    const vfloat row_y = dy, row_z = dz;
     const auto rays_at = [&](int64_t i0) {
       rays ry;
       if constexpr (Lanes) {
         ry.d[0] = vfloat::load(a.column_part[0] + i0) + row_part[0];
         ry.d[1] = row_y;
         ry.d[2] = row_z;
-        ry.n2 = (ry.d[0] * ry.d[0] + row_y2) + row_z2;
       } else {
         for (int k = 0; k < 3; ++k) ry.d[k] = vfloat::load(a.column_part[k] + i0) + row_part[k];
-        ry.n2 = (ry.d[0] * ry.d[0] + ry.d[1] * ry.d[1]) + ry.d[2] * ry.d[2];
       }
+      ry.set_length();
       return ry;
     };
     const bool built = mirror && run == batches;  // one run: the whole row's lists at once
@@ -158,7 +157,7 @@ struct sample_camera {
       step_y[k] = dv * s.vertical[k];
     }
     lesson = s.axis_aligned_camera && s.center[0] == 0.0f && s.center[1] == 0.0f && !std::signbit(s.center[0]) &&
-             !std::signbit(s.center[1]) && s.center[2] != 0.0f;
+             !std::signbit(s.center[1]) && std::abs(s.center[2]) >= 0x1p-32f;
     z2 = s.center[2] * s.center[2];
     if (lesson) fz_dz = static_cast<float*>(std::malloc(sp.n * sizeof(float) + 1));
     if (fz_dz)
@@ -175,10 +174,10 @@ struct sample_camera {
       ry.d[0] = base[0] + xi * step_x[0];
       ry.d[1] = base[1] + eta * step_y[1];
       ry.d[2] = base[2];
-      ry.n2 = (ry.d[0] * ry.d[0] + ry.d[1] * ry.d[1]) + z2;
+      ry.n2 = (ry.d[0] * ry.d[0] + ry.d[1] * ry.d[1]) + z2;  // >= z2 >= 2^-64: no guard needed
     } else {
       for (int k = 0; k < 3; ++k) ry.d[k] = (base[k] + xi * step_x[k]) + eta * step_y[k];
-      ry.n2 = (ry.d[0] * ry.d[0] + ry.d[1] * ry.d[1]) + ry.d[2] * ry.d[2];
+      ry.set_length();
     }
     return ry;
   }
@@ -288,10 +287,9 @@ void render_shades(const kernel_args& a, const image_band& band, int64_t r0, int
 
 scalar_hit trace_pixel(const float_scene& s, const sphere_arrays& sp, int64_t i, int64_t j) {
   const float su = pixel_su(s, i), sv = pixel_sv(s, j);
-  float d[3];
   rays r;
-  for (int k = 0; k < 3; ++k) r.d[k] = d[k] = (s.center[k] + su * s.horizontal[k]) + sv * s.vertical[k];
-  r.n2 = (r.d[0] * r.d[0] + r.d[1] * r.d[1]) + r.d[2] * r.d[2];
+  for (int k = 0; k < 3; ++k) r.d[k] = (s.center[k] + su * s.horizontal[k]) + sv * s.vertical[k];
+  r.set_length();
   // Every sphere in order, each against the closest hit so far (the same
   // test as the batches'); the last that took a lane is the hit.
   closest_hit<normal_shading> h;
@@ -304,10 +302,11 @@ scalar_hit trace_pixel(const float_scene& s, const sphere_arrays& sp, int64_t i,
     if (any(probe.hit)) h = probe, hit = int64_t(k);
   }
   if (hit < 0) return {};
-  alignas(64) float t[N];
+  alignas(64) float t[N], d[3][N];
   store(t, h.t);
+  for (int k = 0; k < 3; ++k) store(d[k], r.d[k]);
   // P = O + t d in world units, so the distance is t |d|.
-  const double d_len = std::sqrt(double(d[0]) * d[0] + double(d[1]) * d[1] + double(d[2]) * d[2]);
+  const double d_len = std::sqrt(double(d[0][0]) * d[0][0] + double(d[1][0]) * d[1][0] + double(d[2][0]) * d[2][0]);
   return {hit, double(t[0]) * d_len};
 }
 

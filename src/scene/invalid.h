@@ -26,6 +26,7 @@ enum class scene_field : uint8_t {
   sphere_center,  // of spheres[invalid_field::index]
   sphere_radius,
   sphere_color,
+  spheres,  // their count
 };
 
 std::string_view to_string(scene_field f);

@@ -22,6 +22,7 @@ std::string_view to_string(scene_field f) {
     case scene_field::sphere_center: return "spheres[].center";
     case scene_field::sphere_radius: return "spheres[].radius";
     case scene_field::sphere_color: return "spheres[].color";
+    case scene_field::spheres: return "spheres";
   }
   return "?";
 }
@@ -66,6 +67,11 @@ std::optional<invalid_field> validate(const scene_params& p) {
   if (auto e = validate(p.camera)) return e;
   if (auto e = validate(p.sky)) return e;
   const size_t n = p.arrays ? p.arrays->count : p.spheres.size();
+  if (n > max_spheres)
+    return invalid_field{scene_field::spheres,
+                         "at most " + std::to_string(max_spheres) + " spheres (the renderers' 32-bit sphere indices), not " +
+                             std::to_string(n),
+                         0};
   for (size_t k = 0; k < n; ++k) {
     const sphere s = p.arrays ? p.arrays->at(k) : p.spheres[k];
     if (auto e = validate(s, k)) return e;

@@ -88,13 +88,18 @@ struct scene_params {
 // own terms); beyond it a sphere would silently vanish.
 inline constexpr double max_sphere_extent = 1e37;
 
+// The most spheres a scene holds: the float renderers index them with 32 bits
+// (the culling lists, the row order), so a larger count is refused, not cut.
+inline constexpr size_t max_spheres = 0xffffffffu;
+
 // Why a sphere cannot be rendered (a non-finite centre, a radius not positive
 // and finite or above max_sphere_extent, a flat colour not finite within
 // +-1e30), or nullopt.
 std::optional<invalid_field> validate(const sphere& s, size_t index);
 
 // The first field that cannot make a scene, or nullopt: the camera, the sky,
-// each sphere and its centre within max_sphere_extent of the camera.
+// the sphere count (at most max_spheres), each sphere and its centre within
+// max_sphere_extent of the camera.
 std::optional<invalid_field> validate(const scene_params& p);
 
 // The scene; p must pass validate(). The second moves the spheres (a scene

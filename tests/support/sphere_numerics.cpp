@@ -95,9 +95,23 @@ sphere_stiff_case world_scaled(double s, const std::string& suffix) {
           p};
 }
 
+// The ch. 6 world through a lens of focal length 10^-19 of its viewport: the
+// centre ray's direction is 10^-19 long next to its neighbours' (the camera
+// vectors are scaled so their largest component is near 1), and only that
+// ray hits the sphere ahead. Its squared length is below float's normal range.
+sphere_stiff_case degenerate_focal_length() {
+  camera_params p;
+  p.image_width = 401;
+  p.image_height = 225;
+  p.focal_length = 1e-19;
+  return {"focal_length_1e-19",
+          {{{0, 0, -1}, 0.5, shading::normal}, {{0, -100.5, -1}, 100, shading::normal}},
+          p};
+}
+
 std::vector<sphere_stiff_case> make_cases() {
   std::vector<sphere_stiff_case> v;
-  for (double d : {10.0, 100.0, 1e3, 4100.0, 1e4}) v.push_back(unit_sphere_at(d));
+  for (double d : {10.0, 100.0, 1e3, 4100.0, 1e4, 1e5, 1e6, 1e7}) v.push_back(unit_sphere_at(d));
   for (double r : {100.0, 1e4, 1e6}) v.push_back(ground_grazing(r));
   const camera_params p = width_200();
   v.push_back({"camera_touching", {{{0, 0, -0.5}, 0.5, shading::normal}, {{0, 0, -2}, 0.5, shading::normal}}, p});
@@ -108,6 +122,7 @@ std::vector<sphere_stiff_case> make_cases() {
   v.push_back(coordinates_near_1e30());
   for (const auto& [s, suffix] : {std::pair{1e-30, "1e-30"}, {1e-10, "1e-10"}, {1e10, "1e10"}, {1e30, "1e30"}})
     v.push_back(world_scaled(s, suffix));
+  v.push_back(degenerate_focal_length());
   return v;
 }
 
@@ -159,6 +174,16 @@ void naive_sky(const sky& sk, const f3& d, float out[3]) {
 }
 
 }  // namespace
+
+double farthest_in_radii(const sphere_stiff_case& c) {
+  double most = 0.0;
+  for (const sphere& b : c.spheres) most = std::max(most, glm::length(c.cam.origin - b.center) / b.radius);
+  return most;
+}
+
+int contract_lsb(double distance_in_radii) {
+  return distance_in_radii <= 1e5 ? 1 : 1 + int(distance_in_radii / 1e5);
+}
 
 const std::vector<sphere_stiff_case>& sphere_stiff_cases() {
   static const std::vector<sphere_stiff_case> all = make_cases();

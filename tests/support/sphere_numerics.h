@@ -24,12 +24,19 @@ struct sphere_stiff_case {
   raycast::camera_params cam;
 };
 
-// unit_sphere_at_10 ... _10000, ground_radius_100/10000/1000000_grazing,
+// unit_sphere_at_10 ... _10000000, ground_radius_100/10000/1000000_grazing,
 // camera_touching, camera_inside, camera_on_the_ground, sphere_behind_camera,
-// tangent_rays, coordinates_near_1e30, world_scaled_1e-30 ... _1e30; at most
-// 200 pixels wide.
+// tangent_rays, coordinates_near_1e30, world_scaled_1e-30 ... _1e30 (200
+// pixels wide), focal_length_1e-19 (401 x 225).
 const std::vector<sphere_stiff_case>& sphere_stiff_cases();
 raycast::scene scene_of(const sphere_stiff_case& c);
+
+// The float contract's range (src/kernels/README.md, "Spheres: stiff cases"):
+// away from silhouettes, a sphere at most 10^5 radii from the camera is
+// within 1 LSB of the reference; farther, the normal's rounding (about
+// 2^-24 |f| / r) shows, and it is within 1 + (|f| / r) / 10^5 LSB.
+double farthest_in_radii(const sphere_stiff_case& c);  // max |lookfrom - centre| / radius
+int contract_lsb(double distance_in_radii);
 
 // What a renderer saw at every pixel, rows top first (row r is the camera's
 // j = H - 1 - r).
