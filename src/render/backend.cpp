@@ -52,23 +52,13 @@ backend best_backend() {
   return best;
 }
 
-kernels::sky_rows_fn sky_kernel_for(backend b) {
+target_kernels kernels_for(backend b) {
   switch (b) {
-#define RAYCAST_KERNEL(name, arch, lanes, needs, flags) \
-  case backend::name: RAYCAST_ON_##arch(return kernels::name::render_sky_rows;) return nullptr;
-    RAYCAST_TARGETS(RAYCAST_KERNEL)
-#undef RAYCAST_KERNEL
-    default: return nullptr;
-  }
-}
-
-kernels::sphere_rows_fn sphere_kernel_for(backend b) {
-  switch (b) {
-#define RAYCAST_KERNEL(name, arch, lanes, needs, flags) \
-  case backend::name: RAYCAST_ON_##arch(return kernels::name::render_sphere_rows;) return nullptr;
-    RAYCAST_TARGETS(RAYCAST_KERNEL)
-#undef RAYCAST_KERNEL
-    default: return nullptr;
+#define RAYCAST_KERNELS(name, arch, lanes, needs, flags) \
+  case backend::name: RAYCAST_ON_##arch(return {kernels::name::render_sky_rows, kernels::name::render_sphere_rows};) return {};
+    RAYCAST_TARGETS(RAYCAST_KERNELS)
+#undef RAYCAST_KERNELS
+    default: return {};
   }
 }
 

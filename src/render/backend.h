@@ -57,10 +57,13 @@ struct unsupported_backend : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// The kernel behind a backend; null for the reference (and for another
+// The kernels behind a backend: the sky kernel and the one for scenes with
+// spheres (kernels/kernel.h); null for the reference (and for another
 // architecture's targets).
-kernels::sky_rows_fn sky_kernel_for(backend b);
-// The same for scenes with spheres (kernels/sphere_kernel.inl).
-kernels::sphere_rows_fn sphere_kernel_for(backend b);
+struct target_kernels {
+  kernels::sky_rows_fn sky = nullptr;
+  kernels::sphere_rows_fn spheres = nullptr;
+};
+target_kernels kernels_for(backend b);
 
 }  // namespace raycast

@@ -113,8 +113,8 @@ renderer::renderer(const scene& s, const render_options& opts)
   // the sphere kernel, which takes the shortcuts that apply to its sky. Many
   // samples per pixel run the sphere kernel's sampled path, sky or not.
   const bool spheres = !fscene_.spheres.empty();
-  if (spheres || samples_) sphere_kernel_ = sphere_kernel_for(which_);
-  else sky_kernel_ = sky_kernel_for(which_);
+  if (spheres || samples_) sphere_kernel_ = kernels_for(which_).spheres;
+  else sky_kernel_ = kernels_for(which_).sky;
   if (sky_kernel_ || sphere_kernel_) {  // the reference needs no plan
     plan_.emplace(fscene_, prec_, opts.shortcuts);
     if (samples_) plan_->set_samples(&samples_->plan());
