@@ -318,4 +318,80 @@ TEST(Culling, ListsPastTheBudgetMatchScalar) {
   expect_scalar_bytes(s, "4000 large spheres");
 }
 
+// ------------------------------------------------------------ depth order
+
+// Every order of the float scene (the scene's, rows, depth: float_scene.h)
+// renders the same bytes on every target: the depth-ordered walk stops early,
+// the others test every listed sphere, and the tie rule picks the later
+// sphere in the scene whatever the order.
+void expect_every_order_alike(const scene& s, const char* what) {
+  render_options o;
+  o.which = backend::scalar;
+  o.sort_from = 0;
+  o.order = sphere_order::scene;
+  const image want = raycast_test::render_with(renderer(s, o), pixel_format::rgb8);
+  for (backend b : target_backends) {
+    if (backend_unavailable(b)) continue;
+    for (sphere_order order : {sphere_order::scene, sphere_order::rows, sphere_order::depth}) {
+      o.which = b;
+      o.order = order;
+      o.threads = 2;
+      const raycast_test::difference d =
+          raycast_test::compare(raycast_test::render_with(renderer(s, o), pixel_format::rgb8), want);
+      EXPECT_EQ(d.max, 0) << what << ": " << to_string(b) << ", order " << int(order) << ": " << d.where();
+    }
+  }
+}
+
+scene small(scene_params p) {
+  p.camera.image_width = 192;
+  p.camera.image_height = 108;
+  return make_scene(p);
+}
+
+TEST(DepthOrder, ABoxRendersTheSameInEveryOrder) {
+  // A packed box is deep (its spheres' screen discs add up to 1.5 image
+  // areas at 4000 spheres, 2.6 at 20000, growing as the cube root): from
+  // 20000 spheres on the automatic order is depth.
+  EXPECT_FALSE(prepare_float_scene(small(raycast_test::particle_box(20000)), 1, 0).spheres.depth_key.empty());
+  expect_every_order_alike(small(raycast_test::particle_box(4000)), "box of 4000");
+}
+
+TEST(DepthOrder, CloudsRenderTheSameInEveryOrder) {
+  const scene sparse = small(raycast_test::particle_cloud(3000, 1.5)), dense = small(raycast_test::particle_cloud(3000, 3.0));
+  // A sparse cloud is not deep: the automatic order is rows.
+  EXPECT_TRUE(prepare_float_scene(sparse, 1, 0).spheres.depth_key.empty());
+  expect_every_order_alike(sparse, "sparse cloud of 3000");
+  expect_every_order_alike(dense, "dense cloud of 3000");
+}
+
+// Two coincident spheres (the same distance at every pixel) behind a field
+// of others, in depth order: the walk may stop once every lane has hit
+// something nearer than the next sphere can be -- never before the later of
+// two equal hits, which wins as in the book's hittable_list.
+TEST(DepthOrder, ALaterSphereAtTheSameDistanceWinsAcrossAnEarlyStop) {
+  scene_params p;
+  p.camera.image_width = 65;  // the middle pixel's ray meets both spheres at their nearest point:
+  p.camera.image_height = 37;  // the hit is exactly as near as the next sphere's distance can be
+  const auto flat = [](vec3 at, double r, color c) { return sphere{at, r, shading::flat, c}; };
+  p.spheres.push_back(flat(vec3(0.0, 0.0, -2.0), 0.3, color(1.0, 0.0, 0.0)));  // red, first
+  for (int k = 0; k < 40; ++k)  // farther spheres, some lists' later entries
+    p.spheres.push_back(flat(vec3(0.05 * (k % 7) - 0.15, 0.05 * (k / 7) - 0.15, -3.0 - 0.1 * k), 0.2, color(0.0, 1.0, 0.0)));
+  p.spheres.push_back(flat(vec3(0.0, 0.0, -2.0), 0.3, color(0.0, 0.0, 1.0)));  // blue, the same sphere, last
+  const scene s = make_scene(p);
+  for (backend b : target_backends) {
+    if (backend_unavailable(b)) continue;
+    render_options o;
+    o.which = b;
+    o.sort_from = 0;
+    o.order = sphere_order::depth;
+    const image got = raycast_test::render_with(renderer(s, o), pixel_format::rgb8);
+    for (int64_t row = 17; row <= 19; ++row)
+      for (int64_t col = 31; col <= 33; ++col) {
+        EXPECT_EQ(got.byte(row, col, 0), 0) << to_string(b) << " at " << col << ", " << row;
+        EXPECT_EQ(got.byte(row, col, 2), 255) << to_string(b) << ": the later sphere should win at " << col << ", " << row;
+      }
+  }
+}
+
 }  // namespace

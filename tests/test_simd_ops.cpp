@@ -450,6 +450,26 @@ TEST_P(SimdOps, FloatBitsRoundTrip) {
   }
 }
 
+// Unsigned comparison over the whole 32-bit range (the top bit set on
+// either side, equal lanes), and the vuint select it drives (the closest hit's
+// sphere indices).
+TEST_P(SimdOps, UintCompareIsUnsignedAndSelects) {
+  const std::vector<std::pair<uint32_t, uint32_t>> pairs = {
+      {0u, 0u}, {1u, 0u}, {0u, 1u}, {0x7fffffffu, 0x80000000u}, {0x80000000u, 0x7fffffffu},
+      {0xffffffffu, 0u}, {0u, 0xffffffffu}, {0xfffffffeu, 0xffffffffu}, {5u, 5u}, {0x80000001u, 0x80000000u}};
+  std::vector<uint32_t> a, b;
+  for (auto [x, y] : pairs) a.push_back(x), b.push_back(y);
+  const std::vector<std::vector<uint32_t>> as = spread(a), bs = spread(b);
+  for (size_t v = 0; v < as.size(); ++v) {
+    std::vector<uint32_t> greater(static_cast<size_t>(n)), larger(static_cast<size_t>(n));
+    ops->uint_compare_select(as[v].data(), bs[v].data(), greater.data(), larger.data());
+    for (size_t i = 0; i < size_t(n); ++i) {
+      EXPECT_EQ(greater[i], as[v][i] > bs[v][i] ? 1u : 0u) << as[v][i] << " > " << bs[v][i] << ", lane " << i;
+      EXPECT_EQ(larger[i], std::max(as[v][i], bs[v][i])) << "lane " << i;
+    }
+  }
+}
+
 std::string isa_name(const ::testing::TestParamInfo<isa>& p) {
   return std::string(to_string(p.param.which));
 }

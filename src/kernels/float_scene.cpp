@@ -148,35 +148,37 @@ uint32_t centre_row(const camera& c, const point3& center) {
 // The spheres [begin, end) of chunk t of `chunks` equal ones.
 std::pair<size_t, size_t> chunk(size_t n, size_t t, size_t chunks) { return {n * t / chunks, n * (t + 1) / chunks}; }
 
-}  // namespace
+// The nearest distance of a sphere from the camera, |O - C| - r (negative
+// inside it), and the pixels its disc covers on the screen, at most all.
+struct depth_of {
+  double nearest, pixels;
+};
+depth_of depth_of_sphere(const camera& c, const sphere& b) {
+  const vec3 p = b.center - c.origin;
+  const double dist = glm::length(p), ahead = -glm::dot(p, c.axis_w);
+  const double all = double(c.image_width) * double(c.image_height);
+  if (!(ahead > b.radius)) return {dist - b.radius, all};
+  // The disc's radius on the image plane, in pixels: r / sqrt(ahead^2 - r^2) of the focal length.
+  const double rho = b.radius / std::sqrt(ahead * ahead - b.radius * b.radius) * c.focal_length *
+                     double(c.image_height - 1) / c.viewport_height;
+  return {dist - b.radius, std::min(all, 3.14159 * rho * rho)};
+}
 
-float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from) {
-  const camera& c = s.cam;
-  float_scene f;
-  prepare_camera(f, s);
-
-  // Per-sphere constants in double, each rounded to float once
-  // (kernels/float_spheres.h); in parallel for large scenes, over chunks of
-  // the spheres (each sphere's are its own, so the bytes do not depend on the
-  // threads). A large scene is put in row order on the way: a stable counting
-  // sort whose first pass takes each sphere's key, the image row of its
-  // centre, and counts the keys per chunk; the second writes each record
-  // straight to its place. The caller's spheres are read front to back,
-  // twice: read out of order from small pages, a virtual machine's TLB
-  // misses cost microseconds a sphere. Only our own records are written out
-  // of order.
-  float_spheres& sp = f.spheres;
-  const size_t n = s.sphere_count();
-  const bool sorted = n >= sort_from;
-  const size_t rows = size_t(c.image_height) + 1;  // the keys: 0 .. H (H: not ahead)
-  // Chunks: one a thread, but no more than spheres per row when sorting (the
-  // counts take 4 bytes a row a chunk; an image 2^24 rows tall sorts in one).
-  size_t team = n < (size_t(1) << 15) ? 1 : size_t(std::max(1, threads));
-  if (sorted) team = std::clamp<size_t>(n / rows, 1, team);
-  std::vector<uint32_t, huge_page_allocator<uint32_t>> key(sorted ? n : 0);
-  std::vector<uint32_t> next(sorted ? team * rows : 0);  // chunk t's next place for key r: next[t * rows + r]
+// What every sphere says about the order: its shading, and where the scene
+// may be reordered its key's raw material (the row of its centre; its
+// nearest distance as a float's bits), the nearest distances' range and the
+// screen area the spheres cover.
+struct survey {
   bool any_flat = false, any_normal = false, any_lit = false;
-#pragma omp parallel for schedule(static, 1) num_threads(int(team)) reduction(|| : any_flat, any_normal, any_lit)
+  double near_lo = INFINITY, near_hi = -INFINITY, pixels = 0.0;
+};
+survey survey_spheres(const scene& s, bool reorder, size_t team, uint32_t* row, float* nearest) {
+  survey v;
+  bool any_flat = false, any_normal = false, any_lit = false;
+  double lo = INFINITY, hi = -INFINITY, pixels = 0.0;
+  const size_t n = s.sphere_count();
+#pragma omp parallel for schedule(static, 1) num_threads(int(team)) \
+    reduction(|| : any_flat, any_normal, any_lit) reduction(min : lo) reduction(max : hi) reduction(+ : pixels)
   for (size_t t = 0; t < team; ++t) {
     const auto [begin, end] = chunk(n, t, team);
     for (size_t k = begin; k < end; ++k) {
@@ -184,41 +186,135 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from) {
       any_flat = any_flat || b.shade == shading::flat;
       any_lit = any_lit || b.shade == shading::lit;
       any_normal = any_normal || b.shade == shading::normal;
-      if (sorted) ++next[t * rows + (key[k] = centre_row(c, b.center))];
+      if (!reorder) continue;
+      row[k] = centre_row(s.cam, b.center);
+      const depth_of d = depth_of_sphere(s.cam, b);
+      nearest[k] = float(d.nearest);
+      lo = std::min(lo, double(nearest[k]));
+      hi = std::max(hi, double(nearest[k]));
+      pixels += d.pixels;
     }
   }
-  for (size_t r = 0, place = 0; sorted && r < rows; ++r)  // row by row, chunk by chunk: stable
-    for (size_t t = 0; t < team; ++t) place += std::exchange(next[t * rows + r], uint32_t(place));
+  v.any_flat = any_flat, v.any_normal = any_normal, v.any_lit = any_lit;
+  v.near_lo = lo, v.near_hi = hi, v.pixels = pixels;
+  return v;
+}
+
+// A depth-ordered scene's buckets: bucket b holds the nearest distances from
+// lo + b step on; its key (float_spheres::depth_key) is at most that times
+// (1 - 2^-15), rounded down.
+struct depth_buckets {
+  double lo, step;
+  uint32_t of(float nearest) const {
+    if (!(step > 0.0)) return 0;
+    const double b = std::floor((double(nearest) - lo) / step);
+    return uint32_t(std::clamp(b, 0.0, double(float_spheres::depth_buckets - 1)));
+  }
+  float key(size_t b) const {
+    const double at = lo + double(b) * step;
+    const double k = at - 0x1p-15 * std::abs(at) - 0x1p-15 * step;
+    float f = float(k);
+    if (double(f) > k) f = std::nextafter(f, -INFINITY);
+    return f;
+  }
+};
+
+// The counting sort's places: next[t * keys + key] is chunk t's next place
+// for a sphere of that key (row by row, or bucket by bucket, then chunk by
+// chunk: stable).
+std::vector<uint32_t> places(const uint32_t* key, size_t n, size_t keys, size_t team) {
+  std::vector<uint32_t> next(team * keys, 0);
+#pragma omp parallel for schedule(static, 1) num_threads(int(team))
+  for (size_t t = 0; t < team; ++t) {
+    const auto [begin, end] = chunk(n, t, team);
+    for (size_t k = begin; k < end; ++k) ++next[t * keys + key[k]];
+  }
+  for (size_t r = 0, place = 0; r < keys; ++r)
+    for (size_t t = 0; t < team; ++t) place += std::exchange(next[t * keys + r], uint32_t(place));
+  return next;
+}
+
+// Sphere k's record, colour and kind at place i.
+void write_sphere(float_spheres& sp, size_t i, const sphere& b, const point3& origin, bool colored, uint16_t depth) {
+  sp.rec[i] = record_of(b, origin);
+  sp.rec[i].depth = depth;
+  if (!colored) return;
+  const bool flat = b.shade == shading::flat, lit = b.shade == shading::lit;
+  sp.red[i] = flat || lit ? flush(b.flat_color.r) + 0.0f : 0.0f;
+  sp.green[i] = flat || lit ? flush(b.flat_color.g) + 0.0f : 0.0f;
+  sp.blue[i] = flat || lit ? flush(b.flat_color.b) + 0.0f : 0.0f;
+  sp.kind[i] = flat ? shading_kind::flat : lit ? shading_kind::lit : shading_kind::normal;
+}
+
+}  // namespace
+
+float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from, sphere_order order) {
+  const camera& c = s.cam;
+  float_scene f;
+  prepare_camera(f, s);
+
+  // Per-sphere constants in double, each rounded to float once
+  // (kernels/float_spheres.h); in parallel for large scenes, over chunks of
+  // the spheres (each sphere's are its own, so the bytes do not depend on the
+  // threads). A large scene is reordered on the way (float_scene.h): a
+  // stable counting sort whose first pass takes each sphere's key and counts
+  // the keys per chunk; the last writes each record straight to its place.
+  // The caller's spheres are read front to back, twice: read out of order
+  // from small pages, a virtual machine's TLB misses cost microseconds a
+  // sphere. Only our own records are written out of order.
+  float_spheres& sp = f.spheres;
+  const size_t n = s.sphere_count();
+  if (order == sphere_order::automatic && n < sort_from) order = sphere_order::scene;
+  const bool reorder = order != sphere_order::scene;
+  // One chunk a thread, but no more than spheres per key (the counts take 4
+  // bytes a key a chunk; an image 2^24 rows tall sorts in one).
+  size_t team = n < (size_t(1) << 15) ? 1 : size_t(std::max(1, threads));
+  std::vector<uint32_t, huge_page_allocator<uint32_t>> row(reorder ? n : 0), key(reorder ? n : 0);
+  const survey v = survey_spheres(s, reorder, team, row.data(), reinterpret_cast<float*>(key.data()));
+  if (order == sphere_order::automatic)
+    order = v.pixels > deep_from * double(c.image_width) * double(c.image_height) ? sphere_order::depth
+                                                                                  : sphere_order::rows;
+  const depth_buckets buckets{v.near_lo, (v.near_hi - v.near_lo) / double(float_spheres::depth_buckets)};
+  size_t keys = 1;
+  if (order == sphere_order::rows) {
+    keys = size_t(c.image_height) + 1;  // the rows 0 .. H (H: not ahead)
+    key.swap(row);
+  } else if (order == sphere_order::depth) {
+    keys = float_spheres::depth_buckets;
+    for (size_t k = 0; k < n; ++k) key[k] = buckets.of(std::bit_cast<float>(key[k]));
+    sp.depth_key.resize(keys);
+    for (size_t b = 0; b < keys; ++b) sp.depth_key[b] = buckets.key(b);
+  }
+  row = {};
+  if (reorder) team = std::clamp<size_t>(n / keys, 1, team);
+  std::vector<uint32_t> next = reorder ? places(key.data(), n, keys, team) : std::vector<uint32_t>{};
   // Colours only where some sphere has one (13 bytes a sphere a cloud of
   // normal-shaded spheres does without).
-  const bool colored = any_flat || any_lit;
+  const bool colored = v.any_flat || v.any_lit;
   sp.rec.resize(n);
+  if (reorder) sp.order.resize(n);
   if (colored) {
     sp.red.resize(n);
     sp.green.resize(n);
     sp.blue.resize(n);
     sp.kind.resize(n);
   }
-  bool any_inside = false;
-#pragma omp parallel for schedule(static, 1) num_threads(int(team)) reduction(|| : any_inside)
+  const bool depth = order == sphere_order::depth;
+#pragma omp parallel for schedule(static, 1) num_threads(int(team))
   for (size_t t = 0; t < team; ++t) {
     const auto [begin, end] = chunk(n, t, team);
     for (size_t k = begin; k < end; ++k) {
-      const sphere b = s.sphere_at(k);
-      const size_t i = sorted ? next[t * rows + key[k]]++ : k;
-      any_inside = (sp.rec[i] = record_of(b, c.origin)).inside || any_inside;
-      if (!colored) continue;
-      const bool flat = b.shade == shading::flat, lit = b.shade == shading::lit;
-      sp.red[i] = flat || lit ? flush(b.flat_color.r) + 0.0f : 0.0f;
-      sp.green[i] = flat || lit ? flush(b.flat_color.g) + 0.0f : 0.0f;
-      sp.blue[i] = flat || lit ? flush(b.flat_color.b) + 0.0f : 0.0f;
-      sp.kind[i] = flat ? shading_kind::flat : lit ? shading_kind::lit : shading_kind::normal;
+      const size_t i = reorder ? next[t * keys + key[k]]++ : k;
+      write_sphere(sp, i, s.sphere_at(k), c.origin, colored, depth ? uint16_t(key[k]) : uint16_t(0));
+      if (reorder) sp.order[i] = uint32_t(k);
     }
   }
+  bool any_inside = false;
+  for (const sphere_record& e : sp.rec) any_inside = any_inside || e.inside;
   sp.any_inside = any_inside;
-  sp.any_flat = any_flat;
-  sp.any_normal = any_normal;
-  sp.any_lit = any_lit;
+  sp.any_flat = v.any_flat;
+  sp.any_normal = v.any_normal;
+  sp.any_lit = v.any_lit;
   // The culling radii, from the records in their final order.
   sp.cull_radius.resize(n);
 #pragma omp parallel for schedule(static) num_threads(team)

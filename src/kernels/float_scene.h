@@ -58,17 +58,29 @@ RAYCAST_INLINE float pixel_sv(const float_scene& f, int64_t j) {
   return f.height == 1 ? 0.0f : (float(j) - f.mid_row) / f.last_row;
 }
 
+// The order of the float scene's spheres. A scene of sort_from spheres or
+// more is reordered by a stable counting sort that writes each record once,
+// in its place; while it runs it holds 4 bytes a sphere (the keys) and 4
+// bytes a key a thread (the counts). Scenes of a few thousand spheres fit in
+// the caches as they come and keep the scene's order.
+//  - rows: by the image row of their centres, so that the spheres one row of
+//    rays tests lie together in memory (sparse and dense clouds: every sphere
+//    is seen, and the walk over a row streams through memory);
+//  - depth: by their nearest distance from the camera, |O - C| - r, in 2^16
+//    buckets (float_spheres::depth_key), so that every batch's list is in
+//    depth order and its walk stops at what it sees (deep scenes: a packed
+//    box, where a ray passes dozens of spheres behind the one it hits).
+//  - automatic: depth where the spheres' screen discs add up to more than
+//    deep_from times the image (the scene is deep), else rows.
+enum class sphere_order : uint8_t { automatic, scene, rows, depth };
+inline constexpr double deep_from = 2.0;
+
 // With up to `threads` threads for large scenes; the same bytes for any count.
 // Memory: 36 bytes a sphere (float_spheres: a 32-byte record and the culling
-// radius), 52 when some sphere is flat or lit (the colours and kinds). A
-// scene of sort_from spheres or more is reordered (float_spheres.h): its
-// spheres stably sorted by the image row of their centres, so that the
-// spheres one row of rays tests lie together in memory. The sort writes each
-// record once, in its place (a counting sort); while it runs it holds 4 bytes
-// a sphere (the keys) and 4 bytes an image row a thread (the counts). Scenes
-// of a few thousand spheres fit in the caches as they come and keep the
-// scene's order.
+// radius), 52 when some sphere is flat or lit (the colours and kinds), and 4
+// more for a reordered scene (each sphere's index in the scene).
 inline constexpr size_t sorted_from = size_t(1) << 15;
-float_scene prepare_float_scene(const scene& s, int threads = 1, size_t sort_from = sorted_from);
+float_scene prepare_float_scene(const scene& s, int threads = 1, size_t sort_from = sorted_from,
+                                sphere_order order = sphere_order::automatic);
 
 }  // namespace raycast

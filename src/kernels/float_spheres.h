@@ -101,6 +101,7 @@ struct alignas(32) sphere_record {
   float scale;       // 2^e
   uint8_t near;      // 1: the textbook discriminant; 0: Hearn & Baker
   uint8_t inside;    // 1: the camera is inside the sphere or on it
+  uint16_t depth;    // a depth-ordered scene's bucket of |O - C| - r (float_spheres::depth_key)
 };
 
 // One record per sphere in the float scene's order, and what shading reads of a hit.
@@ -116,6 +117,18 @@ struct float_spheres {
   // For culling (kernels/culling.h), in the sphere's unit: the radius
   // widened by a margin far above float's rounding, 1e-5 (|f| + r).
   array<float> cull_radius;
+  // A reordered scene's (from sorted_from spheres on): each sphere's index in
+  // the scene, for the tie rule (of two hits at the same t the later in the
+  // scene wins, whatever the order they are tested in). Empty: the scene's
+  // own order.
+  array<uint32_t> order;
+  // A depth-ordered scene's (float_scene.h): the spheres sorted by their
+  // nearest distance from the camera, |O - C| - r, in depth_buckets buckets;
+  // depth_key[b] is at most every distance in bucket b times (1 - 2^-15), in
+  // world units. A batch's walk over its spheres stops once every lane has
+  // hit something nearer than the next sphere's key (kernels/sphere_hit.inl).
+  static constexpr size_t depth_buckets = size_t(1) << 16;
+  array<float> depth_key;
 
   size_t size() const { return rec.size(); }
   float kind_of(size_t k) const { return kind.empty() ? shading_kind::normal : kind[k]; }
@@ -129,12 +142,18 @@ struct float_spheres {
 struct sphere_arrays {
   const sphere_record* rec = nullptr;
   const float *red = nullptr, *green = nullptr, *blue = nullptr, *kind = nullptr;
+  const uint32_t* order = nullptr;  // null: the scene's order
+  const float* depth_key = nullptr;  // null: not depth-ordered
   size_t n = 0;
   bool any_flat = false, any_normal = false, any_lit = false, any_inside = false;
+
+  // Sphere k's index in the scene.
+  RAYCAST_INLINE uint32_t scene_index(size_t k) const { return order ? order[k] : uint32_t(k); }
 };
 
 inline sphere_arrays arrays_of(const float_spheres& s) {
   return {s.rec.data(), s.red.data(), s.green.data(), s.blue.data(), s.kind.data(),
+          s.order.empty() ? nullptr : s.order.data(), s.depth_key.empty() ? nullptr : s.depth_key.data(),
           s.size(), s.any_flat, s.any_normal, s.any_lit, s.any_inside};
 }
 

@@ -26,6 +26,7 @@ template <int Shades>
 struct closest_hit {
   vmask hit{};                 // all false
   vfloat t = FLT_MAX;          // float_spheres.h: closest starts at FLT_MAX
+  vuint index = vuint(0u);     // the hit sphere's index in the scene (the tie rule)
   vfloat s = 0.0f;             // the hit's s, in its sphere's unit
   vfloat fx = 0.0f, fy = 0.0f, fz = 0.0f, inv_r = 0.0f;  // normal shading
   vfloat inside = 0.0f;  // 1 where the camera is inside the hit sphere (scenes with such a sphere)
@@ -61,17 +62,27 @@ struct rays {
     }
     return inv_;
   }
+  // |d|, the first time a depth-ordered walk asks whether it may stop.
+  vfloat length() {
+    if (!have_len_) {
+      len_ = sqrt(n2);
+      have_len_ = true;
+    }
+    return len_;
+  }
 
  private:
-  vfloat inv_ = 0.0f;
-  bool have_inv_ = false;
+  vfloat inv_ = 0.0f, len_ = 0.0f;
+  bool have_inv_ = false, have_len_ = false;
 };
 
 // Records sphere k's hit where m (its s and t already chosen) in h.
 template <int Shades>
 RAYCAST_INLINE void record(const sphere_arrays& sp, size_t k, vmask m, vfloat s, closest_hit<Shades>& h) {
+  const vuint index = vuint(sp.scene_index(k));
   if (none(h.hit)) {  // the first sphere hit: lanes it misses never read these
     h.hit = m;
+    h.index = index;
     if constexpr ((Shades & normal_shading) != 0) {
       h.s = s;
       h.fx = sp.rec[k].fx;
@@ -89,6 +100,7 @@ RAYCAST_INLINE void record(const sphere_arrays& sp, size_t k, vmask m, vfloat s,
     return;
   }
   h.hit = h.hit | m;
+  h.index = select(m, index, h.index);
   if constexpr ((Shades & normal_shading) != 0) {
     h.s = select(m, s, h.s);
     h.fx = select(m, vfloat(sp.rec[k].fx), h.fx);
@@ -115,8 +127,10 @@ RAYCAST_INLINE vfloat discriminant(const sphere_record& e, rays& r, vfloat fx, v
 }
 
 // Where sphere k can hit (disc >= 0): its nearest root not behind the camera,
-// and the closest hit updated with it (t <= closest: a tie goes to the later
-// sphere). The lanes where disc < 0 are not read: no max(disc, 0) here.
+// and the closest hit updated with it: where it is nearer, or as near and
+// later in the scene (the tie rule: spheres are tested in the float scene's
+// order, which need not be the scene's). The lanes where disc < 0 are not
+// read: no max(disc, 0) here.
 template <int Shades>
 RAYCAST_INLINE void take_nearest(const sphere_arrays& sp, size_t k, rays& r, vfloat b, vfloat disc, vmask can_hit,
                                  closest_hit<Shades>& h) {
@@ -128,9 +142,24 @@ RAYCAST_INLINE void take_nearest(const sphere_arrays& sp, size_t k, rays& r, vfl
     if (any(behind)) s = select(behind, q / r.n2, s);
   }
   const vfloat t = s * vfloat(e.scale);
-  const vmask m = can_hit & (s >= 0.0f) & (t <= h.t);
+  const vmask ahead = can_hit & (s >= 0.0f);
+  vmask m = ahead & !(t >= h.t);
+  const vmask tie = ahead & (t == h.t);
+  if (any(tie)) m = m | (tie & ((!h.hit) | (vuint(sp.scene_index(k)) > h.index)));
   h.t = select(m, t, h.t);
   record(sp, k, m, s, h);
+}
+
+// A depth-ordered walk (float_spheres::depth_key): whether every lane has
+// hit something nearer than sphere e -- and so than every sphere after it in
+// the float scene's order -- can be: t |d| (the hit's distance in world
+// units) below e's bucket's key. The key holds a margin of 2^-15 against the
+// rounding of both distances (each within 10^-6 relative, src/kernels/README.md),
+// so a sphere left out would have been strictly farther: never a tie, and
+// the image is the same bits as a walk over the whole list.
+template <int Shades>
+RAYCAST_INLINE bool nearer_than(const sphere_arrays& sp, const sphere_record& e, rays& r, const closest_hit<Shades>& h) {
+  return all(h.hit) && all(!(h.t * r.length() >= vfloat(sp.depth_key[e.depth])));
 }
 
 // Tests the spheres list[0 .. count) (every sphere, 0 .. count, when list is
@@ -144,6 +173,11 @@ RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, siz
   for (size_t x = 0; x < count; ++x) {
     const size_t k = list ? list[x] : x;
     const sphere_record& e = sp.rec[k];
+    if (sp.depth_key) {  // a depth-ordered walk: stop where nothing after can be nearer
+      bool done = true;
+      for (int u = 0; u < M && done; ++u) done = nearer_than(sp, e, r[u], h[u]);
+      if (done) return;
+    }
     const vfloat fx = e.fx, fy = e.fy, fz = e.fz;
     vfloat b[M], disc[M];
     vmask can_hit[M];
@@ -168,6 +202,7 @@ RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, siz
   for (size_t x = 0; x < count; ++x) {
     const size_t k = list ? list[x] : x;
     const sphere_record& e = sp.rec[k];
+    if (sp.depth_key && nearer_than(sp, e, r, h)) return;  // nothing after can be nearer
     const vfloat fx = e.fx, fy = e.fy, fz = e.fz;
     const vfloat b = (fx * r.d[0] + fy * r.d[1]) + fz * r.d[2];
     const vfloat disc = discriminant(e, r, fx, fy, fz, b);

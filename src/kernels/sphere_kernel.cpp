@@ -290,24 +290,18 @@ scalar_hit trace_pixel(const float_scene& s, const sphere_arrays& sp, int64_t i,
   rays r;
   for (int k = 0; k < 3; ++k) r.d[k] = (s.center[k] + su * s.horizontal[k]) + sv * s.vertical[k];
   r.set_length();
-  // Every sphere in order, each against the closest hit so far (the same
-  // test as the batches'); the last that took a lane is the hit.
-  closest_hit<normal_shading> h;
-  int64_t hit = -1;
-  for (size_t k = 0; k < sp.n; ++k) {
-    closest_hit<normal_shading> probe;
-    probe.t = h.t;
-    const uint32_t one = uint32_t(k);
-    intersect(sp, &one, 1, r, probe);
-    if (any(probe.hit)) h = probe, hit = int64_t(k);
-  }
-  if (hit < 0) return {};
-  alignas(64) float t[N], d[3][N];
+  closest_hit<normal_shading> h;  // every sphere, in the float scene's order
+  intersect(sp, nullptr, sp.n, r, h);
+  if (none(h.hit)) return {};
+  alignas(64) float t[N], d[3][N], index[N];
   store(t, h.t);
+  store(index, as_float(h.index));
   for (int k = 0; k < 3; ++k) store(d[k], r.d[k]);
   // P = O + t d in world units, so the distance is t |d|.
   const double d_len = std::sqrt(double(d[0][0]) * d[0][0] + double(d[1][0]) * d[1][0] + double(d[2][0]) * d[2][0]);
-  return {hit, double(t[0]) * d_len};
+  uint32_t scene_index = 0;
+  __builtin_memcpy(&scene_index, index, sizeof scene_index);
+  return {int64_t(scene_index), double(t[0]) * d_len};
 }
 
 void render_sphere_rows(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {

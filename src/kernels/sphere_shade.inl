@@ -106,7 +106,7 @@ struct sample_sums {
   RAYCAST_INLINE void add_sky(const rays& r, vmask hit) {
     const vfloat sky = sampling::sky_u<vfloat, vuint>(r.d[1], r.n2);
     sky_sum = sky_sum + select(hit, 0.0f, sky);
-    sky_count = sky_count + select(hit, 0.0f, 1.0f);
+    sky_count = sky_count + select(hit, vfloat(0.0f), vfloat(1.0f));
   }
   RAYCAST_INLINE void add_sky(const rays& r) {
     sky_sum = sky_sum + sampling::sky_u<vfloat, vuint>(r.d[1], r.n2);
@@ -127,7 +127,7 @@ struct sample_sums {
           for (int k = 0; k < 3; ++k) normals[k] = normals[k] + (every ? n[k] : select(normal, n[k], 0.0f));
         } else {
           for (int k = 0; k < 3; ++k) normals[k] = normals[k] + select(normal, n[k], 0.0f);
-          normal_count = normal_count + select(normal, 1.0f, 0.0f);
+          normal_count = normal_count + select(normal, vfloat(1.0f), vfloat(0.0f));
         }
       }
       if constexpr ((Shades & flat_shading) != 0) {  // flat and lit colours

@@ -97,7 +97,7 @@ int preparation_threads(const scene& s, int threads) {
 
 renderer::renderer(const scene& s, const render_options& opts)
     : scene_{s.cam, s.sky, {}, std::nullopt},
-      fscene_(prepare_float_scene(s, preparation_threads(s, opts.threads), opts.sort_from)),
+      fscene_(prepare_float_scene(s, preparation_threads(s, opts.threads), opts.sort_from, opts.order)),
       which_(opts.which == backend::automatic ? best_backend() : opts.which),
       prec_(opts.prec),
       threads_(opts.threads > 0 ? opts.threads : available_cores()) {

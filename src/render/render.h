@@ -31,6 +31,9 @@ struct render_options {
   // image rows (kernels/float_scene.h); tests lower it to cover that order on
   // small scenes.
   size_t sort_from = sorted_from;
+  // Their order from sort_from spheres on (kernels/float_scene.h): rows or
+  // depth, chosen from the scene; tests force one to compare them.
+  sphere_order order = sphere_order::automatic;
 };
 
 // The most samples per pixel a render takes (the per-sample table is 16

@@ -120,7 +120,7 @@ struct vuint {
   __m256i v;
   vuint() = default;
   RAYCAST_INLINE vuint(__m256i x) : v(x) {}
-  RAYCAST_INLINE vuint(uint32_t s) : v(_mm256_set1_epi32(int32_t(s))) {}
+  explicit RAYCAST_INLINE vuint(uint32_t s) : v(_mm256_set1_epi32(int32_t(s))) {}
   // start, start + 1, ... in lane order.
   static RAYCAST_INLINE vuint iota(uint32_t start) {
     return _mm256_add_epi32(_mm256_set1_epi32(int32_t(start)), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
@@ -140,5 +140,14 @@ RAYCAST_INLINE vfloat to_float(vuint a) { return _mm256_cvtepi32_ps(a.v); }
 // The bits of a float as an unsigned integer, and back.
 RAYCAST_INLINE vuint as_uint(vfloat a) { return _mm256_castps_si256(a.v); }
 RAYCAST_INLINE vfloat as_float(vuint a) { return _mm256_castsi256_ps(a.v); }
+// Unsigned a > b per lane (a signed compare with the top bits flipped), and
+// a where m else b (the closest hit's sphere indices).
+RAYCAST_INLINE vmask operator>(vuint a, vuint b) {
+  const __m256i top = _mm256_set1_epi32(INT32_MIN);
+  return {_mm256_castsi256_ps(_mm256_cmpgt_epi32(_mm256_xor_si256(a.v, top), _mm256_xor_si256(b.v, top)))};
+}
+RAYCAST_INLINE vuint select(vmask m, vuint a, vuint b) {
+  return _mm256_blendv_epi8(b.v, a.v, _mm256_castps_si256(m.m));
+}
 
 }  // namespace raycast::simd::avx2

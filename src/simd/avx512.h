@@ -165,7 +165,7 @@ struct vuint {
   __m512i v;
   vuint() = default;
   RAYCAST_INLINE vuint(__m512i x) : v(x) {}
-  RAYCAST_INLINE vuint(uint32_t s) : v(_mm512_set1_epi32(int32_t(s))) {}
+  explicit RAYCAST_INLINE vuint(uint32_t s) : v(_mm512_set1_epi32(int32_t(s))) {}
   // start, start + 1, ... in lane order.
   static RAYCAST_INLINE vuint iota(uint32_t start) {
     return _mm512_add_epi32(_mm512_set1_epi32(int32_t(start)),
@@ -186,5 +186,8 @@ RAYCAST_INLINE vfloat to_float(vuint a) { return _mm512_cvtepi32_ps(a.v); }
 // The bits of a float as an unsigned integer, and back.
 RAYCAST_INLINE vuint as_uint(vfloat a) { return _mm512_castps_si512(a.v); }
 RAYCAST_INLINE vfloat as_float(vuint a) { return _mm512_castsi512_ps(a.v); }
+// Unsigned a > b per lane, and a where m else b (the closest hit's sphere indices).
+RAYCAST_INLINE vmask operator>(vuint a, vuint b) { return {_mm512_cmpgt_epu32_mask(a.v, b.v)}; }
+RAYCAST_INLINE vuint select(vmask m, vuint a, vuint b) { return _mm512_mask_blend_epi32(m.m, b.v, a.v); }
 
 }  // namespace raycast::simd::avx512

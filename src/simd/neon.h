@@ -93,6 +93,8 @@ RAYCAST_INLINE u shl(u a, int n) { return vshlq_u32(a, vdupq_n_s32(n)); }
 RAYCAST_INLINE f to_float(u a) { return vcvtq_f32_u32(a); }
 RAYCAST_INLINE u as_uint(f a) { return vreinterpretq_u32_f32(a); }
 RAYCAST_INLINE f as_float(u a) { return vreinterpretq_f32_u32(a); }
+RAYCAST_INLINE m gt_u(u a, u b) { return vcgtq_u32(a, b); }
+RAYCAST_INLINE u select_u(m k, u a, u b) { return vbslq_u32(k, a, b); }
 }  // namespace half
 
 #include "simd/two_halves.inl"

@@ -95,28 +95,30 @@ RAYCAST_INLINE void store_rgbf(float* dst, vfloat r, vfloat g, vfloat b) {
 struct vuint {
   uint32_t v;
   vuint() = default;
-  RAYCAST_INLINE vuint(uint32_t s) : v(s) {}
-  static RAYCAST_INLINE vuint iota(uint32_t start) { return start; }
+  explicit RAYCAST_INLINE vuint(uint32_t s) : v(s) {}
+  static RAYCAST_INLINE vuint iota(uint32_t start) { return vuint(start); }
 };
-RAYCAST_INLINE vuint operator+(vuint a, vuint b) { return a.v + b.v; }
-RAYCAST_INLINE vuint operator-(vuint a, vuint b) { return a.v - b.v; }
-RAYCAST_INLINE vuint operator*(vuint a, vuint b) { return a.v * b.v; }
-RAYCAST_INLINE vuint operator^(vuint a, vuint b) { return a.v ^ b.v; }
-RAYCAST_INLINE vuint operator&(vuint a, vuint b) { return a.v & b.v; }
-RAYCAST_INLINE vuint operator|(vuint a, vuint b) { return a.v | b.v; }
-RAYCAST_INLINE vuint operator>>(vuint a, int n) { return a.v >> n; }
-RAYCAST_INLINE vuint operator<<(vuint a, int n) { return a.v << n; }
+RAYCAST_INLINE vuint operator+(vuint a, vuint b) { return vuint(a.v + b.v); }
+RAYCAST_INLINE vuint operator-(vuint a, vuint b) { return vuint(a.v - b.v); }
+RAYCAST_INLINE vuint operator*(vuint a, vuint b) { return vuint(a.v * b.v); }
+RAYCAST_INLINE vuint operator^(vuint a, vuint b) { return vuint(a.v ^ b.v); }
+RAYCAST_INLINE vuint operator&(vuint a, vuint b) { return vuint(a.v & b.v); }
+RAYCAST_INLINE vuint operator|(vuint a, vuint b) { return vuint(a.v | b.v); }
+RAYCAST_INLINE vuint operator>>(vuint a, int n) { return vuint(a.v >> n); }
+RAYCAST_INLINE vuint operator<<(vuint a, int n) { return vuint(a.v << n); }
 // Lanes below 2^31, as floats (exact below 2^24).
 RAYCAST_INLINE vfloat to_float(vuint a) { return float(int32_t(a.v)); }
 RAYCAST_INLINE vuint as_uint(vfloat a) {
   uint32_t u;
   std::memcpy(&u, &a.v, sizeof u);
-  return u;
+  return vuint(u);
 }
 RAYCAST_INLINE vfloat as_float(vuint a) {
   float x;
   std::memcpy(&x, &a.v, sizeof x);
   return x;
 }
+RAYCAST_INLINE vmask operator>(vuint a, vuint b) { return {a.v > b.v}; }
+RAYCAST_INLINE vuint select(vmask m, vuint a, vuint b) { return m.m ? a : b; }
 
 }  // namespace raycast::simd::scalar

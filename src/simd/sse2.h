@@ -73,6 +73,15 @@ RAYCAST_INLINE u shl(u a, int n) { return _mm_slli_epi32(a, n); }
 RAYCAST_INLINE f to_float(u a) { return _mm_cvtepi32_ps(a); }
 RAYCAST_INLINE u as_uint(f a) { return _mm_castps_si128(a); }
 RAYCAST_INLINE f as_float(u a) { return _mm_castsi128_ps(a); }
+// Unsigned: a signed compare with the top bits flipped.
+RAYCAST_INLINE m gt_u(u a, u b) {
+  const __m128i top = _mm_set1_epi32(INT32_MIN);
+  return _mm_castsi128_ps(_mm_cmpgt_epi32(_mm_xor_si128(a, top), _mm_xor_si128(b, top)));
+}
+RAYCAST_INLINE u select_u(m k, u a, u b) {
+  const __m128i km = _mm_castps_si128(k);
+  return _mm_or_si128(_mm_and_si128(km, a), _mm_andnot_si128(km, b));
+}
 }  // namespace half
 
 #include "simd/two_halves.inl"

@@ -33,7 +33,7 @@ struct vuint {
   half::u lo, hi;
   vuint() = default;
   RAYCAST_INLINE vuint(half::u l, half::u h) : lo(l), hi(h) {}
-  RAYCAST_INLINE vuint(uint32_t s) : lo(half::splat_u(s)), hi(lo) {}
+  explicit RAYCAST_INLINE vuint(uint32_t s) : lo(half::splat_u(s)), hi(lo) {}
   // start, start + 1, ... in lane order.
   static RAYCAST_INLINE vuint iota(uint32_t start) { return {half::iota(start), half::iota(start + 4)}; }
 };
@@ -98,3 +98,8 @@ RAYCAST_INLINE vfloat to_float(vuint a) { return {half::to_float(a.lo), half::to
 // The bits of a float as an unsigned integer, and back.
 RAYCAST_INLINE vuint as_uint(vfloat a) { return {half::as_uint(a.lo), half::as_uint(a.hi)}; }
 RAYCAST_INLINE vfloat as_float(vuint a) { return {half::as_float(a.lo), half::as_float(a.hi)}; }
+// Unsigned a > b per lane, and a where m else b (the closest hit's sphere indices).
+RAYCAST_INLINE vmask operator>(vuint a, vuint b) { return {half::gt_u(a.lo, b.lo), half::gt_u(a.hi, b.hi)}; }
+RAYCAST_INLINE vuint select(vmask m, vuint a, vuint b) {
+  return {half::select_u(m.lo, a.lo, b.lo), half::select_u(m.hi, a.hi, b.hi)};
+}

@@ -139,6 +139,13 @@ void float_bits(const float* in, uint32_t* bits, float* back) {
   store(back, as_float(u));
 }
 
+void uint_compare_select(const uint32_t* a, const uint32_t* b, uint32_t* greater, uint32_t* larger) {
+  const vuint x = uints(a), y = uints(b);
+  const vmask m = x > y;
+  put(greater, select(m, vuint(1u), vuint(0u)));
+  put(larger, select(m, x, y));
+}
+
 }  // namespace
 
 extern const simd_ops ops = {
@@ -156,7 +163,7 @@ extern const simd_ops ops = {
 #endif
     compare, copy_sign, select_equal, min_max, arithmetic, rsqrt_estimate,
     splat, truncate, reverse_ints, uint_splat_iota, uint_arithmetic, uint_shift, uint_shift_constants,
-    uint_to_float, float_bits,
+    uint_to_float, float_bits, uint_compare_select,
 };
 
 }  // namespace raycast_test::RAYCAST_ISA

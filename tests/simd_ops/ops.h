@@ -63,6 +63,8 @@ struct simd_ops {
   void (*uint_to_float)(const uint32_t* in, float* out);
   // as_uint(x), and as_float(as_uint(x)).
   void (*float_bits)(const float* in, uint32_t* bits, float* back);
+  // a > b (unsigned) as 1 or 0, and select(a > b, a, b).
+  void (*uint_compare_select)(const uint32_t* a, const uint32_t* b, uint32_t* greater, uint32_t* larger);
 };
 
 #define RAYCAST_OPS_TABLE(name, arch, lanes, needs, flags) \

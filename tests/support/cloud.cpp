@@ -4,12 +4,13 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <vector>
 
 namespace raycast_test {
 using namespace raycast;
 namespace {
 
-constexpr double near_depth = 2.0, far_depth = 12.0, vfov_degrees = 50.0, coverage = 1.5;
+constexpr double near_depth = 2.0, far_depth = 12.0, vfov_degrees = 50.0;
 constexpr int64_t width = 1920, height = 1080;
 
 // The viewport at distance 1: vh = 2 tan(vfov / 2), vw = vh * 16 / 9.
@@ -33,7 +34,7 @@ void append(std::string& out, double x, bool radius) {
 // (b^3 - a^3) on [a, b], so E[1 / d^2] = 3 (b - a) / (b^3 - a^3), and the
 // expected coverage n pi r^2 E[1 / d^2] / (vw vh) is `coverage` when
 //   r = sqrt(coverage vw vh (b^3 - a^3) / (3 pi (b - a) n))   (about 6.5 / sqrt(n)).
-double cloud_radius(int64_t n) {
+double cloud_radius(int64_t n, double coverage) {
   const double a = near_depth, b = far_depth;
   const double r = std::sqrt(coverage * view_width() * view_height() * (b * b * b - a * a * a) /
                              (3.0 * std::numbers::pi * (b - a) * double(n)));
@@ -44,7 +45,7 @@ double cloud_radius(int64_t n) {
   return rounded;
 }
 
-scene_params particle_cloud(int64_t n) {
+scene_params particle_cloud(int64_t n, double coverage) {
   scene_params p;
   p.camera.image_width = width;
   p.camera.image_height = height;
@@ -54,7 +55,7 @@ scene_params particle_cloud(int64_t n) {
   auto unit = [&gen] { return double(gen() >> 8) * 0x1p-24; };
   auto micro = [](double x) { return std::round(x * 1e6) / 1e6; };
   const double a3 = near_depth * near_depth * near_depth, b3 = far_depth * far_depth * far_depth;
-  const double hw = 0.5 * view_width(), hh = 0.5 * view_height(), r = cloud_radius(n);
+  const double hw = 0.5 * view_width(), hh = 0.5 * view_height(), r = cloud_radius(n, coverage);
   p.spheres.resize(size_t(n));
   for (sphere& s : p.spheres) {
     const double d = std::cbrt(a3 + unit() * (b3 - a3));
@@ -66,11 +67,61 @@ scene_params particle_cloud(int64_t n) {
   return p;
 }
 
+scene_params particle_box(int64_t n) {
+  scene_params p;
+  p.camera.image_width = width;
+  p.camera.image_height = height;
+  p.camera.vfov_degrees = 30.0;
+  // Far enough that the cube's bounding sphere (radius sqrt(3) / 2) fills the lens's height.
+  const double distance = 0.5 * std::sqrt(3.0) / std::sin(15.0 * std::numbers::pi / 180.0);
+  const double out = std::round((0.5 + distance / std::sqrt(3.0)) * 1e6) / 1e6;  // as the JSON writes it
+  p.camera.origin = point3(out, out, out);
+  p.camera.lookat = point3(0.5, 0.5, 0.5);
+  int64_t m = 1;
+  while (m * m * m < n) ++m;
+  const double cell = 1.0 / double(m);
+  const double r = std::cbrt(0.3 * 3.0 / (4.0 * std::numbers::pi * double(n)));
+  const double room = std::max(0.0, 0.5 * cell - r);  // how far a centre may stray in its cell
+  std::mt19937 gen(20261125u);
+  auto unit = [&gen] { return double(gen() >> 8) * 0x1p-24; };
+  auto micro = [](double x) { return std::round(x * 1e6) / 1e6; };
+  // A fixed shuffle of the cells (Fisher-Yates on the generator's words), the first n kept.
+  std::vector<int64_t> cells(size_t(m * m * m));
+  for (size_t k = 0; k < cells.size(); ++k) cells[k] = int64_t(k);
+  for (size_t k = cells.size() - 1; k > 0; --k) std::swap(cells[k], cells[size_t(gen()) % (k + 1)]);
+  std::string text;
+  append(text, r, true);
+  double radius = r;
+  std::from_chars(text.data(), text.data() + text.size(), radius);
+  p.spheres.resize(size_t(n));
+  for (size_t k = 0; k < size_t(n); ++k) {
+    const int64_t c = cells[k], x = c % m, y = c / m % m, z = c / (m * m);
+    sphere& s = p.spheres[k];
+    s.center = point3(micro((double(x) + 0.5) * cell + (2.0 * unit() - 1.0) * room),
+                      micro((double(y) + 0.5) * cell + (2.0 * unit() - 1.0) * room),
+                      micro((double(z) + 0.5) * cell + (2.0 * unit() - 1.0) * room));
+    s.radius = radius;
+  }
+  return p;
+}
+
 std::string cloud_json(const scene_params& p) {
   std::string out = "{\"camera\": {\"width\": " + std::to_string(p.camera.image_width) +
                     ", \"height\": " + std::to_string(p.camera.image_height.value_or(0)) +
-                    ", \"vfov\": " + std::to_string(p.camera.vfov_degrees.value_or(90.0)) +
-                    "},\n \"spheres\": [";
+                    ", \"vfov\": " + std::to_string(p.camera.vfov_degrees.value_or(90.0));
+  const auto vector = [&out](const char* name, const point3& v) {
+    out += std::string(", \"") + name + "\": [";
+    for (int c = 0; c < 3; ++c) {
+      if (c) out += ", ";
+      append(out, v[c], false);
+    }
+    out += "]";
+  };
+  if (p.camera.lookat) {
+    vector("lookfrom", p.camera.origin);
+    vector("lookat", *p.camera.lookat);
+  }
+  out += "},\n \"spheres\": [";
   out.reserve(out.size() + p.spheres.size() * 90 + 8);
   for (size_t k = 0; k < p.spheres.size(); ++k) {
     const sphere& s = p.spheres[k];

@@ -19,10 +19,21 @@ using namespace raycast;
 // cloud_json(n) gives exactly these spheres. Below n = 20 or so the radius
 // exceeds the nearest depth (the camera may sit inside a sphere): the rows
 // are about large n.
-scene_params particle_cloud(int64_t n);
+// coverage: the spheres' summed screen area in image areas (1.5: the sparse
+// family, 3: the dense one, about three spheres behind each pixel).
+scene_params particle_cloud(int64_t n, double coverage = 1.5);
 
-// The radius that keeps the cloud's coverage at 1.5 image areas (cloud.cpp).
-double cloud_radius(int64_t n);
+// The radius that keeps the cloud's coverage at that many image areas (cloud.cpp).
+double cloud_radius(int64_t n, double coverage = 1.5);
+
+// The packed box of particle data (a granular pack, a simulation snapshot):
+// n equal spheres at packing fraction 0.3 in a cube of side 1 at the origin,
+// each in its own cell of a lattice of m^3 >= n cells (the cells chosen by a
+// fixed shuffle), jittered within it without overlapping; radius r with
+// n (4/3) pi r^3 = 0.3. Seen from outside a corner, (1, 1, 1) from the
+// centre, through a 30 degree lens, 1920x1080 (a ray through the cube passes
+// some 50 spheres at 10^6); the same rounding as particle_cloud.
+scene_params particle_box(int64_t n);
 
 // p as scene-file text (scene/scene_file.h), about 85 bytes a sphere.
 std::string cloud_json(const scene_params& p);
