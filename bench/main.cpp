@@ -63,6 +63,7 @@ struct options {
   int summary_threads = 1;
   std::string aa_reference_dir = default_cache_dir();
   int64_t write_cloud = 0;  // > 0: print the particle cloud of that many spheres as a scene file
+  std::string write_family = "cloud";  // which: cloud, dense or box (--write-cloud, --write-dense, --write-box)
 };
 
 struct size2 {
@@ -265,6 +266,7 @@ void print_help() {
       "                          (default %s; '' : not cached)\n"
       "  --write-cloud N         print the scale rows' particle cloud of N spheres as a\n"
       "                          scene file (for raycast --scene FILE --stats) and exit\n"
+      "  --write-dense N, --write-box N   the same for the dense cloud and the packed box\n"
       "The summaries are %s's, from the run's JSON\n"
       "(python3 %s RUN.json --help). Google Benchmark's flags:\n",
       default_cache_dir().c_str(), report_script().c_str(), report_script().c_str());
@@ -277,6 +279,16 @@ void print_help() {
 }
 
 // Takes this program's flags out of argv; Google Benchmark's stay.
+// The family of a --write-cloud, --write-dense or --write-box flag (with or
+// without its =N), or null.
+const char* write_flag(const char* arg) {
+  for (const char* family : {"cloud", "dense", "box"}) {
+    const std::string flag = std::string("--write-") + family;
+    if (arg == flag || std::string(arg).rfind(flag + "=", 0) == 0) return family;
+  }
+  return nullptr;
+}
+
 options parse_own_flags(int& argc, char** argv) {
   options o;
   int kept = 1;
@@ -306,12 +318,15 @@ options parse_own_flags(int& argc, char** argv) {
       char tail = 0;
       if (std::sscanf(n->c_str(), "%d%c", &o.summary_threads, &tail) != 1 || o.summary_threads < 1)
         usage_error("--summary-threads wants a positive integer, got '" + *n + "'");
-    } else if (auto spheres = value("--write-cloud")) {
+    } else if (const char* family = write_flag(argv[i])) {
+      const auto spheres = value(std::string("--write-") + family);
       long long count = 0;
       char tail = 0;
-      if (std::sscanf(spheres->c_str(), "%lld%c", &count, &tail) != 1 || count < 1 || count > 100000000)
-        usage_error("--write-cloud wants a number of spheres from 1 to 10^8, got '" + *spheres + "'");
+      if (!spheres || std::sscanf(spheres->c_str(), "%lld%c", &count, &tail) != 1 || count < 1 || count > 100000000)
+        usage_error(std::string("--write-") + family + " wants a number of spheres from 1 to 10^8, got '" +
+                    spheres.value_or("") + "'");
       o.write_cloud = count;
+      o.write_family = family;
     } else {
       argv[kept++] = argv[i];
     }
@@ -402,7 +417,11 @@ bool run_report(const std::string& json, const options& opt, bool to_stderr) {
 int run(int argc, char** argv) {
   const options opt = parse_own_flags(argc, argv);
   if (opt.write_cloud > 0) {
-    const std::string text = raycast_test::cloud_json(raycast_test::particle_cloud(opt.write_cloud));
+    const int64_t n = opt.write_cloud;
+    const std::string text = raycast_test::cloud_json(
+        opt.write_family == "box"     ? raycast_test::particle_box(n)
+        : opt.write_family == "dense" ? raycast_test::particle_cloud(n, 3.0)
+                                      : raycast_test::particle_cloud(n));
     const bool ok = std::fwrite(text.data(), 1, text.size(), stdout) == text.size() && std::fflush(stdout) == 0;
     if (!ok) std::perror("raycast-bench: --write-cloud");
     return ok ? 0 : 1;

@@ -35,12 +35,12 @@ class Row(dict):
         return self.get(k)
 
 
-def figure(size):
+def figure(size, columns=1):
     """(pyplot, figure, axes) of matplotlib without a display, imported only when a plot is asked for."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    return (plt, *plt.subplots(figsize=size))
+    return (plt, *plt.subplots(1, columns, figsize=size))
 
 
 def load(path):
@@ -402,17 +402,26 @@ def print_peers(rows, ctx, size):
             print(f"  {label:26} {v:9.2f}" + (f"   {v / ours:7.1f}x" if ours else ""))
 
 
-def scale_cells(rows):
-    """{(peer, threads '1'|'all'): {N: row}}."""
+SCALE_FAMILIES = {"cloud": "sparse particle cloud (coverage 1.5)", "dense": "dense particle cloud (coverage 3)",
+                  "box": "packed box seen from a corner (packing 0.3)"}
+
+
+def scale_cells(rows, family):
+    """{(peer, threads '1'|'all'): {N: row}} of one family (rows without a family are clouds)."""
     cells = defaultdict(dict)
     for r in of_kind(rows, "scale"):
-        if not r.error:
+        if not r.error and r.get("family", "cloud") == family:
             cells[(r.peer, r.threads)][int(r.spheres)] = r
     return cells
 
 
 def print_scale(rows, ctx):
-    cells, load = scale_cells(rows), {int(r.spheres): r for r in of_kind(rows, "load") if not r.error}
+    load = {int(r.spheres): r for r in of_kind(rows, "load") if not r.error}
+    for family, what in SCALE_FAMILIES.items():
+        print_scale_family(scale_cells(rows, family), load if family == "cloud" else {}, family, what, ctx)
+
+
+def print_scale_family(cells, load, family, what, ctx):
     ns = sorted(set(load) | {n for c in cells.values() for n in c})
     if not ns:
         return
@@ -420,7 +429,7 @@ def print_scale(rows, ctx):
                                                  f"{v:8.1f}" if v < 1e4 else f"{v:8.0f}")(s * 1e3)
     ratio = lambda a, b: "        " if a is None or not b else (lambda x: f" {x:6.2f}x" if x < 100 else f" {x:6.0f}x")(a / b)
     get = lambda peer, thr, n, k: (lambda r: (r.t if k == "t" else r.get(k)) if r else None)(cells[(peer, thr)].get(n))
-    print(f"\nScale: particle clouds (tests/support/cloud.h, coverage 1.5), 1920x1080, rgb8; ms (medians); tall = "
+    print(f"\nScale ({family}/): {what} (tests/support/cloud.h), 1920x1080, rgb8; ms (medians); tall = "
           f"{ctx.get('available_cores', '?')} threads\n"
           "                  ours t1           ours      embree t1         embree  embree    speedup tall"
           "          ns/px vs 1e3    load ns/sphere\n"
@@ -442,24 +451,27 @@ def print_scale(rows, ctx):
 
 
 def plot_scale(rows, ctx, file):
-    cells = scale_cells(rows)
-    if not cells:
+    families = [(f, what, scale_cells(rows, f)) for f, what in SCALE_FAMILIES.items()]
+    families = [x for x in families if x[2]]
+    if not families:
         return False
-    plt, fig, ax = figure((8, 5.5))
+    plt, fig, axes = figure((6 * len(families), 5.5), len(families))
+    axes = axes if len(families) > 1 else [axes]
     colours = {"ours": "tab:blue", "embree": "tab:red"}
-    for (peer, thr), by_n in sorted(cells.items()):
-        n = sorted(by_n)
-        style = dict(color=colours[peer], marker="o" if thr == "1" else "s", alpha=1.0 if thr == "1" else 0.6)
-        label = f"{peer} {'1 thread' if thr == '1' else 'all cores'}"
-        ax.plot(n, [by_n[k].t for k in n], "-", label=label + ": prepare + render", **style)
-        ax.plot(n, [by_n[k].render_s for k in n], "--", label=label + ": render", **style)
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.set_xlabel("spheres N (particle cloud, coverage 1.5)")
-    ax.set_ylabel("seconds per new scene, 1920x1080")
-    ax.set_title(f"raycast vs Embree, {ctx.get('num_cpus', '?')} CPUs, {ctx.get('date', '')[:10]}")
-    ax.grid(True, which="major", alpha=0.4)
-    ax.legend(fontsize=8)
+    for ax, (family, what, cells) in zip(axes, families):
+        for (peer, thr), by_n in sorted(cells.items()):
+            n = sorted(by_n)
+            style = dict(color=colours[peer], marker="o" if thr == "1" else "s", alpha=1.0 if thr == "1" else 0.6)
+            label = f"{peer} {'1 thread' if thr == '1' else 'all cores'}"
+            ax.plot(n, [by_n[k].t for k in n], "-", label=label + ": prepare + render", **style)
+            ax.plot(n, [by_n[k].render_s for k in n], "--", label=label + ": render", **style)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel(f"spheres N ({what})")
+        ax.set_ylabel("seconds per new scene, 1920x1080")
+        ax.set_title(f"{family}: raycast vs Embree, {ctx.get('num_cpus', '?')} CPUs, {ctx.get('date', '')[:10]}")
+        ax.grid(True, which="major", alpha=0.4)
+        ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(file)
     return True

@@ -31,8 +31,22 @@ std::vector<int64_t> counts(bool quick) {
 
 int threads_of(bool all) { return all ? available_cores() : 1; }
 
-std::string row(const char* who, int64_t n, bool all) {
-  return strf("scale/%s/%lld/%s", who, static_cast<long long>(n), all ? "tall" : "t1");
+// The scenes of the scale rows (tests/support/cloud.h): the sparse particle
+// cloud (coverage 1.5), the dense one (3: about three spheres behind each
+// pixel) and the packed box seen from a corner (a ray passes dozens).
+struct family {
+  const char* name;
+  scene_params (*make)(int64_t n);
+  int64_t from;  // the smallest N of the family's rows
+};
+const family families[] = {
+    {"cloud", [](int64_t n) { return particle_cloud(n, 1.5); }, 1},
+    {"dense", [](int64_t n) { return particle_cloud(n, 3.0); }, 1000},
+    {"box", [](int64_t n) { return raycast_test::particle_box(n); }, 1000},
+};
+
+std::string row(const family& f, const char* who, int64_t n, bool all) {
+  return strf("scale/%s/%s/%lld/%s", f.name, who, static_cast<long long>(n), all ? "tall" : "t1");
 }
 std::string load_row(int64_t n) { return strf("load/%lld", static_cast<long long>(n)); }
 
@@ -70,8 +84,8 @@ void time_frames(benchmark::State& state, const scene& s, const char* prepare, M
   state.counters["spheres"] = double(s.spheres.size());
 }
 
-void bench_ours(benchmark::State& state, int64_t n, bool all) {
-  const scene s = make_scene(particle_cloud(n));
+void bench_ours(benchmark::State& state, const family* f, int64_t n, bool all) {
+  const scene s = make_scene(f->make(n));
   render_options o;
   o.threads = threads_of(all);
   time_frames(
@@ -79,8 +93,8 @@ void bench_ours(benchmark::State& state, int64_t n, bool all) {
       [](const renderer& r, const image_band& band) { r.render(band); });
 }
 
-void bench_embree(benchmark::State& state, int64_t n, bool all) {
-  const scene s = make_scene(particle_cloud(n));
+void bench_embree(benchmark::State& state, const family* f, int64_t n, bool all) {
+  const scene s = make_scene(f->make(n));
   time_frames(
       state, s, "build_s",
       [&] {
@@ -157,15 +171,19 @@ void bench_load(benchmark::State& state, int64_t n) {
 }  // namespace
 
 void register_scale_rows(bool quick) {
-  for (int64_t n : counts(quick)) {
-    for (bool all : {false, true})
-      for (const char* peer : {"ours", "embree"})
-        add_row(row(peer, n, all), strf("kind=scale peer=%s spheres=%lld threads=%s", peer, static_cast<long long>(n),
-                                        all ? "all" : "1"),
-                benchmark::kMillisecond, peer[0] == 'o' ? bench_ours : bench_embree, n, all);
+  for (const family& f : families)
+    for (int64_t n : counts(quick)) {
+      if (n < f.from) continue;
+      for (bool all : {false, true})
+        for (const char* peer : {"ours", "embree"})
+          add_row(row(f, peer, n, all),
+                  strf("kind=scale family=%s peer=%s spheres=%lld threads=%s", f.name, peer,
+                       static_cast<long long>(n), all ? "all" : "1"),
+                  benchmark::kMillisecond, peer[0] == 'o' ? bench_ours : bench_embree, &f, n, all);
+    }
+  for (int64_t n : counts(quick))
     add_row(load_row(n), strf("kind=load spheres=%lld", static_cast<long long>(n)), benchmark::kMillisecond,
             bench_load, n);
-  }
 }
 
 }  // namespace raycast::bench

@@ -271,9 +271,10 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from, s
   size_t team = n < (size_t(1) << 15) ? 1 : size_t(std::max(1, threads));
   std::vector<uint32_t, huge_page_allocator<uint32_t>> row(reorder ? n : 0), key(reorder ? n : 0);
   const survey v = survey_spheres(s, reorder, team, row.data(), reinterpret_cast<float*>(key.data()));
-  if (order == sphere_order::automatic)
-    order = v.pixels > deep_from * double(c.image_width) * double(c.image_height) ? sphere_order::depth
-                                                                                  : sphere_order::rows;
+  if (order == sphere_order::automatic) {
+    const double images = v.pixels / (double(c.image_width) * double(c.image_height));
+    order = images > (n < small_scene ? deep_from_small : deep_from) ? sphere_order::depth : sphere_order::rows;
+  }
   const depth_buckets buckets{v.near_lo, (v.near_hi - v.near_lo) / double(float_spheres::depth_buckets)};
   size_t keys = 1;
   if (order == sphere_order::rows) {
