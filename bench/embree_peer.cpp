@@ -157,10 +157,17 @@ struct embree_peer::impl {
         const int n = int(std::min<int64_t>(16, W - i0));
         for (int k = 0; k < 16; ++k) {
           valid[k] = k < n ? -1 : 0;
-          dir[k] = direction(base, std::min(i0 + k, W - 1));
-          rh.ray.org_x[k] = origin.x;
-          rh.ray.org_y[k] = origin.y;
-          rh.ray.org_z[k] = origin.z;
+          float3 from = origin;
+          if (cam.proj == projection::orthographic) {  // scene/camera.h: from the image plane, along -w
+            const ray along = cam.get_ray(cam.u_of(std::min(i0 + k, W - 1)), cam.v_of(H - 1 - r));
+            from = {float(along.origin().x), float(along.origin().y), float(along.origin().z)};
+            dir[k] = {float(along.direction().x), float(along.direction().y), float(along.direction().z)};
+          } else {
+            dir[k] = direction(base, std::min(i0 + k, W - 1));
+          }
+          rh.ray.org_x[k] = from.x;
+          rh.ray.org_y[k] = from.y;
+          rh.ray.org_z[k] = from.z;
           rh.ray.dir_x[k] = dir[k].x;
           rh.ray.dir_y[k] = dir[k].y;
           rh.ray.dir_z[k] = dir[k].z;

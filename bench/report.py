@@ -403,7 +403,8 @@ def print_peers(rows, ctx, size):
 
 
 SCALE_FAMILIES = {"cloud": "sparse particle cloud (coverage 1.5)", "dense": "dense particle cloud (coverage 3)",
-                  "box": "packed box seen from a corner (packing 0.3)"}
+                  "box": "packed box seen from a corner (packing 0.3)",
+                  "box-ortho": "the packed box along an axis, orthographic"}
 
 
 def scale_cells(rows, family):

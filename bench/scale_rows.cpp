@@ -33,7 +33,8 @@ int threads_of(bool all) { return all ? available_cores() : 1; }
 
 // The scenes of the scale rows (tests/support/cloud.h): the sparse particle
 // cloud (coverage 1.5), the dense one (3: about three spheres behind each
-// pixel) and the packed box seen from a corner (a ray passes dozens).
+// pixel), the packed box seen from a corner (a ray passes dozens) and the
+// same box along an axis through an orthographic camera.
 struct family {
   const char* name;
   scene_params (*make)(int64_t n);
@@ -43,6 +44,7 @@ const family families[] = {
     {"cloud", [](int64_t n) { return particle_cloud(n, 1.5); }, 1},
     {"dense", [](int64_t n) { return particle_cloud(n, 3.0); }, 1000},
     {"box", [](int64_t n) { return raycast_test::particle_box(n); }, 1000},
+    {"box-ortho", [](int64_t n) { return raycast_test::particle_box(n, true); }, 1000},
 };
 
 std::string row(const family& f, const char* who, int64_t n, bool all) {

@@ -19,11 +19,11 @@ report = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(report)
 
 # Every section's rows, each a few: the sky and world at 400x225, one thread; the shortcuts of
-# sse2/fast; two sobol points and the book on world; the regions; the scale rows at N = 1; a
-# stiff sky case and a stiff sphere case.
+# sse2/fast; two sobol points and the book on world; the regions; the cloud's scale rows at N = 1
+# and ours on the box at 1000; a stiff sky case and a stiff sphere case.
 FILTER = ("^bound/memset/400x225/|^render/[^/]+/[^/]+/400x225/t1/|^render/[^/]+/[^/]+/world/400x225/t1/rgb8"
           "|^shortcuts/sse2/fast/|^aa/[^/]+/sobol/world/96x54/s(1|4)$|^aa/book7/|^region/"
-          "|^scale/[^/]+/1/t1$|^load/1$|^stiff/W=1/|^sphere_stiff/unit_sphere_at_10/")
+          "|^scale/cloud/[^/]+/1/t1$|^scale/box/ours/1000/t1$|^load/1$|^stiff/W=1/|^sphere_stiff/unit_sphere_at_10/")
 
 
 def power_law(a, slope, ns):
@@ -74,7 +74,7 @@ def test_every_table_has_its_rows(run_json):
     assert "* reference/exact " in summary
     for section in ["Store bandwidth", "Every row:", "Regions (--region)", "Antialiasing: error vs run time",
                     "Samples to match the book's RMSE on world", "What each shortcut saves", "Peers on world, 400x225",
-                    "Scale: particle clouds", "Stiff cases", "Stiff sphere cases", "| unit_sphere_at_10 | 200x112 |"]:
+                    "Scale (cloud/): sparse particle cloud", "Scale (box/): packed box", "Stiff cases", "Stiff sphere cases", "| unit_sphere_at_10 | 200x112 |"]:
         assert section in text, section
     assert next(l for l in text.splitlines() if l.startswith("  sse2/fast ")).count(".") == 6  # every set
     assert next(l for l in text.splitlines() if l.startswith("  W=1 ")).split()[2:]  # a cell per path

@@ -53,6 +53,12 @@ const refused refused_cases[] = {
     {"lookat_infinite", {"--lookat", "1,inf,2"}, "--lookat"},
     {"lookfrom_garbage", {"--lookfrom", "1,2,3x"}, "--lookfrom"},
     {"vup_repeated", {"--vup", "0,1,0", "--vup", "1,0,0"}, "--vup"},
+    // An orthographic camera's rays are parallel: a field of view or a focal
+    // length means nothing, and the refusal names both options.
+    {"orthographic_vfov", {"--projection", "orthographic", "--vfov", "30"}, "--vfov: means nothing with --projection orthographic"},
+    {"orthographic_focal_length", {"--focal-length", "2", "--projection", "orthographic"},
+     "--focal-length: means nothing with --projection orthographic"},
+    {"projection_unknown", {"--projection", "fisheye"}, "not one of perspective, orthographic"},
 };
 
 INSTANTIATE_TEST_SUITE_P(Options, CliCameraRefused, ::testing::ValuesIn(refused_cases),
@@ -75,6 +81,23 @@ TEST(CliCamera, ATiltedCameraRendersSomethingElse) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(raycast_test::read_file(box.work() / "plain.ppm"),
             raycast_test::read_file(box.work() / "tilted.ppm"));
+}
+
+// The orthographic camera from the command line and from a scene file is the
+// same picture, and another than the perspective one.
+TEST(CliCamera, OrthographicFromTheOptionOrTheSceneFile) {
+  cli_sandbox box;
+  ASSERT_EQ(box.run({"--scene", "world", "-w", "160", "-o", "perspective.ppm"}).exit_code, 0);
+  const run_result r =
+      box.run({"--scene", "world", "-w", "160", "--projection", "orthographic", "--viewport-height", "3", "-o", "option.ppm"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  raycast_test::write_file(box.work() / "ortho.json",
+                           "{\"camera\": {\"width\": 160, \"projection\": \"orthographic\", \"viewport_height\": 3},"
+                           " \"spheres\": [{\"center\": [0, 0, -1], \"radius\": 0.5},"
+                           " {\"center\": [0, -100.5, -1], \"radius\": 100}]}");
+  ASSERT_EQ(box.run({"--scene", "ortho.json", "-o", "file.ppm"}).exit_code, 0);
+  EXPECT_EQ(raycast_test::read_file(box.work() / "option.ppm"), raycast_test::read_file(box.work() / "file.ppm"));
+  EXPECT_NE(raycast_test::read_file(box.work() / "option.ppm"), raycast_test::read_file(box.work() / "perspective.ppm"));
 }
 
 }  // namespace

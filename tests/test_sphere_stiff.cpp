@@ -110,7 +110,11 @@ TEST_P(SphereStiffNumerics, ExactAwayFromSilhouettesAndNoWorseThanTheBookInFloat
   // nothing: there, ours need only stay within 4 ulp (2^-22). Where the
   // naive formula hit nothing right (overflow: its maximum is over no pixel,
   // and how it fails differs between x86 and AArch64), it is no yardstick.
-  EXPECT_LE(ours.max_rel_distance_err, 7e-7);
+  // An orthographic camera's rays start across the plane, each at its own
+  // rounded offset from a sphere's centre: a ray that grazes a large sphere
+  // the plane cuts (the ground, seen from inside) loses some of its depth
+  // to that rounding (src/kernels/README.md: within 10^-4; 5.4e-5 measured).
+  EXPECT_LE(ours.max_rel_distance_err, c.cam.proj == projection::orthographic ? 1e-4 : 7e-7);
   if (yardstick) {
     EXPECT_LE(ours.max_rel_distance_err, std::max(naive.max_rel_distance_err, 0x1p-22));
   }

@@ -90,6 +90,30 @@ double widened(const float_spheres& sp, uint32_t k, double spread) {
   return sp.cull_radius[k] + spread * std::sqrt(f2);
 }
 
+// An orthographic camera's rays are lines across the view, one per pixel's
+// plane position (px, py) = (su plane_width, sv plane_height): sphere k's
+// centre and reach on the plane in world units, its culling radius widened
+// by a sample's lateral stray (the pixel_spread is lateral there).
+struct plane_disc {
+  double cx, cy, w;
+  bool behind;  // entirely behind the image plane: no ray meets it
+};
+plane_disc disc_of(const float_scene& f, uint32_t k, double spread) {
+  const sphere_record& e = f.spheres.rec[k];
+  const double scale = e.scale, w = (f.spheres.cull_radius[k] + spread / scale) * scale;
+  return {double(e.fx) * scale, double(e.fy) * scale, w, double(e.fz) * scale + f.plane_offset + w < 0.0};
+}
+
+// The indices whose plane position (s = (i - mid) / last, times extent) lies
+// within [lo, hi], with a slack of one each way; false when none does.
+bool plane_range(double lo, double hi, double extent, float last, float mid, int64_t count, int64_t& a, int64_t& b) {
+  if (count == 1) {
+    a = b = 0;
+    return lo <= 0.0 && hi >= 0.0;
+  }
+  return index_range(lo / extent, hi / extent, last, mid, 1.0, count, a, b);
+}
+
 // A family of planes through the camera origin: plane s is spanned by
 // a + s step and along, with s = (i - mid) / last for index i -- the rows'
 // planes (step = vertical, along = horizontal) or the columns' (the other way
@@ -147,7 +171,9 @@ struct row_test {
   double n[3], len = 0.0, d_len = 0.0;
   bool plane = false;
 
-  row_test(const float_scene& fs, float sv, double spread_) : f(fs), spread(spread_) {
+  float sv;
+
+  row_test(const float_scene& fs, float sv_, double spread_) : f(fs), spread(spread_), sv(sv_) {
     // The row's plane through the camera origin, spanned by a = centre + sv *
     // vertical (as scalar.h's direction, in double) and horizontal; n its normal.
     for (int k = 0; k < 3; ++k) {
@@ -162,6 +188,13 @@ struct row_test {
 
   // The columns [lo, hi] of the row whose rays may hit sphere k; false when none.
   bool columns(uint32_t k, int64_t& lo, int64_t& hi) const {
+    if (f.orthographic) {  // the row's line across the plane through the sphere's disc
+      const plane_disc d = disc_of(f, k, spread);
+      const double dy = double(sv) * f.plane_height - d.cy;
+      if (d.behind || !(std::abs(dy) <= d.w)) return false;
+      const double half = std::sqrt(d.w * d.w - dy * dy);
+      return plane_range(d.cx - half, d.cx + half, f.plane_width, f.last_col, f.mid_col, f.width, lo, hi);
+    }
     const float_spheres& sp = f.spheres;
     const double fk[3] = {sp.rec[k].fx, sp.rec[k].fy, sp.rec[k].fz};
     // The margin (in cull_radius): 1e-5 of |f| + r, a hundred times the
@@ -190,7 +223,21 @@ struct frame_box {
   int32_t c_lo, c_hi;  // columns; -1: tested per row
 };
 
+frame_box box_of_ortho(const float_scene& f, uint32_t k, double spread) {
+  frame_box box{1, 0, -1, -1};  // in no row
+  const plane_disc d = disc_of(f, k, spread);
+  int64_t j_lo = 0, j_hi = 0, c_lo = 0, c_hi = 0;
+  if (d.behind || !plane_range(d.cy - d.w, d.cy + d.w, f.plane_height, f.last_row, f.mid_row, f.height, j_lo, j_hi) ||
+      !plane_range(d.cx - d.w, d.cx + d.w, f.plane_width, f.last_col, f.mid_col, f.width, c_lo, c_hi))
+    return box;
+  box.r_lo = int32_t(f.height - 1 - j_hi);
+  box.r_hi = int32_t(f.height - 1 - j_lo);
+  if (j_hi - j_lo < boxed_rows) box.c_lo = int32_t(c_lo), box.c_hi = int32_t(c_hi);
+  return box;
+}
+
 frame_box box_of(const float_scene& f, const frame_vectors& fv, uint32_t k, double spread) {
+  if (f.orthographic) return box_of_ortho(f, k, spread);
   frame_box box{1, 0, -1, -1};  // in no row
   const float_spheres& sp = f.spheres;
   const double fk[3] = {sp.rec[k].fx, sp.rec[k].fy, sp.rec[k].fz};
@@ -221,6 +268,10 @@ frame_box box_of(const float_scene& f, const frame_vectors& fv, uint32_t k, doub
 }  // namespace
 
 bool sphere_rows(const float_scene& f, uint32_t k, int64_t& j_lo, int64_t& j_hi, double spread) {
+  if (f.orthographic) {
+    const plane_disc d = disc_of(f, k, spread);
+    return !d.behind && plane_range(d.cy - d.w, d.cy + d.w, f.plane_height, f.last_row, f.mid_row, f.height, j_lo, j_hi);
+  }
   const float_spheres& sp = f.spheres;
   const double fk[3] = {sp.rec[k].fx, sp.rec[k].fy, sp.rec[k].fz};
   return frame_vectors(f).rows.range(fk, widened(sp, k, spread), j_lo, j_hi);

@@ -35,20 +35,26 @@ void prepare_camera(float_scene& f, const scene& s) {
   f.last_row = float(c.image_height - 1);
   f.mid_col = float(double(c.image_width - 1) / 2.0);
   f.mid_row = float(double(c.image_height - 1) / 2.0);
-  const vec3 center = -c.focal_length * c.axis_w;
+  const bool ortho = c.proj == projection::orthographic;
+  // Orthographic: one direction, -w; the image plane's extent is the plane's own.
+  const vec3 center = ortho ? -c.axis_w : -c.focal_length * c.axis_w;
+  const vec3 horizontal = ortho ? vec3(0.0) : c.horizontal, vertical = ortho ? vec3(0.0) : c.vertical;
   f.du = c.image_width == 1 ? 0.0f : 1.0f / f.last_col;
   f.dv = c.image_height == 1 ? 0.0f : 1.0f / f.last_row;
 
   double m = 0.0;
-  for (const vec3& v : {center, c.horizontal, c.vertical})
+  for (const vec3& v : {center, horizontal, vertical})
     m = std::max({m, std::abs(v.x), std::abs(v.y), std::abs(v.z)});
   int e = 0;
   std::frexp(m, &e);  // m = x * 2^e with x in [0.5, 1)
   const double scale = std::ldexp(1.0, -e);
   for (int k = 0; k < 3; ++k) {
     f.center[k] = flush_camera(center[k] * scale);
-    f.horizontal[k] = flush_camera(c.horizontal[k] * scale);
-    f.vertical[k] = flush_camera(c.vertical[k] * scale);
+    f.horizontal[k] = flush_camera(horizontal[k] * scale);
+    f.vertical[k] = flush_camera(vertical[k] * scale);
+    f.axes[0][k] = float(c.axis_u[k]);
+    f.axes[1][k] = float(c.axis_v[k]);
+    f.axes[2][k] = float(-c.axis_w[k]);
     f.bottom[k] = flush(s.sky.bottom[k]) + 0.0f;  // + 0: a -0 colour becomes +0
     f.top[k] = flush(s.sky.top[k]) + 0.0f;
     f.delta[k] = f.top[k] - f.bottom[k];
@@ -66,6 +72,12 @@ void prepare_camera(float_scene& f, const scene& s) {
       return std::sqrt(double(v[0]) * v[0] + double(v[1]) * v[1] + double(v[2]) * v[2]);
     };
     f.pixel_spread = 1.01 * (len(f.horizontal) * f.du + len(f.vertical) * f.dv) / len(f.center);
+  }
+  if (ortho) {  // the spread is lateral: one pixel across, in world units
+    f.orthographic = true;
+    f.plane_width = float(c.viewport_width);
+    f.plane_height = float(c.viewport_height);
+    f.pixel_spread = 1.01 * (c.viewport_width * double(f.du) + c.viewport_height * double(f.dv));
   }
   f.axis_aligned_camera = f.horizontal[1] == 0 && f.horizontal[2] == 0 && f.vertical[0] == 0 &&
                    f.vertical[2] == 0;
@@ -122,6 +134,29 @@ sphere_record record_of(const sphere& b, const point3& origin) {
   return e;
 }
 
+// The same for an orthographic camera (float_spheres.h): the centre in the
+// camera's frame, relative to lookfrom, its depth less the plane offset z0;
+// c holds 2^-e (the lanes' plane positions are scaled by it), `inside` says
+// the image plane cuts the sphere or it lies behind (a ray may start inside
+// it: its far root, or no hit).
+sphere_record record_of_ortho(const sphere& b, const camera& cam, double z0) {
+  const vec3 p = b.center - cam.origin;
+  const double cx = glm::dot(p, cam.axis_u), cy = glm::dot(p, cam.axis_v), depth = -glm::dot(p, cam.axis_w);
+  const double cz = depth - z0;
+  const int unit = exponent_of(std::max({std::abs(cx), std::abs(cy), std::abs(cz), b.radius}));
+  const double down = power_of_two(-unit), r = b.radius * down;
+  sphere_record e{};
+  e.fx = float(cx * down);
+  e.fy = float(cy * down);
+  e.fz = float(cz * down);
+  e.c = float(down);
+  e.r2 = float(r * r);
+  e.inv_r = float(1.0 / r);
+  e.scale = float(power_of_two(unit));
+  e.inside = depth - b.radius < 0.0 ? 1 : 0;
+  return e;
+}
+
 // Its culling radius: from the float constants, as the renderers see the
 // sphere; rounded up.
 float cull_radius_of(const sphere_record& e) {
@@ -139,9 +174,10 @@ uint32_t centre_row(const camera& c, const point3& center) {
   const int64_t H = c.image_height;
   const vec3 p = center - c.origin;
   const double ahead = -dot(p, c.axis_w);  // the distance along the view
-  const double sv = dot(p, c.vertical) / dot(c.vertical, c.vertical) * (c.focal_length / ahead);  // -1/2 .. 1/2
+  const bool ortho = c.proj == projection::orthographic;  // the plane's row under the centre
+  const double sv = dot(p, c.vertical) / dot(c.vertical, c.vertical) * (ortho ? 1.0 : c.focal_length / ahead);
   const double j = sv * double(H - 1) + 0.5 * double(H - 1);  // from the bottom, as kernels/scalar.h
-  if (!(ahead > 0.0) || !(j == j)) return uint32_t(H);
+  if ((!ortho && !(ahead > 0.0)) || !(j == j)) return uint32_t(H);
   return uint32_t(H - 1 - std::clamp<int64_t>(std::llround(std::clamp(j, -1.0, double(H))), 0, H - 1));
 }
 
@@ -152,11 +188,17 @@ std::pair<size_t, size_t> chunk(size_t n, size_t t, size_t chunks) { return {n *
 // inside it), and the pixels its disc covers on the screen, at most all.
 struct depth_of {
   double nearest, pixels;
+  double lateral = 0.0;  // orthographic: max(|cx|, |cy|) + r, how far from the view's axis it reaches
 };
 depth_of depth_of_sphere(const camera& c, const sphere& b) {
   const vec3 p = b.center - c.origin;
   const double dist = glm::length(p), ahead = -glm::dot(p, c.axis_w);
   const double all = double(c.image_width) * double(c.image_height);
+  if (c.proj == projection::orthographic) {  // from the image plane, along the view; a disc of radius r
+    const double rho = b.radius * double(c.image_height - 1) / c.viewport_height;
+    const double lateral = std::max(std::abs(glm::dot(p, c.axis_u)), std::abs(glm::dot(p, c.axis_v))) + b.radius;
+    return {ahead - b.radius, std::min(all, 3.14159 * rho * rho), lateral};
+  }
   if (!(ahead > b.radius)) return {dist - b.radius, all};
   // The disc's radius on the image plane, in pixels: r / sqrt(ahead^2 - r^2) of the focal length.
   const double rho = b.radius / std::sqrt(ahead * ahead - b.radius * b.radius) * c.focal_length *
@@ -170,15 +212,16 @@ depth_of depth_of_sphere(const camera& c, const sphere& b) {
 // screen area the spheres cover.
 struct survey {
   bool any_flat = false, any_normal = false, any_lit = false;
-  double near_lo = INFINITY, near_hi = -INFINITY, pixels = 0.0;
+  double near_lo = INFINITY, near_hi = -INFINITY, pixels = 0.0, lateral = 0.0;
 };
 survey survey_spheres(const scene& s, bool reorder, size_t team, uint32_t* row, float* nearest) {
+  const bool ortho = s.cam.proj == projection::orthographic;
   survey v;
   bool any_flat = false, any_normal = false, any_lit = false;
-  double lo = INFINITY, hi = -INFINITY, pixels = 0.0;
+  double lo = INFINITY, hi = -INFINITY, pixels = 0.0, lateral = 0.0;
   const size_t n = s.sphere_count();
 #pragma omp parallel for schedule(static, 1) num_threads(int(team)) \
-    reduction(|| : any_flat, any_normal, any_lit) reduction(min : lo) reduction(max : hi) reduction(+ : pixels)
+    reduction(|| : any_flat, any_normal, any_lit) reduction(min : lo) reduction(max : hi, lateral) reduction(+ : pixels)
   for (size_t t = 0; t < team; ++t) {
     const auto [begin, end] = chunk(n, t, team);
     for (size_t k = begin; k < end; ++k) {
@@ -186,33 +229,40 @@ survey survey_spheres(const scene& s, bool reorder, size_t team, uint32_t* row, 
       any_flat = any_flat || b.shade == shading::flat;
       any_lit = any_lit || b.shade == shading::lit;
       any_normal = any_normal || b.shade == shading::normal;
+      if (!reorder && !ortho) continue;
+      const depth_of d = depth_of_sphere(s.cam, b);
+      lo = std::min(lo, d.nearest);
+      hi = std::max(hi, d.nearest);
+      lateral = std::max(lateral, d.lateral);
       if (!reorder) continue;
       row[k] = centre_row(s.cam, b.center);
-      const depth_of d = depth_of_sphere(s.cam, b);
       nearest[k] = float(d.nearest);
-      lo = std::min(lo, double(nearest[k]));
-      hi = std::max(hi, double(nearest[k]));
       pixels += d.pixels;
     }
   }
   v.any_flat = any_flat, v.any_normal = any_normal, v.any_lit = any_lit;
-  v.near_lo = lo, v.near_hi = hi, v.pixels = pixels;
+  v.near_lo = lo, v.near_hi = hi, v.pixels = pixels, v.lateral = lateral;
   return v;
 }
 
 // A depth-ordered scene's buckets: bucket b holds the nearest distances from
 // lo + b step on; its key (float_spheres::depth_key) is at most that times
-// (1 - 2^-15), rounded down.
+// (1 - 2^-15), rounded down. An orthographic camera's hit depths err by
+// amounts that grow with how far the spheres lie off its axis (the plane
+// positions' rounding, squared near a silhouette): its keys are lower by
+// another 2^-10 of that reach.
 struct depth_buckets {
   double lo, step;
+  double offset = 0.0;  // subtracted from the keys: an orthographic camera's plane offset
+  double slack = 0.0;   // subtracted too: 2^-10 of an orthographic scene's reach off the axis
   uint32_t of(float nearest) const {
     if (!(step > 0.0)) return 0;
     const double b = std::floor((double(nearest) - lo) / step);
     return uint32_t(std::clamp(b, 0.0, double(float_spheres::depth_buckets - 1)));
   }
   float key(size_t b) const {
-    const double at = lo + double(b) * step;
-    const double k = at - 0x1p-15 * std::abs(at) - 0x1p-15 * step;
+    const double at = lo + double(b) * step - offset;
+    const double k = at - 0x1p-15 * std::abs(at) - 0x1p-15 * step - slack;
     float f = float(k);
     if (double(f) > k) f = std::nextafter(f, -INFINITY);
     return f;
@@ -235,8 +285,9 @@ std::vector<uint32_t> places(const uint32_t* key, size_t n, size_t keys, size_t 
 }
 
 // Sphere k's record, colour and kind at place i.
-void write_sphere(float_spheres& sp, size_t i, const sphere& b, const point3& origin, bool colored, uint16_t depth) {
-  sp.rec[i] = record_of(b, origin);
+void write_sphere(float_spheres& sp, size_t i, const sphere& b, const float_scene& f, const camera& c, bool colored,
+                  uint16_t depth) {
+  sp.rec[i] = f.orthographic ? record_of_ortho(b, c, f.plane_offset) : record_of(b, c.origin);
   sp.rec[i].depth = depth;
   if (!colored) return;
   const bool flat = b.shade == shading::flat, lit = b.shade == shading::lit;
@@ -275,7 +326,12 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from, s
     const double images = v.pixels / (double(c.image_width) * double(c.image_height));
     order = images > (n < small_scene ? deep_from_small : deep_from) ? sphere_order::depth : sphere_order::rows;
   }
-  const depth_buckets buckets{v.near_lo, (v.near_hi - v.near_lo) / double(float_spheres::depth_buckets)};
+  // Orthographic depths are measured from the plane as deep as the nearest
+  // sphere's front (if in front of the image plane): hits compare depths of a
+  // scene far from its camera with the scene's own precision.
+  if (f.orthographic && n > 0) f.plane_offset = std::max(0.0, v.near_lo);
+  const depth_buckets buckets{v.near_lo, (v.near_hi - v.near_lo) / double(float_spheres::depth_buckets),
+                              f.plane_offset, 0x1p-10 * v.lateral};
   size_t keys = 1;
   if (order == sphere_order::rows) {
     keys = size_t(c.image_height) + 1;  // the rows 0 .. H (H: not ahead)
@@ -306,7 +362,7 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from, s
     const auto [begin, end] = chunk(n, t, team);
     for (size_t k = begin; k < end; ++k) {
       const size_t i = reorder ? next[t * keys + key[k]]++ : k;
-      write_sphere(sp, i, s.sphere_at(k), c.origin, colored, depth ? uint16_t(key[k]) : uint16_t(0));
+      write_sphere(sp, i, s.sphere_at(k), f, c, colored, depth ? uint16_t(key[k]) : uint16_t(0));
       if (reorder) sp.order[i] = uint32_t(k);
     }
   }
@@ -324,7 +380,9 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from, s
 }
 
 scalar_hit scalar_trace(const float_scene& f, int64_t i, int64_t j) {
-  return kernels::scalar::trace_pixel(f, arrays_of(f.spheres), i, j);
+  sphere_arrays sp = arrays_of(f.spheres);
+  sp.axes = f.axes;
+  return kernels::scalar::trace_pixel(f, sp, i, j);
 }
 
 }  // namespace raycast

@@ -44,6 +44,18 @@ struct float_scene {
   // a direction's y depends on the row only and z is constant (what the
   // `lanes` and `mirror` shortcuts use, render/plan.h).
   bool axis_aligned_camera = false;
+  // An orthographic camera (scene/camera.h): every ray has the direction
+  // center (the unit view direction -w, scaled; horizontal and vertical are
+  // 0, so the sky reads one direction everywhere) and starts on the image
+  // plane at lookfrom + px u + py v, px = su plane_width and py = sv
+  // plane_height in world units (the kernels' per-column table and per-row
+  // value). The spheres' constants are in the camera's frame, their depth
+  // measured from the plane at depth plane_offset (float_spheres.h); `axes`
+  // turn a normal from that frame (u, v, the view direction) to the world's.
+  bool orthographic = false;
+  float plane_width = 0, plane_height = 0;
+  float axes[3][3] = {};  // axes[a][k]: component k of u, v, d
+  double plane_offset = 0;
   // The scene's spheres; empty for the sky alone (today's sky paths).
   float_spheres spheres;
 };

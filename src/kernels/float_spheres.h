@@ -144,6 +144,7 @@ struct sphere_arrays {
   const float *red = nullptr, *green = nullptr, *blue = nullptr, *kind = nullptr;
   const uint32_t* order = nullptr;  // null: the scene's order
   const float* depth_key = nullptr;  // null: not depth-ordered
+  const float (*axes)[3] = nullptr;  // an orthographic camera's u, v, d (float_scene.h)
   size_t n = 0;
   bool any_flat = false, any_normal = false, any_lit = false, any_inside = false;
 
@@ -153,7 +154,7 @@ struct sphere_arrays {
 
 inline sphere_arrays arrays_of(const float_spheres& s) {
   return {s.rec.data(), s.red.data(), s.green.data(), s.blue.data(), s.kind.data(),
-          s.order.empty() ? nullptr : s.order.data(), s.depth_key.empty() ? nullptr : s.depth_key.data(),
+          s.order.empty() ? nullptr : s.order.data(), s.depth_key.empty() ? nullptr : s.depth_key.data(), nullptr,
           s.size(), s.any_flat, s.any_normal, s.any_lit, s.any_inside};
 }
 

@@ -44,6 +44,10 @@ struct kernel_args {
   // ...and, for 8-bit output, sky colours within [0, 1]: the clamp to [0, 1]
   // before quantizing is a no-op.
   bool colors_in_unit_range = false;
+  // An orthographic camera's ray starts across the image plane, per column:
+  // ortho_x[i] = su_i * plane_width (float_scene.h); the row's is sv *
+  // plane_height. Null for a perspective camera.
+  const float* ortho_x = nullptr;
   // The sphere kernel's spheres (kernels/float_spheres.h); n = 0 for the sky.
   sphere_arrays spheres;
   // The frame's row index (kernels/culling.h; built by the renderer, with the

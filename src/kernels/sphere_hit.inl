@@ -38,6 +38,7 @@ struct closest_hit {
 struct rays {
   vfloat d[3];
   vfloat n2;  // |d|^2 in scalar.h's order
+  vfloat px = 0.0f, py = 0.0f;  // an orthographic ray's start on the image plane (float_scene.h)
 
   // n2 from d, and the guard of everything the intersection and shading
   // divide by it: a lane whose n2 is below 2^-64 (only a degenerate camera's
@@ -77,17 +78,20 @@ struct rays {
 };
 
 // Records sphere k's hit where m (its s and t already chosen) in h.
+// f: what the normal is formed from, (f + s d) inv_r: the sphere's own f, or
+// an orthographic hit's offset from the centre (with s = 0).
 template <int Shades>
-RAYCAST_INLINE void record(const sphere_arrays& sp, size_t k, vmask m, vfloat s, closest_hit<Shades>& h) {
+RAYCAST_INLINE void record(const sphere_arrays& sp, size_t k, vmask m, vfloat s, const vfloat (&f)[3],
+                           closest_hit<Shades>& h) {
   const vuint index = vuint(sp.scene_index(k));
   if (none(h.hit)) {  // the first sphere hit: lanes it misses never read these
     h.hit = m;
     h.index = index;
     if constexpr ((Shades & normal_shading) != 0) {
       h.s = s;
-      h.fx = sp.rec[k].fx;
-      h.fy = sp.rec[k].fy;
-      h.fz = sp.rec[k].fz;
+      h.fx = f[0];
+      h.fy = f[1];
+      h.fz = f[2];
       h.inv_r = sp.rec[k].inv_r;
       if (sp.any_inside) h.inside = sp.rec[k].inside ? 1.0f : 0.0f;
     }
@@ -103,9 +107,9 @@ RAYCAST_INLINE void record(const sphere_arrays& sp, size_t k, vmask m, vfloat s,
   h.index = select(m, index, h.index);
   if constexpr ((Shades & normal_shading) != 0) {
     h.s = select(m, s, h.s);
-    h.fx = select(m, vfloat(sp.rec[k].fx), h.fx);
-    h.fy = select(m, vfloat(sp.rec[k].fy), h.fy);
-    h.fz = select(m, vfloat(sp.rec[k].fz), h.fz);
+    h.fx = select(m, f[0], h.fx);
+    h.fy = select(m, f[1], h.fy);
+    h.fz = select(m, f[2], h.fz);
     h.inv_r = select(m, vfloat(sp.rec[k].inv_r), h.inv_r);
     if (sp.any_inside) h.inside = select(m, vfloat(sp.rec[k].inside ? 1.0f : 0.0f), h.inside);
   }
@@ -126,6 +130,20 @@ RAYCAST_INLINE vfloat discriminant(const sphere_record& e, rays& r, vfloat fx, v
   return r.n2 * (vfloat(e.r2) - ((vx * vx + vy * vy) + vz * vz));
 }
 
+// Sphere k's hit at s (its t = s scale) where `ahead`, kept in the lanes
+// where it is nearer than the closest hit, or as near and later in the
+// scene (the tie rule: spheres are tested in the float scene's order, which
+// need not be the scene's).
+template <int Shades>
+RAYCAST_INLINE void keep_nearer(const sphere_arrays& sp, size_t k, vmask ahead, vfloat s, vfloat t,
+                                const vfloat (&f)[3], closest_hit<Shades>& h) {
+  vmask m = ahead & !(t >= h.t);
+  const vmask tie = ahead & (t == h.t);
+  if (any(tie)) m = m | (tie & ((!h.hit) | (vuint(sp.scene_index(k)) > h.index)));
+  h.t = select(m, t, h.t);
+  record(sp, k, m, s, f, h);
+}
+
 // Where sphere k can hit (disc >= 0): its nearest root not behind the camera,
 // and the closest hit updated with it: where it is nearer, or as near and
 // later in the scene (the tie rule: spheres are tested in the float scene's
@@ -141,13 +159,39 @@ RAYCAST_INLINE void take_nearest(const sphere_arrays& sp, size_t k, rays& r, vfl
     const vmask behind = can_hit & !(s >= 0.0f);
     if (any(behind)) s = select(behind, q / r.n2, s);
   }
-  const vfloat t = s * vfloat(e.scale);
-  const vmask ahead = can_hit & (s >= 0.0f);
-  vmask m = ahead & !(t >= h.t);
-  const vmask tie = ahead & (t == h.t);
-  if (any(tie)) m = m | (tie & ((!h.hit) | (vuint(sp.scene_index(k)) > h.index)));
-  h.t = select(m, t, h.t);
-  record(sp, k, m, s, h);
+  const vfloat f[3] = {e.fx, e.fy, e.fz};
+  keep_nearer(sp, k, can_hit & (s >= 0.0f), s, s * vfloat(e.scale), f, h);
+}
+
+// An orthographic camera's rays (float_spheres.h): from the image plane at
+// (px, py) in world units, along the view. In the sphere's unit (c = 2^-e),
+// the ray's offset from the centre across the view is (px c - cx, py c - cy),
+// disc = r^2 - its squared length, and the hit's depth beyond the plane
+// offset s = cz - sqrt(disc): no term as large as the distance from the
+// camera enters the sum that must come out as small as the radius. A sphere
+// the image plane cuts (inside) is hit at its far root by the rays that
+// start in it. The normal is formed here: the hit's offset from the centre,
+// (dx, dy, -+sqrt(disc)) in the camera's axes, turned to the world's.
+template <int Shades>
+RAYCAST_INLINE void take_nearest_ortho(const sphere_arrays& sp, size_t k, const rays& r, closest_hit<Shades>& h) {
+  const sphere_record& e = sp.rec[k];
+  const vfloat dx = r.px * vfloat(e.c) - vfloat(e.fx), dy = r.py * vfloat(e.c) - vfloat(e.fy);
+  const vfloat disc = vfloat(e.r2) - (dx * dx + dy * dy);
+  const vmask can_hit = disc >= 0.0f;
+  if (none(can_hit)) return;
+  const vfloat sq = sqrt(disc);
+  vfloat s = vfloat(e.fz) - sq, along = -sq;
+  vmask ahead = can_hit;
+  if (e.inside) {  // the far root where the near one is behind the plane; none where both are
+    const vmask behind = can_hit & !(s >= 0.0f);
+    s = select(behind, vfloat(e.fz) + sq, s);
+    along = select(behind, sq, along);
+    ahead = can_hit & (s >= 0.0f);
+  }
+  vfloat f[3] = {0.0f, 0.0f, 0.0f};
+  if constexpr ((Shades & normal_shading) != 0)
+    for (int j = 0; j < 3; ++j) f[j] = (dx * vfloat(sp.axes[0][j]) + dy * vfloat(sp.axes[1][j])) + along * vfloat(sp.axes[2][j]);
+  keep_nearer(sp, k, ahead, vfloat(0.0f), s * vfloat(e.scale), f, h);
 }
 
 // A depth-ordered walk (float_spheres::depth_key): whether every lane has
@@ -157,9 +201,12 @@ RAYCAST_INLINE void take_nearest(const sphere_arrays& sp, size_t k, rays& r, vfl
 // rounding of both distances (each within 10^-6 relative, src/kernels/README.md),
 // so a sphere left out would have been strictly farther: never a tie, and
 // the image is the same bits as a walk over the whole list.
-template <int Shades>
+// (An orthographic hit's t is its depth in world units already.)
+template <bool Ortho, int Shades>
 RAYCAST_INLINE bool nearer_than(const sphere_arrays& sp, const sphere_record& e, rays& r, const closest_hit<Shades>& h) {
-  return all(h.hit) && all(!(h.t * r.length() >= vfloat(sp.depth_key[e.depth])));
+  if (!all(h.hit)) return false;
+  if constexpr (Ortho) return all(!(h.t >= vfloat(sp.depth_key[e.depth])));
+  return all(!(h.t * r.length() >= vfloat(sp.depth_key[e.depth])));
 }
 
 // Tests the spheres list[0 .. count) (every sphere, 0 .. count, when list is
@@ -167,7 +214,7 @@ RAYCAST_INLINE bool nearer_than(const sphere_arrays& sp, const sphere_record& e,
 // before the next (the sampled path takes samples_per_pass samples at a
 // time: their long dependency chains overlap). fz_dz: each sphere's f.z d.z
 // where every ray's d.z is the same (the lesson's camera), else null.
-template <int Shades, int M>
+template <int Shades, int M, bool Ortho = false>
 RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, size_t count, rays (&r)[M],
                               closest_hit<Shades> (&h)[M], const float* fz_dz = nullptr) {
   for (size_t x = 0; x < count; ++x) {
@@ -175,8 +222,12 @@ RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, siz
     const sphere_record& e = sp.rec[k];
     if (sp.depth_key) {  // a depth-ordered walk: stop where nothing after can be nearer
       bool done = true;
-      for (int u = 0; u < M && done; ++u) done = nearer_than(sp, e, r[u], h[u]);
+      for (int u = 0; u < M && done; ++u) done = nearer_than<Ortho>(sp, e, r[u], h[u]);
       if (done) return;
+    }
+    if constexpr (Ortho) {
+      for (int u = 0; u < M; ++u) take_nearest_ortho(sp, k, r[u], h[u]);
+      continue;
     }
     const vfloat fx = e.fx, fy = e.fy, fz = e.fz;
     vfloat b[M], disc[M];
@@ -196,13 +247,17 @@ RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, siz
 // One ray batch (the one-sample path): the same steps without arrays --
 // SSE2's two-half vectors in one-element arrays are not kept in registers by
 // GCC 12 (+40 % on sse2/world).
-template <int Shades>
+template <bool Ortho = false, int Shades>
 RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, size_t count, rays& r,
                               closest_hit<Shades>& h) {
   for (size_t x = 0; x < count; ++x) {
     const size_t k = list ? list[x] : x;
     const sphere_record& e = sp.rec[k];
-    if (sp.depth_key && nearer_than(sp, e, r, h)) return;  // nothing after can be nearer
+    if (sp.depth_key && nearer_than<Ortho>(sp, e, r, h)) return;  // nothing after can be nearer
+    if constexpr (Ortho) {
+      take_nearest_ortho(sp, k, r, h);
+      continue;
+    }
     const vfloat fx = e.fx, fy = e.fy, fz = e.fz;
     const vfloat b = (fx * r.d[0] + fy * r.d[1]) + fz * r.d[2];
     const vfloat disc = discriminant(e, r, fx, fy, fz, b);

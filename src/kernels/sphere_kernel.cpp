@@ -71,7 +71,7 @@ int64_t store_mirrored_ends(const float_scene& s, const sky_shader& sky, batch_c
 }
 
 // One sample per pixel: each batch's rays against its list, shaded, stored.
-template <int Shades, bool Float, bool Lanes>
+template <int Shades, bool Float, bool Lanes, bool Ortho>
 void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
   const float_scene& s = *a.scene;
   const sphere_arrays& sp = a.spheres;
@@ -94,9 +94,13 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
     // are the first column's, bit for bit (scalar.h: centre + su * 0), so
     // they and their squares are per row.
     const float dy = a.column_part[1][0] + sv * s.vertical[1], dz = a.column_part[2][0] + sv * s.vertical[2];
-    const vfloat row_y = dy, row_z = dz;
+    const vfloat row_y = dy, row_z = dz, row_py = sv * s.plane_height;
     const auto rays_at = [&](int64_t i0) {
       rays ry;
+      if constexpr (Ortho) {  // from the image plane (float_scene.h)
+        ry.px = vfloat::load(a.ortho_x + i0);
+        ry.py = row_py;
+      }
       if constexpr (Lanes) {
         ry.d[0] = vfloat::load(a.column_part[0] + i0) + row_part[0];
         ry.d[1] = row_y;
@@ -123,7 +127,7 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
           sky.shade(ry, c);  // no sphere comes near these rays
         } else {
           closest_hit<Shades> h;
-          intersect(sp, cull ? lists.list(b) : nullptr, tests, ry, h);
+          intersect<Ortho>(sp, cull ? lists.list(b) : nullptr, tests, ry, h);
           shade(sky, sp, h, ry, c);
         }
         store_window<Float>(out, i0, c0, c1, c);
@@ -137,6 +141,10 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
 template <sampler_kind K>
 struct sample_camera {
   vfloat step_x[3], step_y[3];
+  // An orthographic camera's: a sample's ray start moves across the plane
+  // (base[3] + xi step_px, base[4] + eta step_py), its direction does not.
+  bool ortho = false;
+  vfloat step_px = 0.0f, step_py = 0.0f;
   // The lesson's camera (centre = (+0, +0, -f), horizontal = (h, 0, 0),
   // vertical = (0, v, 0)): scalar.h's d.x = (base.x + xi step_x.x) + eta 0
   // is base.x + xi step_x.x bit for bit (adding +0 leaves a sum that is
@@ -156,7 +164,10 @@ struct sample_camera {
       step_x[k] = du * s.horizontal[k];
       step_y[k] = dv * s.vertical[k];
     }
-    lesson = s.axis_aligned_camera && s.center[0] == 0.0f && s.center[1] == 0.0f && !std::signbit(s.center[0]) &&
+    ortho = s.orthographic;
+    step_px = du * s.plane_width;
+    step_py = dv * s.plane_height;
+    lesson = !ortho && s.axis_aligned_camera && s.center[0] == 0.0f && s.center[1] == 0.0f && !std::signbit(s.center[0]) &&
              !std::signbit(s.center[1]) && std::abs(s.center[2]) >= 0x1p-32f;
     z2 = s.center[2] * s.center[2];
     if (lesson) fz_dz = static_cast<float*>(std::malloc(sp.n * sizeof(float) + 1));
@@ -167,9 +178,14 @@ struct sample_camera {
   sample_camera(const sample_camera&) = delete;
   sample_camera& operator=(const sample_camera&) = delete;
 
-  // The direction of a sample xi, eta (counts of offset_unit) from the pixels' one-sample base.
-  RAYCAST_INLINE rays ray(const vfloat base[3], vfloat xi, vfloat eta) const {
+  // The direction of a sample xi, eta (counts of offset_unit) from the
+  // pixels' one-sample base (and an orthographic ray's start, base[3] and base[4]).
+  RAYCAST_INLINE rays ray(const vfloat base[5], vfloat xi, vfloat eta) const {
     rays ry;
+    if (ortho) {
+      ry.px = base[3] + xi * step_px;
+      ry.py = base[4] + eta * step_py;
+    }
     if (lesson) {
       ry.d[0] = base[0] + xi * step_x[0];
       ry.d[1] = base[1] + eta * step_y[1];
@@ -186,10 +202,10 @@ struct sample_camera {
 // M samples t0 .. t0 + M of one batch, each step for all M before the next,
 // added to the batch's sums in sample order. Always inlined: GCC 12 kept
 // SSE2's two-sample pass out of line (+40 % per sample).
-template <int Shades, sampler_kind K, int M>
+template <int Shades, sampler_kind K, int M, bool Ortho>
 __attribute__((always_inline)) inline void sample_pass(const sampling::sample_plan& plan,
                                                        const sampling::pixel_seeds<vuint>& seeds,
-                                                       const sample_camera<K>& cam, const vfloat base[3],
+                                                       const sample_camera<K>& cam, const vfloat base[5],
                                                        const sphere_arrays& sp, const uint32_t* list, size_t tests,
                                                        uint32_t t0, sample_sums& sums) {
   rays ry[M];
@@ -205,8 +221,8 @@ __attribute__((always_inline)) inline void sample_pass(const sampling::sample_pl
   closest_hit<Shades> h[M];
   // One sphere (most batches that test any): its own copy, in which the
   // compiler knows the closest hit starts empty.
-  if (tests == 1) intersect<Shades, M>(sp, list, 1, ry, h, cam.fz_dz);
-  else intersect<Shades, M>(sp, list, tests, ry, h, cam.fz_dz);
+  if (tests == 1) intersect<Shades, M, Ortho>(sp, list, 1, ry, h, cam.fz_dz);
+  else intersect<Shades, M, Ortho>(sp, list, tests, ry, h, cam.fz_dz);
   for (int u = 0; u < M; ++u) sums.add(sp, h[u], ry[u]);
 }
 
@@ -218,7 +234,7 @@ __attribute__((always_inline)) inline void sample_pass(const sampling::sample_pl
 // offsets, direction, intersection, normal -- added to a per-lane sum in
 // sample order. The random numbers are drawn per lane with the vector
 // layer's integer operations.
-template <int Shades, sampler_kind K>
+template <int Shades, sampler_kind K, bool Ortho>
 void render_samples(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
   const float_scene& s = *a.scene;
   const sphere_arrays& sp = a.spheres;
@@ -245,14 +261,16 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
         const uint32_t* list = cull && tests > 0 ? lists.list(b) : nullptr;
         const vuint column = vuint::iota(uint32_t(i0));
         const vfloat su_i = W == 1 ? vfloat(0.0f) : (to_float(column) - s.mid_col) / s.last_col;  // scalar.h
-        vfloat base[3];  // the pixels' one-sample directions
+        vfloat base[5];  // the pixels' one-sample directions, and an orthographic ray's start
         for (int k = 0; k < 3; ++k) base[k] = (s.center[k] + su_i * s.horizontal[k]) + sv_j * s.vertical[k];
+        base[3] = su_i * s.plane_width;
+        base[4] = sv_j * s.plane_height;
         const sampling::pixel_seeds<vuint> seeds = sampling::seeds_for<K>(plan, column, uint32_t(j));
         sample_sums sums;
         uint32_t t = 0;
         for (; t + samples_per_pass <= plan.count; t += samples_per_pass)
-          sample_pass<Shades, K, samples_per_pass>(plan, seeds, cam, base, sp, list, tests, t, sums);
-        for (; t < plan.count; ++t) sample_pass<Shades, K, 1>(plan, seeds, cam, base, sp, list, tests, t, sums);
+          sample_pass<Shades, K, samples_per_pass, Ortho>(plan, seeds, cam, base, sp, list, tests, t, sums);
+        for (; t < plan.count; ++t) sample_pass<Shades, K, 1, Ortho>(plan, seeds, cam, base, sp, list, tests, t, sums);
         vfloat c[3];
         sums.average<Shades>(s, float(plan.count), c);
         if (f32) store_window<true>(out, i0, c0, c1, c);
@@ -262,25 +280,38 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
   }
 }
 
-template <int Shades>
+template <int Shades, bool Ortho>
 void render_sampled(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
   switch (a.samples->kind) {
-    case sampler_kind::random: render_samples<Shades, sampler_kind::random>(a, band, r0, r1); break;
-    case sampler_kind::stratified: render_samples<Shades, sampler_kind::stratified>(a, band, r0, r1); break;
-    case sampler_kind::sobol: render_samples<Shades, sampler_kind::sobol>(a, band, r0, r1); break;
+    case sampler_kind::random: render_samples<Shades, sampler_kind::random, Ortho>(a, band, r0, r1); break;
+    case sampler_kind::stratified: render_samples<Shades, sampler_kind::stratified, Ortho>(a, band, r0, r1); break;
+    case sampler_kind::sobol: render_samples<Shades, sampler_kind::sobol, Ortho>(a, band, r0, r1); break;
+  }
+}
+
+template <int Shades, bool Ortho>
+void render_projection(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
+  if (a.samples) render_sampled<Shades, Ortho>(a, band, r0, r1);
+  else if (band.format == pixel_format::rgb_f32) {
+    if (a.lanes) render<Shades, true, true, Ortho>(a, band, r0, r1);
+    else render<Shades, true, false, Ortho>(a, band, r0, r1);
+  } else {
+    if (a.lanes) render<Shades, false, true, Ortho>(a, band, r0, r1);
+    else render<Shades, false, false, Ortho>(a, band, r0, r1);
   }
 }
 
 template <int Shades>
 void render_shades(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
-  if (a.samples) render_sampled<Shades>(a, band, r0, r1);
-  else if (band.format == pixel_format::rgb_f32) {
-    if (a.lanes) render<Shades, true, true>(a, band, r0, r1);
-    else render<Shades, true, false>(a, band, r0, r1);
-  } else {
-    if (a.lanes) render<Shades, false, true>(a, band, r0, r1);
-    else render<Shades, false, false>(a, band, r0, r1);
-  }
+  if (a.ortho_x) render_projection<Shades, true>(a, band, r0, r1);
+  else render_projection<Shades, false>(a, band, r0, r1);
+}
+
+// A lane's sphere index, from its bits as a float (trace_pixel).
+uint32_t scene_index(const float* bits) {
+  uint32_t k = 0;
+  __builtin_memcpy(&k, bits, sizeof k);
+  return k;
 }
 
 }  // namespace
@@ -291,17 +322,23 @@ scalar_hit trace_pixel(const float_scene& s, const sphere_arrays& sp, int64_t i,
   for (int k = 0; k < 3; ++k) r.d[k] = (s.center[k] + su * s.horizontal[k]) + sv * s.vertical[k];
   r.set_length();
   closest_hit<normal_shading> h;  // every sphere, in the float scene's order
-  intersect(sp, nullptr, sp.n, r, h);
+  if (s.orthographic) {
+    r.px = su * s.plane_width;
+    r.py = sv * s.plane_height;
+    intersect<true>(sp, nullptr, sp.n, r, h);
+  } else {
+    intersect<false>(sp, nullptr, sp.n, r, h);
+  }
   if (none(h.hit)) return {};
   alignas(64) float t[N], d[3][N], index[N];
   store(t, h.t);
   store(index, as_float(h.index));
   for (int k = 0; k < 3; ++k) store(d[k], r.d[k]);
-  // P = O + t d in world units, so the distance is t |d|.
+  // P = O + t d in world units, so the distance is t |d|; orthographic: t is
+  // the depth beyond the plane offset.
   const double d_len = std::sqrt(double(d[0][0]) * d[0][0] + double(d[1][0]) * d[1][0] + double(d[2][0]) * d[2][0]);
-  uint32_t scene_index = 0;
-  __builtin_memcpy(&scene_index, index, sizeof scene_index);
-  return {int64_t(scene_index), double(t[0]) * d_len};
+  if (s.orthographic) return {int64_t(scene_index(index)), double(t[0]) + s.plane_offset};
+  return {int64_t(scene_index(index)), double(t[0]) * d_len};
 }
 
 void render_sphere_rows(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {

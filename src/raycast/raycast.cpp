@@ -77,6 +77,7 @@ scene_params to_internal(const scene& s) {
   if (s.cam.lookat) c.lookat = to_internal(*s.cam.lookat);
   c.vup = to_internal(s.cam.vup);
   c.vfov_degrees = s.cam.vfov;
+  c.proj = raycast::projection(uint8_t(s.cam.projection));
   p.sky.bottom = to_internal(s.sky.bottom);
   p.sky.top = to_internal(s.sky.top);
   if (s.arrays && !s.spheres.empty()) invalid("spheres", "give spheres or arrays, not both");
@@ -124,6 +125,7 @@ scene from_internal(const scene_params& p) {
   if (c.lookat) s.cam.lookat = from_internal(*c.lookat);
   s.cam.vup = from_internal(c.vup);
   s.cam.vfov = c.vfov_degrees;
+  s.cam.projection = projection(uint8_t(c.proj));
   s.sky.bottom = from_internal(p.sky.bottom);
   s.sky.top = from_internal(p.sky.top);
   s.spheres.reserve(p.spheres.size());

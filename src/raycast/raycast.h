@@ -30,8 +30,14 @@ enum class shading : uint8_t {
   lit,     // the sphere's colour under a headlight (where this build has it)
 };
 
+// perspective: rays from lookfrom through the viewport (the book's camera);
+// orthographic: parallel rays along the view direction from an image plane
+// through lookfrom, viewport_height high (vfov and focal_length mean nothing).
+enum class projection : uint8_t { perspective, orthographic };
+
 // The command line's camera options, and their defaults.
 struct camera {
+  enum projection projection = projection::perspective;
   double aspect = 16.0 / 9.0;
   int64_t width = 400;
   std::optional<int64_t> height;  // default: int(width / aspect), at least 1

@@ -11,6 +11,7 @@ plan::plan(const float_scene& f, precision p, unsigned allowed) {
   args_.scene = &f;
   args_.prec = p;
   args_.spheres = arrays_of(f.spheres);
+  args_.spheres.axes = f.axes;
   // Per-column parts of the direction, in scalar.h's operations and order;
   // padded with zeros to whole 16-lane batches.
   const size_t padded = size_t(f.width + 15) / 16 * 16;
@@ -30,6 +31,11 @@ plan::plan(const float_scene& f, precision p, unsigned allowed) {
     for (int64_t i = 0; i < f.width; ++i)
       column_part_[k][size_t(i)] = f.center[k] + pixel_su(f, i) * f.horizontal[k];
     args_.column_part[k] = column_part_[k].get();
+  }
+  if (f.orthographic && spheres) {  // the rays' starts across the image plane, su plane_width per column
+    ortho_x_ = table();
+    for (int64_t i = 0; i < f.width; ++i) ortho_x_[size_t(i)] = pixel_su(f, i) * f.plane_width;
+    args_.ortho_x = ortho_x_.get();
   }
   if (args_.lanes && !spheres) {
     column_x2_ = table();

@@ -50,7 +50,7 @@ class plan {
   using aligned_floats = std::unique_ptr<float[], free_deleter>;
 
   kernels::kernel_args args_;
-  aligned_floats column_part_[3], column_x2_;  // 64-byte aligned, behind args_
+  aligned_floats column_part_[3], column_x2_, ortho_x_;  // 64-byte aligned, behind args_
 };
 
 }  // namespace raycast

@@ -30,6 +30,8 @@ std::optional<invalid_field> validate(const camera_params& p) {
     return bad(viewport_height, "viewport width (aspect x viewport height) overflows a double");
   for (double c : {p.origin.x, p.origin.y, p.origin.z})
     if (!std::isfinite(c)) return bad(origin, "origin must be finite");
+  if (p.vfov_degrees && p.proj == projection::orthographic)
+    return bad(vfov, "vertical field of view means nothing for an orthographic camera (give the viewport height)");
   if (p.vfov_degrees) {
     const double f = *p.vfov_degrees;
     if (!(f > 0.0 && f < 180.0))
@@ -64,6 +66,7 @@ std::optional<invalid_field> validate(const camera_params& p) {
 
 camera make_camera(const camera_params& p) {
   camera c;
+  c.proj = p.proj;
   c.image_width = p.image_width;
   c.image_height = p.image_height.value_or(default_height(p.image_width, p.aspect_ratio));
   c.aspect_ratio = p.aspect_ratio;

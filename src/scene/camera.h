@@ -16,7 +16,14 @@ namespace raycast {
 // float and SIMD renderers; every integer up to 2^24 is exact in float.
 inline constexpr int64_t max_dimension = int64_t{1} << 24;
 
+// How rays leave the camera: from one point through the viewport (the book's
+// pinhole), or parallel to the view direction from every point of an image
+// plane through lookfrom (particle pictures: sizes comparable across the
+// picture).
+enum class projection : uint8_t { perspective, orthographic };
+
 struct camera_params {
+  projection proj = projection::perspective;
   double aspect_ratio = 16.0 / 9.0;
   int64_t image_width = 400;
   std::optional<int64_t> image_height;  // default: int(width / aspect), at least 1
@@ -32,6 +39,7 @@ struct camera_params {
 };
 
 struct camera {
+  projection proj = projection::perspective;
   int64_t image_width = 0;
   int64_t image_height = 0;
   double aspect_ratio = 0;
@@ -51,8 +59,12 @@ struct camera {
   vec3 corner_dir{0.0};
 
   // u, v in [0, 1]: the ray through the viewport point lower_left_corner +
-  // u*horizontal + v*vertical.
+  // u*horizontal + v*vertical. Orthographic: the ray from the image plane's
+  // point origin + (u - 1/2) horizontal + (v - 1/2) vertical along -w (the
+  // plane through lookfrom, viewport_height high; focal_length unused).
   ray get_ray(double u, double v) const {
+    if (proj == projection::orthographic)
+      return ray(origin + (u - 0.5) * horizontal + (v - 0.5) * vertical, -axis_w);
     return ray(origin, corner_dir + u * horizontal + v * vertical);
   }
   // u and v of pixel column i and row j (j = 0 is the bottom row); the centre

@@ -453,6 +453,15 @@ void reader::read_setting(od::value& v, const setting& row, given& g) {
       if (n != 3) fail(path, "must be an array of 3 numbers", start);
       break;
     }
+    case value_type::name: {  // a string the command line would take: "orthographic"
+      od::json_type t;
+      if (v.type().get(t) != simdjson::SUCCESS) fail_json("not a JSON value", start);
+      if (t != od::json_type::string) fail(path, "must be a string", start);
+      std::string_view text;
+      if (error_code e = v.get_string().get(text)) fail_json(e, start);
+      g.tokens[0] = std::string(text.substr(0, 64));
+      return parse(text, path);
+    }
     default: fail(path, "is not a scene file key", start);
   }
 }

@@ -17,6 +17,8 @@ constexpr value_range color{-max_color, max_color};
 using enum setting_id;
 using vt = value_type;
 
+constexpr std::string_view projection_names[] = {"perspective", "orthographic"};  // enum projection's order
+
 constexpr setting scene_rows[] = {
     {width, "--width", "-w", "camera.width", "width", vt::integer, dimension, {}, "N", "400", "Image width in pixels"},
     {height, "--height", "", "camera.height", "height", vt::integer, dimension, {}, "N",
@@ -29,6 +31,10 @@ constexpr setting scene_rows[] = {
      "H", "2.0", "Viewport height in world units", 1},
     {focal_length, "--focal-length", "", "camera.focal_length", "focal_length", vt::real, positive, {}, "F", "1.0",
      "Distance from the origin to the viewport"},
+    {setting_id::projection, "--projection", "", "camera.projection", "projection", vt::name, {}, projection_names,
+     "NAME", "perspective",
+     "perspective (rays from the camera) or orthographic (parallel rays from an image plane through lookfrom, "
+     "--viewport-height high)"},
     {origin, "--origin", "", "", "", vt::triple, {}, {}, "X,Y,Z", "0,0,0", "Camera position", 2},
     {lookfrom, "--lookfrom", "", "camera.lookfrom", "lookfrom", vt::triple, {}, {}, "X,Y,Z", "",
      "Camera position (the same point as --origin)", 2},
@@ -231,6 +237,22 @@ void merge(settings& base, const settings& over, std::span<const setting> table)
     if (over.at[k]) base.at[k] = over.at[k];
 }
 
+// A setting that means nothing for an orthographic camera (its rays are
+// parallel: no field of view, no focal length), refused naming both.
+std::optional<setting_error> meaningless_for_orthographic(const settings& s) {
+  const auto row_of = [](setting_id id) { return &*std::find_if(std::begin(scene_rows), std::end(scene_rows), [id](const setting& r) { return r.id == id; }); };
+  for (setting_id id : {vfov, focal_length}) {
+    if (!s.has(id)) continue;
+    const given& g = *s[id];
+    const std::string by = s.has(setting_id::projection) ? s[setting_id::projection]->source : "camera.projection";
+    return setting_error{row_of(id), g.source,
+                         "means nothing with " + by +
+                             " orthographic (its rays are parallel; the image plane is --viewport-height high)" +
+                             g.where};
+  }
+  return std::nullopt;
+}
+
 std::optional<setting_error> resolve(const settings& s, camera_params& cp, sky& sk) {
   for (const setting& row : scene_rows)
     if (s.has(row.id))
@@ -245,6 +267,9 @@ std::optional<setting_error> resolve(const settings& s, camera_params& cp, sky& 
   }
   if (auto v = get(vfov)) cp.vfov_degrees = v->real;
   if (auto v = get(focal_length)) cp.focal_length = v->real;
+  if (auto v = get(setting_id::projection)) cp.proj = raycast::projection(v->name);
+  if (cp.proj == raycast::projection::orthographic)
+    if (auto e = meaningless_for_orthographic(s)) return e;
   if (auto v = get(origin)) cp.origin = v->triple;
   if (auto v = get(lookfrom)) cp.origin = v->triple;
   if (auto v = get(lookat)) cp.lookat = v->triple;

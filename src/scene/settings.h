@@ -46,6 +46,7 @@ enum class setting_id : uint8_t {
   vfov,
   viewport_height,
   focal_length,
+  projection,
   origin,    // the command line's other name for lookfrom
   lookfrom,
   lookat,

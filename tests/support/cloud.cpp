@@ -67,15 +67,21 @@ scene_params particle_cloud(int64_t n, double coverage) {
   return p;
 }
 
-scene_params particle_box(int64_t n) {
+scene_params particle_box(int64_t n, bool orthographic) {
   scene_params p;
   p.camera.image_width = width;
   p.camera.image_height = height;
-  p.camera.vfov_degrees = 30.0;
-  // Far enough that the cube's bounding sphere (radius sqrt(3) / 2) fills the lens's height.
-  const double distance = 0.5 * std::sqrt(3.0) / std::sin(15.0 * std::numbers::pi / 180.0);
-  const double out = std::round((0.5 + distance / std::sqrt(3.0)) * 1e6) / 1e6;  // as the JSON writes it
-  p.camera.origin = point3(out, out, out);
+  if (orthographic) {
+    p.camera.proj = projection::orthographic;
+    p.camera.viewport_height = 1.2;
+    p.camera.origin = point3(0.5, 0.5, 2.0);
+  } else {
+    p.camera.vfov_degrees = 30.0;
+    // Far enough that the cube's bounding sphere (radius sqrt(3) / 2) fills the lens's height.
+    const double distance = 0.5 * std::sqrt(3.0) / std::sin(15.0 * std::numbers::pi / 180.0);
+    const double out = std::round((0.5 + distance / std::sqrt(3.0)) * 1e6) / 1e6;  // as the JSON writes it
+    p.camera.origin = point3(out, out, out);
+  }
   p.camera.lookat = point3(0.5, 0.5, 0.5);
   int64_t m = 1;
   while (m * m * m < n) ++m;
@@ -107,8 +113,11 @@ scene_params particle_box(int64_t n) {
 
 std::string cloud_json(const scene_params& p) {
   std::string out = "{\"camera\": {\"width\": " + std::to_string(p.camera.image_width) +
-                    ", \"height\": " + std::to_string(p.camera.image_height.value_or(0)) +
-                    ", \"vfov\": " + std::to_string(p.camera.vfov_degrees.value_or(90.0));
+                    ", \"height\": " + std::to_string(p.camera.image_height.value_or(0));
+  if (p.camera.proj == projection::orthographic)
+    out += ", \"projection\": \"orthographic\", \"viewport_height\": " + std::to_string(p.camera.viewport_height);
+  else
+    out += ", \"vfov\": " + std::to_string(p.camera.vfov_degrees.value_or(90.0));
   const auto vector = [&out](const char* name, const point3& v) {
     out += std::string(", \"") + name + "\": [";
     for (int c = 0; c < 3; ++c) {

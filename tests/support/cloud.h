@@ -33,7 +33,10 @@ double cloud_radius(int64_t n, double coverage = 1.5);
 // n (4/3) pi r^3 = 0.3. Seen from outside a corner, (1, 1, 1) from the
 // centre, through a 30 degree lens, 1920x1080 (a ray through the cube passes
 // some 50 spheres at 10^6); the same rounding as particle_cloud.
-scene_params particle_box(int64_t n);
+// Orthographic: the same box seen along an axis (-z), from an image plane
+// 1.2 high (the box fills most of the picture's height; a ray passes m
+// spheres' cells, 100 at 10^6).
+scene_params particle_box(int64_t n, bool orthographic = false);
 
 // p as scene-file text (scene/scene_file.h), about 85 bytes a sphere.
 std::string cloud_json(const scene_params& p);

@@ -109,6 +109,33 @@ sphere_stiff_case degenerate_focal_length() {
           p};
 }
 
+// The ch. 6 world through an orthographic camera (scene/camera.h), its
+// image plane viewport_height high: at the world's own size (the plane cuts
+// the ground sphere, whose inside the lower rows see), scaled by 10^-6 and
+// 10^6 (the same picture), from 10^7 away along the view (the plane offset
+// keeps the depths' precision), and with a sphere behind the plane and one
+// the plane cuts.
+sphere_stiff_case orthographic(const std::string& name, double scale, double back) {
+  camera_params p = width_200();
+  p.proj = projection::orthographic;
+  p.viewport_height = 3.0 * scale;
+  p.origin = point3(0.0, 0.0, back);
+  std::vector<sphere> world = {{{0, 0, -1}, 0.5, shading::normal}, {{0, -100.5, -1}, 100, shading::normal}};
+  for (sphere& b : world) b.center *= scale, b.radius *= scale;
+  return {name, world, p};
+}
+
+sphere_stiff_case orthographic_plane_cuts() {
+  camera_params p = width_200();
+  p.proj = projection::orthographic;
+  p.viewport_height = 3.0;
+  return {"ortho_spheres_behind_and_cut",
+          {{{0.6, 0.0, 2.0}, 0.5, shading::normal},     // behind the image plane: never seen
+           {{-0.6, 0.2, -0.1}, 0.5, shading::normal},   // cut by it: its inside where rays start in it
+           {{0.3, -0.3, -1.5}, 0.6, shading::normal}},  // in front
+          p};
+}
+
 std::vector<sphere_stiff_case> make_cases() {
   std::vector<sphere_stiff_case> v;
   for (double d : {10.0, 100.0, 1e3, 4100.0, 1e4, 1e5, 1e6, 1e7}) v.push_back(unit_sphere_at(d));
@@ -123,6 +150,11 @@ std::vector<sphere_stiff_case> make_cases() {
   for (const auto& [s, suffix] : {std::pair{1e-30, "1e-30"}, {1e-10, "1e-10"}, {1e10, "1e10"}, {1e30, "1e30"}})
     v.push_back(world_scaled(s, suffix));
   v.push_back(degenerate_focal_length());
+  v.push_back(orthographic("ortho_world", 1.0, 0.0));
+  v.push_back(orthographic("ortho_viewport_3e-6", 1e-6, 0.0));
+  v.push_back(orthographic("ortho_viewport_3e6", 1e6, 0.0));
+  v.push_back(orthographic("ortho_camera_at_1e7", 1.0, 1e7));
+  v.push_back(orthographic_plane_cuts());
   return v;
 }
 
@@ -224,10 +256,10 @@ traced_image trace_ours(const scene& s) {
 
 traced_image trace_naive(const scene& s) {
   traced_image t = blank(s);
-  const f3 o = to_f3(s.cam.origin);
   for (int64_t row = 0; row < t.height; ++row)
     for (int64_t i = 0; i < t.width; ++i) {
-      const f3 d = to_f3(s.cam.get_ray(s.cam.u_of(i), s.cam.v_of(t.height - 1 - row)).direction());
+      const ray rd = s.cam.get_ray(s.cam.u_of(i), s.cam.v_of(t.height - 1 - row));  // orthographic: its own origin
+      const f3 o = to_f3(rd.origin()), d = to_f3(rd.direction());
       float closest = std::numeric_limits<float>::infinity(), tk = 0;
       int64_t hit = -1;
       for (size_t k = 0; k < s.spheres.size(); ++k)

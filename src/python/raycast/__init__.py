@@ -55,12 +55,12 @@ def _token(name, v):
 
 
 _CAMERA_KEYWORDS = ("width", "height", "aspect", "lookfrom", "lookat", "vup", "vfov", "viewport_height",
-                    "focal_length", "sky_bottom", "sky_top")
+                    "focal_length", "projection", "sky_bottom", "sky_top")
 
 
 def render(scene=None, *, centers=None, radii=None, colors=None, shade="normal",
            width=None, height=None, aspect=None, lookfrom=None, lookat=None, vup=None,
-           vfov=None, viewport_height=None, focal_length=None, sky_bottom=None, sky_top=None,
+           vfov=None, viewport_height=None, focal_length=None, projection=None, sky_bottom=None, sky_top=None,
            backend="auto", precision="exact", threads=0, samples=1, sampler="sobol", seed=0,
            region=None, dtype="uint8"):
     """Render a scene; returns a numpy.ndarray of shape (H, W, 3), rows top first.
@@ -76,8 +76,11 @@ def render(scene=None, *, centers=None, radii=None, colors=None, shade="normal",
     shade: "normal" (0.5 (N + 1)), "flat" (colors, red without) or "lit",
         for every sphere of the arrays.
     width, height, aspect (a number or "W:H"), lookfrom, lookat, vup, vfov
-        (degrees), viewport_height, focal_length, sky_bottom, sky_top: override
-        the scene's camera and sky, as the command line's options do.
+        (degrees), viewport_height, focal_length, projection ("perspective" or
+        "orthographic": parallel rays from an image plane through lookfrom,
+        viewport_height high; vfov and focal_length then mean nothing),
+        sky_bottom, sky_top: override the scene's camera and sky, as the
+        command line's options do.
     backend: "auto", "reference", "scalar", "sse2", "avx2", "avx512", "neon".
     precision: "exact" or "fast". threads: 0 for all cores.
     samples, sampler ("random", "stratified", "sobol"), seed: antialiasing.
@@ -106,7 +109,7 @@ def render(scene=None, *, centers=None, radii=None, colors=None, shade="normal",
             raise ValueError(f"region: want 4 numbers (x0, y0, x1, y1), got {len(region)}")
     given = dict(width=width, height=height, aspect=aspect, lookfrom=lookfrom, lookat=lookat, vup=vup,
                  vfov=vfov, viewport_height=viewport_height, focal_length=focal_length,
-                 sky_bottom=sky_bottom, sky_top=sky_top)
+                 projection=projection, sky_bottom=sky_bottom, sky_top=sky_top)
     camera = {k: _token(k, given[k]) for k in _CAMERA_KEYWORDS if given[k] is not None}
     return _raycast.render(
         kind, source, _spheres_array("centers", centers), _spheres_array("radii", radii),

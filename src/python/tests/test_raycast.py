@@ -258,3 +258,14 @@ def test_readme_python_example_runs(tmp_path):
     png = (tmp_path / "cloud.png").read_bytes()
     assert png[:8] == b"\x89PNG\r\n\x1a\n"
     assert int.from_bytes(png[16:20], "big") == 1280 and int.from_bytes(png[20:24], "big") == 720
+
+
+def test_orthographic_is_the_clis_bytes(tmp_path):
+    img = raycast.render("world", width=160, projection="orthographic", viewport_height=3)
+    out = tmp_path / "o.ppm"
+    subprocess.run([CLI, "--scene", "world", "-w", "160", "--projection", "orthographic",
+                    "--viewport-height", "3", "-o", str(out)], check=True)
+    assert img.tobytes() == out.read_bytes()[-img.size:]
+    with pytest.raises(ValueError) as e:
+        raycast.render("world", projection="orthographic", vfov=30)
+    assert "means nothing with" in str(e.value)
