@@ -31,11 +31,11 @@
 //          for a sphere that holds the camera (inside); else s = s0 (c > 0:
 //          both roots have q's sign, so a negative s0 is a sphere behind)
 //   t    = s scale                                     exact: a power of two
-//   hit  when disc >= 0 and s >= 0 and t <= closest; then closest = t
-//        (t <= closest: on a tie the later sphere wins, as in the book's
-//        hittable_list -- of two coincident spheres the later in the scene,
-//        as the row order is stable; closest starts at FLT_MAX, so no
-//        infinite or NaN t hits)
+//   hit  when disc >= 0 and s >= 0 and t < closest, or t == closest and
+//        the sphere comes later in the scene than the closest hit's (the
+//        book's hittable_list: of two hits at the same t the later sphere
+//        wins, whatever order the float scene tests them in); then
+//        closest = t (closest starts at FLT_MAX, so no infinite or NaN t hits)
 // Shading of the closest hit (its s, f, inv_r), per channel k:
 //   flat:   the sphere's colour
 //   lit:    with N as for normal (below), facing the ray,
@@ -68,6 +68,16 @@
 //    is near the surface.
 //  - d is not normalized: no square root and no division per pixel but
 //    inv_n2; t = s |d| is never formed, since every sphere compares the same s.
+//
+// An orthographic camera (float_scene.h) has no shared origin: per sphere,
+// in its own power of two 2^e (of max(|cx|, |cy|, |cz|, r)), its centre in
+// the camera's frame relative to lookfrom, cx, cy across the view and cz
+// its depth less the plane offset z0, and c = 2^-e. Per ray from the plane
+// point (px, py):
+//   dx = px c - cx,  dy = py c - cy,  disc = r2 - (dx dx + dy dy)
+//   s  = cz - sqrt(disc)   (the far root cz + sqrt(disc) where the plane cuts
+//        the sphere, inside, and the near one is behind it);  t = s scale
+// and the normal ((dx u + dy v) -+ sqrt(disc) d) inv_r in the world's axes.
 //
 // Precision `fast` renders spheres exactly as `exact` does (no estimate is
 // used yet); only the sky-only scene has a separate fast path.
