@@ -79,6 +79,8 @@ void prepare_camera(float_scene& f, const scene& s) {
     f.plane_height = float(c.viewport_height);
     f.pixel_spread = 1.01 * (c.viewport_width * double(f.du) + c.viewport_height * double(f.dv));
   }
+  f.tiny_directions = (double(f.center[0]) * f.center[0] + double(f.center[1]) * f.center[1] +
+                       double(f.center[2]) * f.center[2]) < 0x1p-60;
   f.axis_aligned_camera = f.horizontal[1] == 0 && f.horizontal[2] == 0 && f.vertical[0] == 0 &&
                    f.vertical[2] == 0;
 }
@@ -382,6 +384,7 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from, s
 scalar_hit scalar_trace(const float_scene& f, int64_t i, int64_t j) {
   sphere_arrays sp = arrays_of(f.spheres);
   sp.axes = f.axes;
+  sp.track_index = true;
   return kernels::scalar::trace_pixel(f, sp, i, j);
 }
 

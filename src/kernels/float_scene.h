@@ -44,6 +44,10 @@ struct float_scene {
   // a direction's y depends on the row only and z is constant (what the
   // `lanes` and `mirror` shortcuts use, render/plan.h).
   bool axis_aligned_camera = false;
+  // Some ray's squared direction may be below 2^-64 (a degenerate camera:
+  // every direction is at least as long as center, which is that short):
+  // the sphere kernel then guards each batch (sphere_hit.inl, set_length).
+  bool tiny_directions = false;
   // An orthographic camera (scene/camera.h): every ray has the direction
   // center (the unit view direction -w, scaled; horizontal and vertical are
   // 0, so the sky reads one direction everywhere) and starts on the image

@@ -157,6 +157,9 @@ struct sphere_arrays {
   const float (*axes)[3] = nullptr;  // an orthographic camera's u, v, d (float_scene.h)
   size_t n = 0;
   bool any_flat = false, any_normal = false, any_lit = false, any_inside = false;
+  // Whether each hit carries its sphere's index in the scene: for the tie
+  // rule of a reordered scene, and for trace_pixel.
+  bool track_index = false;
 
   // Sphere k's index in the scene.
   RAYCAST_INLINE uint32_t scene_index(size_t k) const { return order ? order[k] : uint32_t(k); }
@@ -165,7 +168,7 @@ struct sphere_arrays {
 inline sphere_arrays arrays_of(const float_spheres& s) {
   return {s.rec.data(), s.red.data(), s.green.data(), s.blue.data(), s.kind.data(),
           s.order.empty() ? nullptr : s.order.data(), s.depth_key.empty() ? nullptr : s.depth_key.data(), nullptr,
-          s.size(), s.any_flat, s.any_normal, s.any_lit, s.any_inside};
+          s.size(), s.any_flat, s.any_normal, s.any_lit, s.any_inside, !s.order.empty()};
 }
 
 }  // namespace raycast

@@ -47,8 +47,10 @@ struct rays {
   // s along one ray, the normal and the sky are homogeneous in d), but no
   // n2 is then zero or denormal: the far root, 1 / n2 and the headlight are
   // those of the reference's direction, on every target and under FTZ/DAZ.
-  RAYCAST_INLINE void set_length() {
+  // (Only where the frame has such a ray: float_scene::tiny_directions.)
+  RAYCAST_INLINE void set_length(bool guard = true) {
     n2 = (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2];
+    if (!guard) return;
     const vmask tiny = !(n2 >= 0x1p-64f);
     if (none(tiny)) return;
     for (int k = 0; k < 3; ++k) d[k] = select(tiny, d[k] * 0x1p64f, d[k]);
@@ -86,7 +88,7 @@ RAYCAST_INLINE void record(const sphere_arrays& sp, size_t k, vmask m, vfloat s,
   const vuint index = vuint(sp.scene_index(k));
   if (none(h.hit)) {  // the first sphere hit: lanes it misses never read these
     h.hit = m;
-    h.index = index;
+    if (sp.track_index) h.index = index;
     if constexpr ((Shades & normal_shading) != 0) {
       h.s = s;
       h.fx = f[0];
@@ -104,7 +106,7 @@ RAYCAST_INLINE void record(const sphere_arrays& sp, size_t k, vmask m, vfloat s,
     return;
   }
   h.hit = h.hit | m;
-  h.index = select(m, index, h.index);
+  if (sp.track_index) h.index = select(m, index, h.index);
   if constexpr ((Shades & normal_shading) != 0) {
     h.s = select(m, s, h.s);
     h.fx = select(m, f[0], h.fx);
@@ -137,9 +139,14 @@ RAYCAST_INLINE vfloat discriminant(const sphere_record& e, rays& r, vfloat fx, v
 template <int Shades>
 RAYCAST_INLINE void keep_nearer(const sphere_arrays& sp, size_t k, vmask ahead, vfloat s, vfloat t,
                                 const vfloat (&f)[3], closest_hit<Shades>& h) {
-  vmask m = ahead & !(t >= h.t);
-  const vmask tie = ahead & (t == h.t);
-  if (any(tie)) m = m | (tie & ((!h.hit) | (vuint(sp.scene_index(k)) > h.index)));
+  vmask m;
+  if (sp.order) {  // a reordered scene: ties by the index in the scene
+    m = ahead & !(t >= h.t);
+    const vmask tie = ahead & (t == h.t);
+    if (any(tie)) m = m | (tie & ((!h.hit) | (vuint(sp.scene_index(k)) > h.index)));
+  } else {  // the scene's own order: the later sphere is the one tested later
+    m = ahead & (t <= h.t);
+  }
   h.t = select(m, t, h.t);
   record(sp, k, m, s, f, h);
 }
@@ -214,13 +221,13 @@ RAYCAST_INLINE bool nearer_than(const sphere_arrays& sp, const sphere_record& e,
 // before the next (the sampled path takes samples_per_pass samples at a
 // time: their long dependency chains overlap). fz_dz: each sphere's f.z d.z
 // where every ray's d.z is the same (the lesson's camera), else null.
-template <int Shades, int M, bool Ortho = false>
-RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, size_t count, rays (&r)[M],
-                              closest_hit<Shades> (&h)[M], const float* fz_dz = nullptr) {
+template <int Shades, int M, bool Ortho, bool Deep>
+RAYCAST_INLINE void walk(const sphere_arrays& sp, const uint32_t* list, size_t count, rays (&r)[M],
+                         closest_hit<Shades> (&h)[M], const float* fz_dz) {
   for (size_t x = 0; x < count; ++x) {
     const size_t k = list ? list[x] : x;
     const sphere_record& e = sp.rec[k];
-    if (sp.depth_key) {  // a depth-ordered walk: stop where nothing after can be nearer
+    if constexpr (Deep) {  // a depth-ordered walk: stop where nothing after can be nearer
       bool done = true;
       for (int u = 0; u < M && done; ++u) done = nearer_than<Ortho>(sp, e, r[u], h[u]);
       if (done) return;
@@ -244,16 +251,25 @@ RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, siz
   }
 }
 
+template <int Shades, int M, bool Ortho = false>
+RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, size_t count, rays (&r)[M],
+                              closest_hit<Shades> (&h)[M], const float* fz_dz = nullptr) {
+  if (sp.depth_key) walk<Shades, M, Ortho, true>(sp, list, count, r, h, fz_dz);
+  else walk<Shades, M, Ortho, false>(sp, list, count, r, h, fz_dz);
+}
+
 // One ray batch (the one-sample path): the same steps without arrays --
 // SSE2's two-half vectors in one-element arrays are not kept in registers by
 // GCC 12 (+40 % on sse2/world).
-template <bool Ortho = false, int Shades>
-RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, size_t count, rays& r,
-                              closest_hit<Shades>& h) {
+// (Deep: a depth-ordered walk, which may stop early; its own loop, so that
+// other scenes ask nothing per sphere.)
+template <bool Ortho, bool Deep, int Shades>
+RAYCAST_INLINE void walk(const sphere_arrays& sp, const uint32_t* list, size_t count, rays& r, closest_hit<Shades>& h) {
   for (size_t x = 0; x < count; ++x) {
     const size_t k = list ? list[x] : x;
     const sphere_record& e = sp.rec[k];
-    if (sp.depth_key && nearer_than<Ortho>(sp, e, r, h)) return;  // nothing after can be nearer
+    if constexpr (Deep)
+      if (nearer_than<Ortho>(sp, e, r, h)) return;  // nothing after can be nearer
     if constexpr (Ortho) {
       take_nearest_ortho(sp, k, r, h);
       continue;
@@ -265,6 +281,13 @@ RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, siz
     if (none(can_hit)) continue;
     take_nearest(sp, k, r, b, disc, can_hit, h);
   }
+}
+
+template <bool Ortho = false, int Shades>
+RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, size_t count, rays& r,
+                              closest_hit<Shades>& h) {
+  if (sp.depth_key) walk<Ortho, true>(sp, list, count, r, h);
+  else walk<Ortho, false>(sp, list, count, r, h);
 }
 
 }  // namespace

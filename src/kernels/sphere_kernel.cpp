@@ -108,7 +108,7 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
       } else {
         for (int k = 0; k < 3; ++k) ry.d[k] = vfloat::load(a.column_part[k] + i0) + row_part[k];
       }
-      ry.set_length();
+      ry.set_length(s.tiny_directions);
       return ry;
     };
     const bool built = mirror && run == batches;  // one run: the whole row's lists at once
