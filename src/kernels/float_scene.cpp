@@ -214,16 +214,17 @@ depth_of depth_of_sphere(const camera& c, const sphere& b) {
 // screen area the spheres cover.
 struct survey {
   bool any_flat = false, any_normal = false, any_lit = false;
-  double near_lo = INFINITY, near_hi = -INFINITY, pixels = 0.0, lateral = 0.0;
+  double near_lo = INFINITY, near_hi = -INFINITY, lateral = 0.0;
 };
-survey survey_spheres(const scene& s, bool reorder, size_t team, uint32_t* row, float* nearest) {
-  const bool ortho = s.cam.proj == projection::orthographic;
+survey survey_spheres(const scene& s, sphere_order order, size_t team, uint32_t* key) {
+  const bool ortho = s.cam.proj == projection::orthographic, depth = order == sphere_order::depth;
+  const bool rows = order == sphere_order::rows;
   survey v;
   bool any_flat = false, any_normal = false, any_lit = false;
-  double lo = INFINITY, hi = -INFINITY, pixels = 0.0, lateral = 0.0;
+  double lo = INFINITY, hi = -INFINITY, lateral = 0.0;
   const size_t n = s.sphere_count();
 #pragma omp parallel for schedule(static, 1) num_threads(int(team)) \
-    reduction(|| : any_flat, any_normal, any_lit) reduction(min : lo) reduction(max : hi, lateral) reduction(+ : pixels)
+    reduction(|| : any_flat, any_normal, any_lit) reduction(min : lo) reduction(max : hi, lateral)
   for (size_t t = 0; t < team; ++t) {
     const auto [begin, end] = chunk(n, t, team);
     for (size_t k = begin; k < end; ++k) {
@@ -231,20 +232,29 @@ survey survey_spheres(const scene& s, bool reorder, size_t team, uint32_t* row, 
       any_flat = any_flat || b.shade == shading::flat;
       any_lit = any_lit || b.shade == shading::lit;
       any_normal = any_normal || b.shade == shading::normal;
-      if (!reorder && !ortho) continue;
+      if (rows) key[k] = centre_row(s.cam, b.center);
+      if (!depth && !ortho) continue;
       const depth_of d = depth_of_sphere(s.cam, b);
       lo = std::min(lo, d.nearest);
       hi = std::max(hi, d.nearest);
       lateral = std::max(lateral, d.lateral);
-      if (!reorder) continue;
-      row[k] = centre_row(s.cam, b.center);
-      nearest[k] = float(d.nearest);
-      pixels += d.pixels;
+      if (depth) key[k] = std::bit_cast<uint32_t>(float(d.nearest));
     }
   }
   v.any_flat = any_flat, v.any_normal = any_normal, v.any_lit = any_lit;
-  v.near_lo = lo, v.near_hi = hi, v.pixels = pixels, v.lateral = lateral;
+  v.near_lo = lo, v.near_hi = hi, v.lateral = lateral;
   return v;
+}
+
+// How deep the scene is: its spheres' screen discs added up, in images,
+// estimated from at most 4096 of them spread over the scene (the automatic
+// order's choice; a sample is plenty, and reads a sliver of a caller's arrays).
+double images_covered(const scene& s) {
+  const size_t n = s.sphere_count(), step = std::max<size_t>(1, n / 4096);
+  double pixels = 0.0;
+  size_t seen = 0;
+  for (size_t k = 0; k < n; k += step, ++seen) pixels += depth_of_sphere(s.cam, s.sphere_at(k)).pixels;
+  return seen == 0 ? 0.0 : pixels * double(n) / double(seen) / (double(s.cam.image_width) * double(s.cam.image_height));
 }
 
 // A depth-ordered scene's buckets: bucket b holds the nearest distances from
@@ -322,12 +332,11 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from, s
   // One chunk a thread, but no more than spheres per key (the counts take 4
   // bytes a key a chunk; an image 2^24 rows tall sorts in one).
   size_t team = n < (size_t(1) << 15) ? 1 : size_t(std::max(1, threads));
-  std::vector<uint32_t, huge_page_allocator<uint32_t>> row(reorder ? n : 0), key(reorder ? n : 0);
-  const survey v = survey_spheres(s, reorder, team, row.data(), reinterpret_cast<float*>(key.data()));
-  if (order == sphere_order::automatic) {
-    const double images = v.pixels / (double(c.image_width) * double(c.image_height));
-    order = images > (n < small_scene ? deep_from_small : deep_from) ? sphere_order::depth : sphere_order::rows;
-  }
+  if (order == sphere_order::automatic)
+    order = images_covered(s) > (n < small_scene ? deep_from_small : deep_from) ? sphere_order::depth
+                                                                               : sphere_order::rows;
+  std::vector<uint32_t, huge_page_allocator<uint32_t>> key(reorder ? n : 0);
+  const survey v = survey_spheres(s, order, team, key.data());
   // Orthographic depths are measured from the plane as deep as the nearest
   // sphere's front (if in front of the image plane): hits compare depths of a
   // scene far from its camera with the scene's own precision.
@@ -337,21 +346,25 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from, s
   size_t keys = 1;
   if (order == sphere_order::rows) {
     keys = size_t(c.image_height) + 1;  // the rows 0 .. H (H: not ahead)
-    key.swap(row);
   } else if (order == sphere_order::depth) {
     keys = float_spheres::depth_buckets;
     for (size_t k = 0; k < n; ++k) key[k] = buckets.of(std::bit_cast<float>(key[k]));
     sp.depth_key.resize(keys);
     for (size_t b = 0; b < keys; ++b) sp.depth_key[b] = buckets.key(b);
   }
-  row = {};
   if (reorder) team = std::clamp<size_t>(n / keys, 1, team);
   std::vector<uint32_t> next = reorder ? places(key.data(), n, keys, team) : std::vector<uint32_t>{};
   // Colours only where some sphere has one (13 bytes a sphere a cloud of
   // normal-shaded spheres does without).
   const bool colored = v.any_flat || v.any_lit;
   sp.rec.resize(n);
-  if (reorder) sp.order.resize(n);
+  // Each sphere's index in the scene, for the tie rule, where the order is
+  // depth's: it is written out of order (4 bytes a sphere, a quarter of a
+  // 10^6-sphere cloud's preparation), and the row order keeps coincident
+  // spheres (the same key) in the scene's order, as depth's keeps those of
+  // one bucket.
+  const bool indexed = order == sphere_order::depth;
+  if (indexed) sp.order.resize(n);
   if (colored) {
     sp.red.resize(n);
     sp.green.resize(n);
@@ -359,17 +372,17 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from, s
     sp.kind.resize(n);
   }
   const bool depth = order == sphere_order::depth;
-#pragma omp parallel for schedule(static, 1) num_threads(int(team))
+  bool any_inside = false;
+#pragma omp parallel for schedule(static, 1) num_threads(int(team)) reduction(|| : any_inside)
   for (size_t t = 0; t < team; ++t) {
     const auto [begin, end] = chunk(n, t, team);
     for (size_t k = begin; k < end; ++k) {
       const size_t i = reorder ? next[t * keys + key[k]]++ : k;
       write_sphere(sp, i, s.sphere_at(k), f, c, colored, depth ? uint16_t(key[k]) : uint16_t(0));
-      if (reorder) sp.order[i] = uint32_t(k);
+      any_inside = any_inside || sp.rec[i].inside;
+      if (indexed) sp.order[i] = uint32_t(k);
     }
   }
-  bool any_inside = false;
-  for (const sphere_record& e : sp.rec) any_inside = any_inside || e.inside;
   sp.any_inside = any_inside;
   sp.any_flat = v.any_flat;
   sp.any_normal = v.any_normal;

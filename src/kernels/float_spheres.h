@@ -31,11 +31,12 @@
 //          for a sphere that holds the camera (inside); else s = s0 (c > 0:
 //          both roots have q's sign, so a negative s0 is a sphere behind)
 //   t    = s scale                                     exact: a power of two
-//   hit  when disc >= 0 and s >= 0 and t < closest, or t == closest and
-//        the sphere comes later in the scene than the closest hit's (the
-//        book's hittable_list: of two hits at the same t the later sphere
-//        wins, whatever order the float scene tests them in); then
-//        closest = t (closest starts at FLT_MAX, so no infinite or NaN t hits)
+//   hit  when disc >= 0 and s >= 0 and t <= closest (in a depth-ordered
+//        scene: t < closest, or t == closest and the sphere comes later in
+//        the scene than the closest hit's); then closest = t -- the book's
+//        hittable_list: of two hits at the same t the later sphere wins (in
+//        row order: of two coincident spheres; closest starts at FLT_MAX, so
+//        no infinite or NaN t hits)
 // Shading of the closest hit (its s, f, inv_r), per channel k:
 //   flat:   the sphere's colour
 //   lit:    with N as for normal (below), facing the ray,
@@ -127,10 +128,11 @@ struct float_spheres {
   // For culling (kernels/culling.h), in the sphere's unit: the radius
   // widened by a margin far above float's rounding, 1e-5 (|f| + r).
   array<float> cull_radius;
-  // A reordered scene's (from sorted_from spheres on): each sphere's index in
-  // the scene, for the tie rule (of two hits at the same t the later in the
-  // scene wins, whatever the order they are tested in). Empty: the scene's
-  // own order.
+  // A depth-ordered scene's: each sphere's index in the scene, for the tie
+  // rule (of two hits at the same t the later in the scene wins, whatever
+  // the order they are tested in). Empty: ties go to the later in the float
+  // scene's order, which is the scene's for a scene in its own order, and
+  // keeps it among coincident spheres (the same key) in row order.
   array<uint32_t> order;
   // A depth-ordered scene's (float_scene.h): the spheres sorted by their
   // nearest distance from the camera, |O - C| - r, in depth_buckets buckets;
