@@ -296,6 +296,18 @@ std::vector<uint32_t> places(const uint32_t* key, size_t n, size_t keys, size_t 
   return next;
 }
 
+// The float spheres' arrays for n spheres: records, the scene indices of a
+// depth-ordered scene, colours and kinds where some sphere has a colour.
+void allocate(float_spheres& sp, size_t n, bool indexed, bool colored) {
+  sp.rec.resize(n);
+  if (indexed) sp.order.resize(n);
+  if (!colored) return;
+  sp.red.resize(n);
+  sp.green.resize(n);
+  sp.blue.resize(n);
+  sp.kind.resize(n);
+}
+
 // Sphere k's record, colour and kind at place i.
 void write_sphere(float_spheres& sp, size_t i, const sphere& b, const float_scene& f, const camera& c, bool colored,
                   uint16_t depth) {
@@ -357,20 +369,13 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from, s
   // Colours only where some sphere has one (13 bytes a sphere a cloud of
   // normal-shaded spheres does without).
   const bool colored = v.any_flat || v.any_lit;
-  sp.rec.resize(n);
   // Each sphere's index in the scene, for the tie rule, where the order is
   // depth's: it is written out of order (4 bytes a sphere, a quarter of a
   // 10^6-sphere cloud's preparation), and the row order keeps coincident
   // spheres (the same key) in the scene's order, as depth's keeps those of
   // one bucket.
   const bool indexed = order == sphere_order::depth;
-  if (indexed) sp.order.resize(n);
-  if (colored) {
-    sp.red.resize(n);
-    sp.green.resize(n);
-    sp.blue.resize(n);
-    sp.kind.resize(n);
-  }
+  allocate(sp, n, indexed, colored);
   const bool depth = order == sphere_order::depth;
   bool any_inside = false;
 #pragma omp parallel for schedule(static, 1) num_threads(int(team)) reduction(|| : any_inside)
