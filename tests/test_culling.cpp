@@ -105,6 +105,9 @@ size_t expect_every_hit_listed(const float_scene& f, int threads, int batch) {
 }
 
 // For batches of 8 and 16 (odd sizes: edges inside batches; one row; one column).
+// A flat-shaded sphere of colour c (the tie tests tell spheres apart by colour).
+sphere flat(vec3 at, double r, color c) { return sphere{at, r, shading::flat, c}; }
+
 TEST(Culling, EveryHitIsListed) {
   for (const auto& [w, h] : std::vector<std::pair<int64_t, int64_t>>{{97, 61}, {40, 1}, {1, 30}, {160, 90}}) {
     const float_scene f = prepare_float_scene(make_scene(mixed_scene(w, h, 1500, unsigned(w * h))));
@@ -266,14 +269,6 @@ TEST(Culling, SortingKeepsTheLaterOfCoincidentSpheres) {
   scene_params p;
   p.camera.image_width = 64;
   p.camera.image_height = 36;
-  const auto flat = [](vec3 at, double r, color c) {
-    sphere b;
-    b.center = at;
-    b.radius = r;
-    b.shade = shading::flat;
-    b.flat_color = c;
-    return b;
-  };
   p.spheres = {flat(vec3(0.0, -0.2, -2.0), 0.3, color(1.0, 0.0, 0.0)),   // lower in the image
                flat(vec3(0.0, 0.3, -2.0), 0.2, color(1.0, 0.0, 0.0)),    // upper: sorted first
                flat(vec3(0.0, -0.2, -2.0), 0.3, color(0.0, 0.0, 1.0))};  // coincides with the first
@@ -373,7 +368,6 @@ TEST(DepthOrder, ALaterSphereAtTheSameDistanceWinsAcrossAnEarlyStop) {
   scene_params p;
   p.camera.image_width = 65;  // the middle pixel's ray meets both spheres at their nearest point:
   p.camera.image_height = 37;  // the hit is exactly as near as the next sphere's distance can be
-  const auto flat = [](vec3 at, double r, color c) { return sphere{at, r, shading::flat, c}; };
   p.spheres.push_back(flat(vec3(0.0, 0.0, -2.0), 0.3, color(1.0, 0.0, 0.0)));  // red, first
   for (int k = 0; k < 40; ++k)  // farther spheres, some lists' later entries
     p.spheres.push_back(flat(vec3(0.05 * (k % 7) - 0.15, 0.05 * (k / 7) - 0.15, -3.0 - 0.1 * k), 0.2, color(0.0, 1.0, 0.0)));
