@@ -102,7 +102,7 @@ std::string cut_long_words(std::string_view message) {
   return r;
 }
 
-// The row a camera or sky field is set by (the camera position has two).
+// The row a camera, sky or light field is set by (the camera position has two).
 setting_id row_for(scene_field f, const settings& s) {
   switch (f) {
     case scene_field::width: return width;
@@ -116,6 +116,10 @@ setting_id row_for(scene_field f, const settings& s) {
     case scene_field::vfov: return vfov;
     case scene_field::sky_bottom: return sky_bottom;
     case scene_field::sky_top: return sky_top;
+    case scene_field::light_direction: return light;
+    case scene_field::light_shadows: return shadows;
+    case scene_field::ao_samples: return ao;
+    case scene_field::ao_distance: return ao_distance;
     default: return scene;
   }
 }
@@ -141,7 +145,7 @@ scene_params scene_of(const settings& cli, job& j) {
     return usage_error{"--scene", file + ": " + std::string(source) + ": " + why};
   };
   scene_params& params = contents.scene;
-  if (auto e = resolve(merged, params.camera, params.sky)) throw blame(e->source, e->message);
+  if (auto e = resolve(merged, params.camera, params.sky, params.light)) throw blame(e->source, e->message);
   // What one value cannot say (lookat = lookfrom, vup along the view, a
   // derived height, spheres far from the camera) is the scene's to check
   // (scene/scene.h), once; here only the field it blames becomes the

@@ -95,6 +95,8 @@
 
 namespace raycast {
 
+struct secondary_rays;  // light/secondary.h
+
 // A sphere's shading, as float_spheres::kind holds it.
 namespace shading_kind {
 inline constexpr float normal = 0.0f, flat = 1.0f, lit = 2.0f;
@@ -160,8 +162,13 @@ struct sphere_arrays {
   size_t n = 0;
   bool any_flat = false, any_normal = false, any_lit = false, any_inside = false;
   // Whether each hit carries its sphere's index in the scene: for the tie
-  // rule of a reordered scene, and for trace_pixel.
+  // rule of a reordered scene, for trace_pixel and for secondary rays.
   bool track_index = false;
+  // Lit spheres' light (scene/light.h): the unit direction toward a
+  // directional light (3 floats), or null for the headlight; and the
+  // shadow and ambient-occlusion rays, or null for none.
+  const float* light = nullptr;
+  const secondary_rays* secondary = nullptr;
 
   // Sphere k's index in the scene.
   RAYCAST_INLINE uint32_t scene_index(size_t k) const { return order ? order[k] : uint32_t(k); }

@@ -128,7 +128,7 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
         } else {
           closest_hit<Shades> h;
           intersect<Ortho>(sp, cull ? lists.list(b) : nullptr, tests, ry, h);
-          shade(sky, sp, h, ry, c);
+          shade(sky, sp, h, ry, {i0, j, 0}, c);
         }
         store_window<Float>(out, i0, c0, c1, c);
       }
@@ -207,7 +207,7 @@ __attribute__((always_inline)) inline void sample_pass(const sampling::sample_pl
                                                        const sampling::pixel_seeds<vuint>& seeds,
                                                        const sample_camera<K>& cam, const vfloat base[5],
                                                        const sphere_arrays& sp, const uint32_t* list, size_t tests,
-                                                       uint32_t t0, sample_sums& sums) {
+                                                       uint32_t t0, const pixel_at& at, sample_sums& sums) {
   rays ry[M];
   for (int u = 0; u < M; ++u) {
     vfloat xi, eta;  // counts of the sampler's offset_unit
@@ -223,7 +223,7 @@ __attribute__((always_inline)) inline void sample_pass(const sampling::sample_pl
   // compiler knows the closest hit starts empty.
   if (tests == 1) intersect<Shades, M, Ortho>(sp, list, 1, ry, h, cam.fz_dz);
   else intersect<Shades, M, Ortho>(sp, list, tests, ry, h, cam.fz_dz);
-  for (int u = 0; u < M; ++u) sums.add(sp, h[u], ry[u]);
+  for (int u = 0; u < M; ++u) sums.add(sp, h[u], ry[u], {at.i0, at.j, t0 + uint32_t(u)});
 }
 
 // Many samples per pixel (scene/sampler.h; the order is kernels/scalar.h's
@@ -268,9 +268,10 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
         const sampling::pixel_seeds<vuint> seeds = sampling::seeds_for<K>(plan, column, uint32_t(j));
         sample_sums sums;
         uint32_t t = 0;
+        const pixel_at at{i0, j, 0};
         for (; t + samples_per_pass <= plan.count; t += samples_per_pass)
-          sample_pass<Shades, K, samples_per_pass, Ortho>(plan, seeds, cam, base, sp, list, tests, t, sums);
-        for (; t < plan.count; ++t) sample_pass<Shades, K, 1, Ortho>(plan, seeds, cam, base, sp, list, tests, t, sums);
+          sample_pass<Shades, K, samples_per_pass, Ortho>(plan, seeds, cam, base, sp, list, tests, t, at, sums);
+        for (; t < plan.count; ++t) sample_pass<Shades, K, 1, Ortho>(plan, seeds, cam, base, sp, list, tests, t, at, sums);
         vfloat c[3];
         sums.average<Shades>(s, float(plan.count), c);
         if (f32) store_window<true>(out, i0, c0, c1, c);

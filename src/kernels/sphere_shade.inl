@@ -1,10 +1,11 @@
 // Shading of the sphere kernel (sphere_kernel.inl), per instruction set:
 // the sky where no sphere was hit, a hit's normal, headlight and colour
-// (float_spheres.h), and the per-lane sums of the sampled path.
+// (float_spheres.h; the light of lit ones: scene/light.h), and the per-lane sums of the sampled path.
 #pragma once
 #include <cfloat>
 
 #include "kernels/sampled_sky.h"
+#include "light/secondary.h"
 #include "kernels/sky_shade.inl"
 #include "kernels/sphere_hit.inl"
 
@@ -32,33 +33,71 @@ struct sky_shader {
 };
 
 // The normal of each lane that hit a normal-shaded sphere (float_spheres.h):
-// N, facing the ray inside a sphere.
+// N, facing the ray inside a sphere; `back`, where it was turned so.
 template <int Shades>
-RAYCAST_INLINE void hit_normal(const sphere_arrays& sp, const closest_hit<Shades>& h, const rays& r, vfloat n[3]) {
+RAYCAST_INLINE void hit_normal(const sphere_arrays& sp, const closest_hit<Shades>& h, const rays& r, vfloat n[3],
+                               vmask* back = nullptr) {
   const vfloat* d = r.d;
   const vfloat f[3] = {h.fx, h.fy, h.fz};
   for (int k = 0; k < 3; ++k) n[k] = (f[k] + h.s * d[k]) * h.inv_r;
   if (sp.any_inside) {  // face the ray, inside a sphere
-    const vmask back = (h.inside == 1.0f) & ((n[0] * d[0] + n[1] * d[1]) + n[2] * d[2] >= 0.0f);
-    for (int k = 0; k < 3; ++k) n[k] = select(back, -n[k], n[k]);
+    const vmask turned = (h.inside == 1.0f) & ((n[0] * d[0] + n[1] * d[1]) + n[2] * d[2] >= 0.0f);
+    for (int k = 0; k < 3; ++k) n[k] = select(turned, -n[k], n[k]);
+    if (back) *back = turned;
   }
 }
 
-// The headlight of lit spheres (float_spheres.h): lit_ambient + lit_diffuse
-// max(-(N . d) / sqrt(n2), 0).
-RAYCAST_INLINE vfloat headlight(const vfloat n[3], const vfloat d[3], vfloat n2) {
-  const vfloat facing = -((n[0] * d[0] + n[1] * d[1]) + n[2] * d[2]) / sqrt(n2);
-  return vfloat(lit_ambient) + vfloat(lit_diffuse) * max(facing, 0.0f);
+// Which pixels a batch's lanes are (lane l: column i0 + l of row j), and
+// which antialiasing sample: what ambient occlusion draws its numbers from.
+struct pixel_at {
+  int64_t i0, j;
+  uint32_t sample;
+};
+
+// The light of lit spheres (scene/light.h): lit_ambient + lit_diffuse
+// max(N . L, 0), L the directional light's, or the headlight's -d / sqrt(n2):
+// max(-(N . d) / sqrt(n2), 0). With shadow or ambient-occlusion rays, each
+// lit lane's S and A come from light/secondary.h, compiled once.
+template <int Shades>
+RAYCAST_INLINE vfloat lit_light(const sphere_arrays& sp, const closest_hit<Shades>& h, const rays& r,
+                                const vfloat n[3], vmask back, vmask lit, const pixel_at& at) {
+  vfloat diffuse;
+  if (sp.light) {
+    diffuse = max((n[0] * sp.light[0] + n[1] * sp.light[1]) + n[2] * sp.light[2], 0.0f);
+  } else {
+    const vfloat* d = r.d;
+    diffuse = max(-((n[0] * d[0] + n[1] * d[1]) + n[2] * d[2]) / sqrt(r.n2), 0.0f);
+  }
+  if (!sp.secondary) return vfloat(lit_ambient) + vfloat(lit_diffuse) * diffuse;
+  alignas(64) float bits[2][N], light[lit_lanes::most > N ? lit_lanes::most : N] = {};
+  lit_lanes ls;
+  ls.i0 = at.i0;
+  ls.j = at.j;
+  ls.sample = at.sample;
+  store(bits[0], select(lit, vfloat(1.0f), vfloat(0.0f)));
+  store(bits[1], select(back, vfloat(1.0f), vfloat(0.0f)));
+  store(light, as_float(h.index));
+  for (int l = 0; l < N; ++l) __builtin_memcpy(&ls.sphere[l], &light[l], sizeof(float));
+  for (int k = 0; k < 3; ++k) store(light, n[k]), __builtin_memcpy(ls.n[k], light, sizeof(float) * N);
+  store(light, diffuse);
+  __builtin_memcpy(ls.diffuse, light, sizeof(float) * N);
+  for (int l = 0; l < N; ++l) {
+    ls.lit |= bits[0][l] != 0.0f ? 1u << l : 0u;
+    ls.inside |= bits[1][l] != 0.0f ? 1u << l : 0u;
+  }
+  light_lanes(*sp.secondary, ls, light);
+  return vfloat::load(light);
 }
 
 // The hit colour of each lane that hit (float_spheres.h): 0.5 (N + 1), the
 // sphere's flat colour, or its lit colour.
 template <int Shades>
 RAYCAST_INLINE void hit_color(const sphere_arrays& sp, const closest_hit<Shades>& h, const rays& r,
-                               vfloat out[3]) {
+                               const pixel_at& at, vfloat out[3]) {
   vfloat n[3];
+  vmask back{};
   if constexpr ((Shades & normal_shading) != 0) {
-    hit_normal(sp, h, r, n);
+    hit_normal(sp, h, r, n, &back);
     for (int k = 0; k < 3; ++k) out[k] = (n[k] + 1.0f) * 0.5f;
   }
   const vfloat albedo[3] = {h.red, h.green, h.blue};
@@ -69,7 +108,7 @@ RAYCAST_INLINE void hit_color(const sphere_arrays& sp, const closest_hit<Shades>
     for (int k = 0; k < 3; ++k) out[k] = select(flat, albedo[k], out[k]);
   } else if constexpr (Shades == all_shadings) {
     const vmask flat = h.kind == shading_kind::flat, lit = h.kind == shading_kind::lit;
-    const vfloat light = any(lit) ? headlight(n, r.d, r.n2) : vfloat(0.0f);
+    const vfloat light = any(lit & h.hit) ? lit_light(sp, h, r, n, back, lit & h.hit, at) : vfloat(0.0f);
     for (int k = 0; k < 3; ++k) out[k] = select(flat, albedo[k], select(lit, albedo[k] * light, out[k]));
   }
 }
@@ -78,13 +117,13 @@ RAYCAST_INLINE void hit_color(const sphere_arrays& sp, const closest_hit<Shades>
 // sky where nothing was hit.
 template <int Shades>
 RAYCAST_INLINE void shade(const sky_shader& sky, const sphere_arrays& sp, const closest_hit<Shades>& h,
-                          const rays& r, vfloat out[3]) {
+                          const rays& r, const pixel_at& at, vfloat out[3]) {
   if (none(h.hit)) {
     sky.shade(r, out);
     return;
   }
   vfloat hit[3];
-  hit_color(sp, h, r, hit);
+  hit_color(sp, h, r, at, hit);
   if (all(h.hit)) {
     for (int k = 0; k < 3; ++k) out[k] = hit[k];
     return;
@@ -115,14 +154,15 @@ struct sample_sums {
 
   // One sample's closest hits, then the sky where it hit nothing.
   template <int Shades>
-  RAYCAST_INLINE void add(const sphere_arrays& sp, const closest_hit<Shades>& h, const rays& r) {
+  RAYCAST_INLINE void add(const sphere_arrays& sp, const closest_hit<Shades>& h, const rays& r, const pixel_at& at) {
     if (any(h.hit)) {
       const bool every = all(h.hit);
       vfloat n[3];
+      vmask back{};
       if constexpr ((Shades & normal_shading) != 0) {
         vmask normal = h.hit;
         if constexpr (mixed<Shades>) normal = normal & (h.kind == shading_kind::normal);
-        hit_normal(sp, h, r, n);
+        hit_normal(sp, h, r, n, &back);
         if constexpr (Shades == normal_shading) {
           for (int k = 0; k < 3; ++k) normals[k] = normals[k] + (every ? n[k] : select(normal, n[k], 0.0f));
         } else {
@@ -137,7 +177,7 @@ struct sample_sums {
         if constexpr (Shades == all_shadings) {
           const vmask lit = h.hit & (h.kind == shading_kind::lit);
           if (any(lit)) {
-            const vfloat light = headlight(n, r.d, r.n2);
+            const vfloat light = lit_light(sp, h, r, n, back, lit, at);
             for (int k = 0; k < 3; ++k) c[k] = select(lit, c[k] * light, c[k]);
           }
         }

@@ -57,7 +57,7 @@ rc::shading shading_of(const std::string& s) {
   value_error("shade", "'" + s + "' is not one of normal, flat, lit");
 }
 
-// The camera and sky keywords (text, as the command line spells them),
+// The camera, sky and light keywords (text, as the command line spells them),
 // parsed by the input table's parsers into settings that override the
 // scene's keys as the command line's options do; errors name the scene
 // file's key ("camera.vfov").
@@ -67,7 +67,7 @@ raycast::settings keyword_settings(const std::map<std::string, std::string>& key
     const raycast::setting* row = nullptr;
     for (const raycast::setting& r : raycast::scene_settings())
       if (r.keyword == keyword) row = &r;
-    if (!row) value_error(keyword, "is not a camera or sky keyword");
+    if (!row) value_error(keyword, "is not a camera, sky or light keyword");
     raycast::given g;
     g.source = std::string(row->file_key);
     if (auto e = raycast::parse_value(*row, text, g)) value_error(g.source, *e);

@@ -80,6 +80,10 @@ scene_params to_internal(const scene& s) {
   c.proj = raycast::projection(uint8_t(s.cam.projection));
   p.sky.bottom = to_internal(s.sky.bottom);
   p.sky.top = to_internal(s.sky.top);
+  if (s.light.direction) p.light.direction = to_internal(*s.light.direction);
+  p.light.shadows = s.light.shadows;
+  p.light.ao_samples = s.light.ao_samples;
+  p.light.ao_distance = s.light.ao_distance;
   if (s.arrays && !s.spheres.empty()) invalid("spheres", "give spheres or arrays, not both");
   p.spheres.reserve(s.spheres.size());
   for (size_t k = 0; k < s.spheres.size(); ++k) {
@@ -128,6 +132,10 @@ scene from_internal(const scene_params& p) {
   s.cam.projection = projection(uint8_t(c.proj));
   s.sky.bottom = from_internal(p.sky.bottom);
   s.sky.top = from_internal(p.sky.top);
+  if (p.light.direction) s.light.direction = from_internal(*p.light.direction);
+  s.light.shadows = p.light.shadows;
+  s.light.ao_samples = p.light.ao_samples;
+  s.light.ao_distance = p.light.ao_distance;
   s.spheres.reserve(p.spheres.size());
   for (const raycast::sphere& b : p.spheres)
     s.spheres.push_back(sphere{from_internal(b.center), b.radius, from_internal(b.shade), from_internal(b.flat_color)});
@@ -252,7 +260,7 @@ scene scene_with(const std::string& kind, const std::string& source, const setti
   }
   settings merged = c.keys;
   merge(merged, over, scene_settings());
-  if (auto e = resolve(merged, c.scene.camera, c.scene.sky)) invalid(e->source, e->message);
+  if (auto e = resolve(merged, c.scene.camera, c.scene.sky, c.scene.light)) invalid(e->source, e->message);
   return from_internal(c.scene);
 }
 

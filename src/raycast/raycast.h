@@ -14,6 +14,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -54,6 +55,16 @@ struct sky {
   vec3 top{0.5, 0.7, 1.0};
 };
 
+// How lit spheres are lit: colour (0.2 A + 0.8 max(0, N . L) S), L toward
+// the light (without a direction, the camera: a headlight), S 0 where a
+// sphere shadows the hit (shadows), A the fraction of ao_samples
+// cosine-weighted rays about N that meet no sphere within ao_distance.
+struct light {
+  std::optional<vec3> direction;  // toward the light; any length but 0
+  bool shadows = false;           // needs a direction
+  uint32_t ao_samples = 0;        // 0 to 4096; 0: no ambient occlusion
+  double ao_distance = std::numeric_limits<double>::infinity();  // above 0; default unbounded
+};
 struct sphere {
   vec3 center{0.0, 0.0, 0.0};
   double radius = 1.0;
@@ -86,6 +97,7 @@ struct scene {
   struct sky sky;
   std::vector<sphere> spheres;
   std::optional<sphere_arrays> arrays;  // instead of spheres, when set
+  struct light light;
 };
 
 // "sky", "red-sphere", "normals", "world" (the command line's --scene NAME).

@@ -62,4 +62,35 @@ inline bool hit_world(std::span<const sphere> world, const ray& r, double t_min,
   return hit_anything;
 }
 
+// The secondary rays' test (light/secondary.h's rules, in double): whether
+// the segment o + t d, t in [0, t_max] (d of unit length), meets the solid
+// ball of any sphere but skip; a start inside a sphere is blocked by it.
+inline bool blocked(std::span<const sphere> world, const point3& o, const vec3& d, double t_max, const sphere* skip) {
+  for (const sphere& s : world) {
+    if (&s == skip) continue;
+    const vec3 oc = o - s.center;
+    const double r2 = s.radius * s.radius;
+    if (glm::dot(oc, oc) <= r2) return true;
+    const double b = glm::dot(oc, d);
+    if (b >= 0.0) continue;
+    const vec3 v = oc - b * d;  // from the centre to the line's nearest point
+    const double m2 = glm::dot(v, v);
+    if (m2 > r2) continue;
+    if (-b - std::sqrt(r2 - m2) <= t_max) return true;
+  }
+  return false;
+}
+
+// Ambient occlusion's cosine-weighted direction of numbers (u1, u2) about the
+// unit normal n, in Duff et al.'s frame (light/secondary.h), in double.
+inline vec3 cosine_direction(const vec3& n, double u1, double u2) {
+  const double sign = std::copysign(1.0, n.z);
+  const double a = -1.0 / (sign + n.z);
+  const double b = n.x * n.y * a;
+  const vec3 t(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
+  const vec3 bt(b, sign + n.y * n.y * a, -n.y);
+  const double phi = 2.0 * M_PI * u1, rad = std::sqrt(u2);
+  return rad * std::cos(phi) * t + rad * std::sin(phi) * bt + std::sqrt(1.0 - u2) * n;
+}
+
 }  // namespace raycast

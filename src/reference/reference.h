@@ -13,15 +13,20 @@
 namespace raycast {
 
 // Colour of pixel column i, row j (j = 0 is the bottom row), in double.
-color reference_pixel(const scene& s, int64_t i, int64_t j);
+// Lit spheres under the scene's light (scene/light.h): shadow and ambient-
+// occlusion rays against every sphere, ambient occlusion's numbers from ao
+// (null: the default sampler's, seed 0).
+color reference_pixel(const scene& s, int64_t i, int64_t j, const sampling::ao_plan* ao = nullptr);
 
 // The book's ch. 7 average over the plan's samples (scene/sampler.h gives
 // their offsets xi, eta): u = (i + xi) / (W - 1), v = (j + eta) / (H - 1),
 // the colours summed in double and divided by the count.
-color reference_pixel_samples(const scene& s, const sampling::sample_plan& plan, int64_t i, int64_t j);
+color reference_pixel_samples(const scene& s, const sampling::sample_plan& plan, int64_t i, int64_t j,
+                              const sampling::ao_plan* ao = nullptr);
 
 // Fills the band's pixels (its rows and column window); with samples, each
 // the average of its samples. Single-threaded.
-void render_reference(const scene& s, const image_band& band, const sampling::sample_plan* samples = nullptr);
+void render_reference(const scene& s, const image_band& band, const sampling::sample_plan* samples = nullptr,
+                      const sampling::ao_plan* ao = nullptr);
 
 }  // namespace raycast

@@ -35,6 +35,12 @@ class plan {
   const kernels::kernel_args& args() const { return args_; }
   // Many samples per pixel: the kernels' sampled path (kernels/kernel.h).
   void set_samples(const sampling::sample_plan* p) { args_.samples = p; }
+  // Lit spheres' light (float_spheres.h): both must outlive the plan.
+  void set_light(const float* direction, const secondary_rays* secondary) {
+    args_.spheres.light = direction;
+    args_.spheres.secondary = secondary;
+    if (secondary) args_.spheres.track_index = true;  // the hit sphere, per lane
+  }
   // The frame's row index (kernels/culling.h); it must outlive the plan.
   void set_rows(const row_index& rows) {
     args_.row_first = rows.first.data();

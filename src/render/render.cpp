@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdlib>
 #include <mutex>
 #include <stdexcept>
@@ -96,7 +97,7 @@ int preparation_threads(const scene& s, int threads) {
 }  // namespace
 
 renderer::renderer(const scene& s, const render_options& opts)
-    : scene_{s.cam, s.sky, {}, std::nullopt},
+    : scene_{s.cam, s.sky, {}, std::nullopt, s.light},
       fscene_(prepare_float_scene(s, preparation_threads(s, opts.threads), opts.sort_from, opts.order)),
       which_(opts.which == backend::automatic ? best_backend() : opts.which),
       prec_(opts.prec),
@@ -127,6 +128,24 @@ renderer::renderer(const scene& s, const render_options& opts)
       plan_->set_rows(rows_);
     }
   }
+  ao_ = sampling::make_ao_plan(opts.sampler, s.light.ao_samples, opts.seed);
+  if (plan_ && fscene_.spheres.any_lit && s.light.any()) set_light(s);
+}
+
+void renderer::set_light(const scene& s) {
+  if (s.light.direction) {
+    const vec3 l = unit_vector(*s.light.direction);
+    for (int k = 0; k < 3; ++k) light_[k] = float(l[k]);
+  }
+  if (s.light.secondary()) {
+    grid_.emplace(s, preparation_threads(s, threads_));
+    secondary_.grid = &*grid_;
+    for (int k = 0; k < 3; ++k) secondary_.light[k] = light_[k];
+    secondary_.shadows = s.light.shadows;
+    secondary_.ao = ao_;
+    secondary_.ao_distance = float(std::ldexp(s.light.ao_distance, -grid_->scale_exp));
+  }
+  plan_->set_light(s.light.direction ? light_ : nullptr, s.light.secondary() ? &secondary_ : nullptr);
 }
 
 void renderer::render_rows(const image_band& band, int64_t r0, int64_t r1, bool paired) const {
@@ -136,7 +155,7 @@ void renderer::render_rows(const image_band& band, int64_t r0, int64_t r1, bool 
   part.data = band.row(r0);
   part.row_begin = r0;
   part.row_end = r1;
-  render_reference(scene_, part, samples_ ? &samples_->plan() : nullptr);
+  render_reference(scene_, part, samples_ ? &samples_->plan() : nullptr, &ao_);
 }
 
 void renderer::render(const image_band& band) const {

@@ -7,6 +7,8 @@
 #include "kernels/culling.h"
 #include "kernels/float_scene.h"
 #include "kernels/precision.h"
+#include "light/grid.h"
+#include "light/secondary.h"
 #include "render/backend.h"
 #include "render/plan.h"
 #include "scene/sampler.h"
@@ -59,6 +61,7 @@ class renderer {
 
  private:
   void render_rows(const image_band& band, int64_t r0, int64_t r1, bool paired) const;
+  void set_light(const scene& s);
 
   scene scene_;  // the spheres only for the reference backend
   float_scene fscene_;
@@ -71,6 +74,13 @@ class renderer {
   std::optional<plan> plan_;  // SIMD backends only
   row_index rows_;            // SIMD backends, scenes with spheres
   std::optional<sampling::sample_table> samples_;  // more than one sample
+  // Lit spheres' light (scene/light.h), for the SIMD backends: the
+  // directional light's unit direction, and the grid that shadow and
+  // ambient-occlusion rays ask, built only when the scene casts them.
+  float light_[3] = {0, 0, 0};
+  sampling::ao_plan ao_;
+  std::optional<sphere_grid> grid_;
+  secondary_rays secondary_;
 };
 
 // Number of threads "all cores" means here.

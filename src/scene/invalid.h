@@ -27,6 +27,10 @@ enum class scene_field : uint8_t {
   sphere_radius,
   sphere_color,
   spheres,  // their count
+  light_direction,
+  light_shadows,
+  ao_samples,
+  ao_distance,
 };
 
 std::string_view to_string(scene_field f);

@@ -39,15 +39,54 @@ uint32_t sobol_dimension1(uint32_t index) {
   return x;
 }
 
+// The seed folded to 32 bits.
+uint32_t seed_key_of(uint64_t seed) { return mix(uint32_t(seed) ^ mix(uint32_t(seed >> 32) + golden)); }
+
+// The strata's columns for count samples: the largest divisor not above sqrt(count).
+uint32_t strata_columns(uint32_t count) {
+  uint32_t nx = 1;
+  for (uint32_t d = 1; uint64_t(d) * d <= count; ++d)
+    if (count % d == 0) nx = d;
+  return nx;
+}
+
 }  // namespace
+
+ao_plan make_ao_plan(sampler_kind kind, uint32_t count, uint64_t seed) {
+  ao_plan p;
+  p.kind = kind;
+  p.seed_key = seed_key_of(seed);
+  p.count = count;
+  p.nx = count > 0 ? strata_columns(count) : 1;
+  p.ny = count > 0 ? count / p.nx : 1;
+  p.inv_nx = 1.0f / float(p.nx);
+  p.inv_ny = 1.0f / float(p.ny);
+  return p;
+}
+
+void ao_numbers(const ao_plan& p, uint32_t i, uint32_t j, uint32_t s, uint32_t k, float& u1, float& u2) {
+  const uint32_t key = mix(mix(mix(i ^ p.seed_key) + j * golden) ^ 0x2c1b3c6du);
+  const uint32_t g = s * p.count + k;
+  if (p.kind == sampler_kind::sobol) {
+    u1 = float((sobol_dimension0(g) ^ mix(key ^ 0x68bc21ebu)) >> 8) * 0x1p-24f;
+    u2 = float((sobol_dimension1(g) ^ mix(key ^ 0x02e5be93u)) >> 8) * 0x1p-24f;
+    return;
+  }
+  const uint32_t r = mix(key + (g + 1) * golden);
+  if (p.kind == sampler_kind::random) {
+    u1 = float(r >> 8) * 0x1p-24f;
+    u2 = float(mix(r ^ 0x297a2d39u) >> 8) * 0x1p-24f;
+  } else {
+    u1 = min((float(k % p.nx) + unit_high<float>(r)) * p.inv_nx, one_below);
+    u2 = min((float(k / p.nx) + unit_low<float>(r)) * p.inv_ny, one_below);
+  }
+}
 
 sample_table::sample_table(sampler_kind kind, uint32_t count, uint64_t seed) {
   plan_.kind = kind;
   plan_.count = count;
-  plan_.seed_key = mix(uint32_t(seed) ^ mix(uint32_t(seed >> 32) + golden));
-  uint32_t nx = 1;
-  for (uint32_t d = 1; uint64_t(d) * d <= count; ++d)
-    if (count % d == 0) nx = d;
+  plan_.seed_key = seed_key_of(seed);
+  const uint32_t nx = strata_columns(count);
   plan_.nx = nx;
   plan_.ny = count / nx;
   plan_.inv_nx = 1.0f / float(plan_.nx);

@@ -154,6 +154,24 @@ class sample_table {
   sample_plan plan_;
 };
 
+// Ambient occlusion's numbers (light/README.md): (u1, u2) in [0, 1) of ray k
+// of the `count` rays from the hit of sample s of pixel (i, j), from the
+// render's sampler and seed, counter-based as the offsets are (a pixel's
+// rays are the same in any band, region, thread or backend). The rays of
+// all samples of a pixel are one sequence, index g = s count + k, keyed by
+// the pixel's key xor a constant of their own:
+// - random: u1, u2 from two hashes of (key + (g + 1) golden), 24 bits each;
+// - stratified: the count rays of each sample in an nx x ny grid of strata
+//   (as the offsets' grid), jittered by that hash's two 16-bit halves;
+// - sobol: points g of the 2-D Sobol sequence, a digital shift per pixel.
+struct ao_plan {
+  sampler_kind kind = sampler_kind::sobol;
+  uint32_t seed_key = 0, count = 0, nx = 1, ny = 1;
+  float inv_nx = 1.0f, inv_ny = 1.0f;
+};
+ao_plan make_ao_plan(sampler_kind kind, uint32_t count, uint64_t seed);
+void ao_numbers(const ao_plan& p, uint32_t i, uint32_t j, uint32_t s, uint32_t k, float& u1, float& u2);
+
 // (xi, eta) of sample s of pixel (i, j), for the double reference and tests;
 // and as counts of offset_unit_of(p.kind), for the scalar float renderer.
 void sample_offsets(const sample_plan& p, uint32_t i, uint32_t j, uint32_t s, float& xi, float& eta);

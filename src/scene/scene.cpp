@@ -23,6 +23,10 @@ std::string_view to_string(scene_field f) {
     case scene_field::sphere_radius: return "spheres[].radius";
     case scene_field::sphere_color: return "spheres[].color";
     case scene_field::spheres: return "spheres";
+    case scene_field::light_direction: return "light.direction";
+    case scene_field::light_shadows: return "light.shadows";
+    case scene_field::ao_samples: return "ambient_occlusion.samples";
+    case scene_field::ao_distance: return "ambient_occlusion.distance";
   }
   return "?";
 }
@@ -66,6 +70,7 @@ std::vector<sphere> sphere_vector(const scene& s) {
 std::optional<invalid_field> validate(const scene_params& p) {
   if (auto e = validate(p.camera)) return e;
   if (auto e = validate(p.sky)) return e;
+  if (auto e = validate(p.light)) return e;
   const size_t n = p.arrays ? p.arrays->count : p.spheres.size();
   if (n > max_spheres)
     return invalid_field{scene_field::spheres,
@@ -85,10 +90,12 @@ std::optional<invalid_field> validate(const scene_params& p) {
   return std::nullopt;
 }
 
-scene make_scene(const scene_params& p) { return scene{make_camera(p.camera), p.sky, p.spheres, p.arrays}; }
+scene make_scene(const scene_params& p) {
+  return scene{make_camera(p.camera), p.sky, p.spheres, p.arrays, p.light};
+}
 
 scene make_scene(scene_params&& p) {
-  return scene{make_camera(p.camera), p.sky, std::move(p.spheres), p.arrays};
+  return scene{make_camera(p.camera), p.sky, std::move(p.spheres), p.arrays, p.light};
 }
 
 }  // namespace raycast

@@ -10,6 +10,7 @@
 
 #include "scene/camera.h"
 #include "scene/invalid.h"
+#include "scene/light.h"
 #include "scene/sky.h"
 #include "scene/sphere.h"
 
@@ -64,6 +65,7 @@ struct scene {
   std::vector<sphere> spheres;  // empty: the sky alone, today's kernel
   // Instead of `spheres`, when set: spheres read from a caller's arrays.
   std::optional<sphere_view> arrays = std::nullopt;
+  lighting light;  // scene/light.h: the headlight unless set
 
   size_t sphere_count() const { return arrays ? arrays->count : spheres.size(); }
   sphere sphere_at(size_t k) const { return arrays ? arrays->at(k) : spheres[k]; }
@@ -79,6 +81,7 @@ struct scene_params {
   raycast::sky sky;
   std::vector<sphere> spheres;
   std::optional<sphere_view> arrays = std::nullopt;  // instead of spheres, when set
+  lighting light;
 };
 
 // The largest sphere radius, and the largest distance from the camera
@@ -98,6 +101,7 @@ inline constexpr size_t max_spheres = 0xffffffffu;
 std::optional<invalid_field> validate(const sphere& s, size_t index);
 
 // The first field that cannot make a scene, or nullopt: the camera, the sky,
+// the lighting,
 // the sphere count (at most max_spheres), each sphere and its centre within
 // max_sphere_extent of the camera.
 std::optional<invalid_field> validate(const scene_params& p);

@@ -462,11 +462,19 @@ void reader::read_setting(od::value& v, const setting& row, given& g) {
       g.tokens[0] = std::string(text.substr(0, 64));
       return parse(text, path);
     }
+    case value_type::flag: {  // true or false: "shadows": true
+      bool b = false;
+      if (v.get_bool().get(b) != simdjson::SUCCESS) fail(path, "must be true or false", start);
+      g.v.flag = b;
+      g.tokens[0] = b ? "true" : "false";
+      break;
+    }
     default: fail(path, "is not a scene file key", start);
   }
 }
 
-// The keys of "camera" or "sky": the input table's rows with that file key prefix.
+// The keys of "camera", "sky", "light" or "ambient_occlusion": the input
+// table's rows with that file key prefix.
 void reader::read_settings(od::value& v, std::string_view object_name, settings& out) {
   static const auto known_of = [](std::string_view prefix) {
     std::vector<std::string_view> names;
@@ -474,8 +482,12 @@ void reader::read_settings(od::value& v, std::string_view object_name, settings&
       if (row.file_key.substr(0, row.file_key.find('.')) == prefix) names.push_back(row.file_key.substr(prefix.size() + 1));
     return names;
   };
-  static const std::vector<std::string_view> camera_keys = known_of("camera"), sky_keys = known_of("sky");
-  const std::vector<std::string_view>& known = object_name == "camera" ? camera_keys : sky_keys;
+  static const std::vector<std::string_view> camera_keys = known_of("camera"), sky_keys = known_of("sky"),
+                                             light_keys = known_of("light"), ao_keys = known_of("ambient_occlusion");
+  const std::vector<std::string_view>& known = object_name == "camera" ? camera_keys
+                                               : object_name == "sky"  ? sky_keys
+                                               : object_name == "light" ? light_keys
+                                                                        : ao_keys;
   const auto object_path = [&] { return std::string(object_name); };
   fields(object(v, object_path), object_path, known, [&](int key, od::value& value) {
     const setting& row = *find_file_key(std::string(object_name) + "." + std::string(known[size_t(key)]));
@@ -578,11 +590,10 @@ scene_file_contents reader::read() {
     if (e == simdjson::INCORRECT_TYPE) fail("", "must be an object", here());
     fail_json(e, here());
   }
-  static constexpr std::string_view root_keys[] = {"camera", "sky", "spheres"};
+  static constexpr std::string_view root_keys[] = {"camera", "sky", "spheres", "light", "ambient_occlusion"};
   fields(root, [] { return std::string(); }, root_keys, [&](int key, od::value& value) {
-    if (key == 0) read_settings(value, "camera", p.keys);
-    if (key == 1) read_settings(value, "sky", p.keys);
     if (key == 2) read_spheres(value, p.scene.spheres);
+    else read_settings(value, root_keys[key], p.keys);
   });
   // At the end, the document has no current location.
   const char* rest = nullptr;
@@ -908,7 +919,7 @@ namespace {
 std::variant<scene_params, scene_file_error> resolved(std::variant<scene_file_contents, scene_file_error>&& r) {
   if (auto* e = std::get_if<scene_file_error>(&r)) return std::move(*e);
   scene_file_contents& c = std::get<scene_file_contents>(r);
-  if (auto e = resolve(c.keys, c.scene.camera, c.scene.sky)) return scene_file_error{e->source, e->message};
+  if (auto e = resolve(c.keys, c.scene.camera, c.scene.sky, c.scene.light)) return scene_file_error{e->source, e->message};
   return std::move(c.scene);
 }
 

@@ -45,6 +45,14 @@ constexpr setting scene_rows[] = {
      "Colour looking straight down"},
     {sky_top, "--sky-top", "", "sky.top", "sky_top", vt::triple, color, {}, "R,G,B", "0.5,0.7,1.0",
      "Colour looking straight up"},
+    {light, "--light", "", "light.direction", "light", vt::triple, {}, {}, "X,Y,Z", "a headlight",
+     "Direction toward a directional light for lit spheres (instead of a light at the camera)"},
+    {shadows, "--shadows", "", "light.shadows", "shadows", vt::flag, {}, {}, "", "off",
+     "Hard shadows: a ray from each lit hit toward the --light"},
+    {ao, "--ao", "", "ambient_occlusion.samples", "ao", vt::integer, {0.0, double(max_ao_samples)}, {}, "N", "0",
+     "Ambient occlusion: rays per lit hit, cosine-weighted about the normal (0: none)"},
+    {ao_distance, "--ao-distance", "", "ambient_occlusion.distance", "ao_distance", vt::real, positive, {}, "D",
+     "unbounded", "How far an ambient occlusion ray looks for a sphere"},
 };
 static_assert(std::size(scene_rows) == scene_setting_count);
 
@@ -192,7 +200,10 @@ std::optional<std::string> parse_value(const setting& row, std::string_view text
     case vt::region: return parse_region(text, g.v.region);
     case vt::seed: return parse_seed(text, g.v.seed);
     case vt::text: g.v.text = std::string(text); return std::nullopt;
-    case vt::flag: g.v.flag = true; return std::nullopt;
+    case vt::flag:  // the command line's bare option, or a keyword's true / false
+      if (!text.empty() && text != "true" && text != "false") return quote_token(text) + " is not true or false";
+      g.v.flag = text != "false";
+      return std::nullopt;
   }
   return std::nullopt;
 }
@@ -253,7 +264,7 @@ std::optional<setting_error> meaningless_for_orthographic(const settings& s) {
   return std::nullopt;
 }
 
-std::optional<setting_error> resolve(const settings& s, camera_params& cp, sky& sk) {
+std::optional<setting_error> resolve(const settings& s, camera_params& cp, sky& sk, lighting& li) {
   for (const setting& row : scene_rows)
     if (s.has(row.id))
       if (auto e = check_range(row, *s[row.id])) return setting_error{&row, s[row.id]->source, *e + s[row.id]->where};
@@ -280,6 +291,10 @@ std::optional<setting_error> resolve(const settings& s, camera_params& cp, sky& 
   }
   if (auto v = get(sky_bottom)) sk.bottom = v->triple;
   if (auto v = get(sky_top)) sk.top = v->triple;
+  if (auto v = get(light)) li.direction = v->triple;
+  if (auto v = get(shadows)) li.shadows = v->flag;
+  if (auto v = get(ao)) li.ao_samples = uint32_t(v->integer);
+  if (auto v = get(ao_distance)) li.ao_distance = v->real;
   return std::nullopt;
 }
 

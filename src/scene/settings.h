@@ -1,5 +1,5 @@
 // The input table: every setting a user can give -- a command-line option, a
-// scene file's camera or sky key, a Python keyword -- declared once, with its
+// scene file's camera, sky, light or ambient_occlusion key, a Python keyword -- declared once, with its
 // value type, range, default and help. The command line (cli/options.cpp)
 // builds its options and --help from it, the scene file reader
 // (scene_file.cpp) its camera and sky keys, the Python module its keywords.
@@ -22,6 +22,7 @@
 #include <string_view>
 
 #include "scene/camera.h"
+#include "scene/light.h"
 #include "scene/sky.h"
 
 namespace raycast {
@@ -53,6 +54,10 @@ enum class setting_id : uint8_t {
   vup,
   sky_bottom,
   sky_top,
+  light,
+  shadows,
+  ao,
+  ao_distance,
   // The run's options: the command line's and the library's, not a scene's.
   output,
   scene,
@@ -69,7 +74,7 @@ enum class setting_id : uint8_t {
   version,
 };
 inline constexpr size_t setting_count = size_t(setting_id::version) + 1;
-inline constexpr size_t scene_setting_count = size_t(setting_id::sky_top) + 1;
+inline constexpr size_t scene_setting_count = size_t(setting_id::ao_distance) + 1;
 
 // Where a number (or each component of a triple) may lie.
 struct value_range {
@@ -166,10 +171,10 @@ std::optional<setting_error> check_groups(std::span<const setting> table, const 
 // group replaces the whole group.
 void merge(settings& base, const settings& over, std::span<const setting> table);
 
-// The merged scene settings applied to a camera and sky (defaults where not
-// given), ranges checked, derived settings computed: a vup without a lookat
-// looks down -z from the merged lookfrom. The camera's own rules
-// (validate(camera_params)) are the caller's to check after.
-std::optional<setting_error> resolve(const settings& s, camera_params& cp, sky& sk);
+// The merged scene settings applied to a camera, sky and lighting (defaults
+// where not given), ranges checked, derived settings computed: a vup without
+// a lookat looks down -z from the merged lookfrom. The camera's and the
+// lighting's own rules (validate()) are the caller's to check after.
+std::optional<setting_error> resolve(const settings& s, camera_params& cp, sky& sk, lighting& li);
 
 }  // namespace raycast

@@ -42,6 +42,8 @@ def _token(name, v):
     table's parsers (the same spellings, ranges and messages)."""
     if isinstance(v, str):
         return v
+    if isinstance(v, (bool, _np.bool_)):
+        return "true" if v else "false"
     if isinstance(v, (int, _np.integer)) and not isinstance(v, bool):
         return str(int(v))
     try:
@@ -55,13 +57,14 @@ def _token(name, v):
 
 
 _CAMERA_KEYWORDS = ("width", "height", "aspect", "lookfrom", "lookat", "vup", "vfov", "viewport_height",
-                    "focal_length", "projection", "sky_bottom", "sky_top")
+                    "focal_length", "projection", "sky_bottom", "sky_top", "light", "shadows", "ao",
+                    "ao_distance")
 
 
 def render(scene=None, *, centers=None, radii=None, colors=None, shade="normal",
            width=None, height=None, aspect=None, lookfrom=None, lookat=None, vup=None,
            vfov=None, viewport_height=None, focal_length=None, projection=None, sky_bottom=None, sky_top=None,
-           backend="auto", precision="exact", threads=0, samples=1, sampler="sobol", seed=0,
+           light=None, shadows=None, ao=None, ao_distance=None, backend="auto", precision="exact", threads=0, samples=1, sampler="sobol", seed=0,
            region=None, dtype="uint8"):
     """Render a scene; returns a numpy.ndarray of shape (H, W, 3), rows top first.
 
@@ -81,6 +84,10 @@ def render(scene=None, *, centers=None, radii=None, colors=None, shade="normal",
         viewport_height high; vfov and focal_length then mean nothing),
         sky_bottom, sky_top: override the scene's camera and sky, as the
         command line's options do.
+    light (x, y, z toward a directional light), shadows (True: hard shadows
+        from it), ao (ambient occlusion rays per hit, 0 to 4096), ao_distance
+        (how far they look; unbounded by default): how "lit" spheres are lit,
+        over the scene's "light" and "ambient_occlusion" keys.
     backend: "auto", "reference", "scalar", "sse2", "avx2", "avx512", "neon".
     precision: "exact" or "fast". threads: 0 for all cores.
     samples, sampler ("random", "stratified", "sobol"), seed: antialiasing.
@@ -109,7 +116,8 @@ def render(scene=None, *, centers=None, radii=None, colors=None, shade="normal",
             raise ValueError(f"region: want 4 numbers (x0, y0, x1, y1), got {len(region)}")
     given = dict(width=width, height=height, aspect=aspect, lookfrom=lookfrom, lookat=lookat, vup=vup,
                  vfov=vfov, viewport_height=viewport_height, focal_length=focal_length,
-                 projection=projection, sky_bottom=sky_bottom, sky_top=sky_top)
+                 projection=projection, sky_bottom=sky_bottom, sky_top=sky_top, light=light, shadows=shadows,
+                 ao=ao, ao_distance=ao_distance)
     camera = {k: _token(k, given[k]) for k in _CAMERA_KEYWORDS if given[k] is not None}
     return _raycast.render(
         kind, source, _spheres_array("centers", centers), _spheres_array("radii", radii),

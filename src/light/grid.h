@@ -1,0 +1,58 @@
+// The structure secondary rays ask: a uniform grid over the spheres, built
+// only when a render casts shadow or ambient-occlusion rays. Those rays
+// start anywhere and go anywhere, so the primary rays' row index (which
+// serves rays from the camera only) cannot answer them.
+//
+// The spheres are kept in the grid's own frame: world minus `origin` (the
+// middle of the spheres' bounding box), times 2^-scale_exp (a power of two
+// that brings the box into [-1, 1]: exact, so a scene at 1e-20 or 1e20 gives
+// the same float bits as at 1), rounded to float once. Each sphere is listed
+// in every cell its bounding box (widened by 2^-20 of the grid's size, far
+// above the query's rounding) overlaps. About N cells for N spheres, at
+// most 2^31 references; a scene of a few huge spheres among small ones
+// (whose boxes would list them in most cells) gets a coarser grid.
+//
+// Memory: 16 bytes a sphere (centre and radius), 4 bytes a reference (about
+// 6 a sphere in a packed box, fewer in a sparse cloud) and 4 bytes a cell
+// (about one a sphere): some 45 bytes a sphere in a packed box.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace raycast {
+
+class sphere_grid {
+ public:
+  sphere_grid() = default;
+  // Over every sphere of s; up to `threads` threads for large scenes.
+  explicit sphere_grid(const scene& s, int threads = 1);
+
+  // Whether the segment o + t d, t in [0, tmax] (grid units; d of unit
+  // length), meets a sphere's solid ball other than `skip`: a ray that
+  // starts inside a sphere is blocked by it. Grid units: world * 2^-scale_exp.
+  bool occluded(const float o[3], const float d[3], float tmax, uint32_t skip) const;
+
+  // Sphere k's centre (grid frame) and radius (grid units), x y z r.
+  const float* sphere(uint32_t k) const { return &spheres_[size_t(k) * 4]; }
+  double origin[3] = {0, 0, 0};
+  int scale_exp = 0;  // grid units = world units * 2^-scale_exp
+
+  size_t cells() const { return first_.empty() ? 0 : first_.size() - 1; }
+  size_t references() const { return refs_.size(); }
+  size_t bytes() const { return spheres_.size() * 4 + first_.size() * 4 + refs_.size() * 4; }
+
+ private:
+  bool cell_occluded(size_t cell, const float o[3], const float d[3], float tmax, uint32_t skip) const;
+
+  float lo_[3] = {0, 0, 0};
+  float h_ = 1, inv_h_ = 1;  // the cell's side, and 1 / it
+  int dims_[3] = {0, 0, 0};
+  std::vector<float> spheres_;   // 4 per sphere, the scene's order
+  std::vector<uint32_t> first_;  // cells + 1: cell c's references are refs_[first_[c] .. first_[c + 1])
+  std::vector<uint32_t> refs_;   // sphere indices, each cell's in the scene's order
+};
+
+}  // namespace raycast

@@ -1,0 +1,61 @@
+#include "light/secondary.h"
+
+#include <cmath>
+#include <limits>
+
+#include "scene/sphere.h"
+
+namespace raycast {
+
+void ao_direction(const float n[3], float u1, float u2, float dir[3]) {
+  const float sign = std::copysign(1.0f, n[2]);
+  const float a = -1.0f / (sign + n[2]);
+  const float b = n[0] * n[1] * a;
+  const float t[3] = {1.0f + sign * n[0] * n[0] * a, sign * b, -sign * n[0]};
+  const float bt[3] = {b, sign + n[1] * n[1] * a, -n[1]};
+  const float phi = 6.28318530717958647692f * u1, rad = std::sqrt(u2);
+  const float x = rad * std::cos(phi), y = rad * std::sin(phi), z = std::sqrt(1.0f - u2);
+  for (int k = 0; k < 3; ++k) dir[k] = (x * t[k] + y * bt[k]) + z * n[k];
+}
+
+namespace {
+
+// One lane: S and A, and the light they make.
+float light_lane(const secondary_rays& r, const lit_lanes& ls, int l) {
+  const sphere_grid& g = *r.grid;
+  const uint32_t k = ls.sphere[l];
+  const float* s = g.sphere(k);
+  const bool inside = (ls.inside >> l) & 1u;
+  const float n[3] = {ls.n[0][l], ls.n[1][l], ls.n[2][l]};
+  // P = C + r n_out, n_out the outward normal (the faced one, turned back inside).
+  float p[3];
+  for (int c = 0; c < 3; ++c) p[c] = s[c] + s[3] * (inside ? -n[c] : n[c]);
+  const uint32_t skip = inside ? uint32_t(-1) : k;
+  float shadow = 1.0f;
+  if (r.shadows && ls.diffuse[l] > 0.0f && g.occluded(p, r.light, std::numeric_limits<float>::infinity(), skip))
+    shadow = 0.0f;
+  float ambient = 1.0f;
+  if (r.ao.count > 0) {
+    uint32_t open = 0;
+    const uint32_t i = uint32_t(ls.i0 + l), j = uint32_t(ls.j);
+    for (uint32_t a = 0; a < r.ao.count; ++a) {
+      float u1, u2, dir[3];
+      sampling::ao_numbers(r.ao, i, j, ls.sample, a, u1, u2);
+      ao_direction(n, u1, u2, dir);
+      if (!g.occluded(p, dir, r.ao_distance, skip)) ++open;
+    }
+    ambient = float(open) / float(r.ao.count);
+  }
+  return lit_ambient * ambient + (lit_diffuse * ls.diffuse[l]) * shadow;
+}
+
+}  // namespace
+
+void light_lanes(const secondary_rays& r, const lit_lanes& ls, float light[lit_lanes::most]) {
+  for (uint32_t bits = ls.lit; bits != 0; bits &= bits - 1) {
+    const int l = __builtin_ctz(bits);
+    light[l] = light_lane(r, ls, l);
+  }
+}
+
+}  // namespace raycast

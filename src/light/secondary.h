@@ -1,0 +1,55 @@
+// The secondary rays of lit hits (scene/light.h): the shadow ray toward a
+// directional light and the ambient-occlusion rays, one batch of a kernel's
+// lanes at a time. Compiled once, not per instruction set: every backend
+// calls the same code, so its verdicts are the same bits on every backend,
+// thread count and region. Its rules (light/README.md):
+//  - origin: the hit on its own sphere, P = C + r n (n the outward unit
+//    normal from the kernel, C and r the sphere's in the grid's frame:
+//    light/grid.h), so P lies within a few float ulps of |C| + r of the
+//    surface at every scale;
+//  - its own sphere is skipped for a hit seen from outside: a ray leaving a
+//    sphere into its outer hemisphere (n . dir > 0: every shadow ray of a
+//    lit point, every AO ray) cannot meet it again. A hit seen from inside
+//    its sphere (the camera inside) tests it like any other, and is blocked;
+//  - any other sphere blocks the ray where the segment meets its solid
+//    ball, a start inside it included: no light passes between touching or
+//    overlapping spheres.
+#pragma once
+#include <cstdint>
+
+#include "light/grid.h"
+#include "scene/sampler.h"
+
+namespace raycast {
+
+// What a render's lit spheres need beyond the kernel's N . L (built once per render).
+struct secondary_rays {
+  const sphere_grid* grid = nullptr;
+  float light[3] = {0, 0, 0};  // unit, toward the light (shadows)
+  bool shadows = false;
+  sampling::ao_plan ao;        // ao.count rays a hit; 0: none
+  float ao_distance = 0;       // grid units; infinity: unbounded
+};
+
+// One batch of a kernel: the lanes that hit a lit sphere, and what each
+// lane's light needs.
+struct lit_lanes {
+  static constexpr int most = 16;
+  int64_t i0 = 0, j = 0;  // lane 0's pixel column, and the row (0 at the bottom)
+  uint32_t sample = 0;    // the antialiasing sample
+  uint32_t lit = 0;       // bit l: lane l hit a lit sphere
+  uint32_t inside = 0;    // bit l: its normal faces into its sphere (the camera is inside it)
+  uint32_t sphere[most];  // the hit sphere's index in the scene
+  float n[3][most];       // the unit normal, facing the ray
+  float diffuse[most];    // max(0, N . L), or the headlight's
+};
+
+// light[l] = lit_ambient A + lit_diffuse diffuse S for each lit lane l.
+void light_lanes(const secondary_rays& r, const lit_lanes& lanes, float light[lit_lanes::most]);
+
+// The cosine-weighted direction of numbers (u1, u2) about the unit normal n
+// (Duff et al.'s branchless frame): phi = 2 pi u1, (sqrt(u2) cos phi,
+// sqrt(u2) sin phi, sqrt(1 - u2)) in (t, b, n).
+void ao_direction(const float n[3], float u1, float u2, float dir[3]);
+
+}  // namespace raycast
