@@ -7,7 +7,10 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <chrono>
 #include <vector>
+
+#include "light/secondary.h"
 
 namespace raycast::bench {
 namespace {
@@ -34,6 +37,18 @@ class ftz_daz {
 struct float3 {
   float x, y, z;
 };
+
+// One lit hit of the Embree peer's frame: where its secondary rays start
+// and what they found.
+struct lit_hit {
+  int64_t pixel;   // row-major index in the band
+  unsigned prim;
+  float p[3], n[3];  // P = C + r n_out; n facing the ray
+  float tnear, diffuse;
+  uint32_t open = 0;    // AO rays that met nothing
+  bool shadowed = false;
+};
+
 
 }  // namespace
 
@@ -189,6 +204,65 @@ struct embree_peer::impl {
     }
   }
 
+  // The lit hits of the band's primary rays (perspective), traced again
+  // with rtcIntersect16 as render16 traces them.
+  std::vector<lit_hit> lit_hits(const image_band& band) const {
+    const camera& cam = s.cam;
+    const int64_t W = cam.image_width, H = cam.image_height;
+    std::vector<lit_hit> hits;
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    alignas(64) RTCRayHit16 rh;
+    alignas(64) int valid[16];
+    const ftz_daz guard;
+    for (int64_t r = band.row_begin; r < band.row_end; ++r) {
+      const vec3 base = cam.corner_dir + cam.v_of(H - 1 - r) * cam.vertical;
+      for (int64_t i0 = 0; i0 < W; i0 += 16) {
+        float3 dir[16];
+        for (int k = 0; k < 16; ++k) {
+          valid[k] = i0 + k < W ? -1 : 0;
+          dir[k] = direction(base, std::min(i0 + k, W - 1));
+          rh.ray.org_x[k] = origin.x, rh.ray.org_y[k] = origin.y, rh.ray.org_z[k] = origin.z;
+          rh.ray.dir_x[k] = dir[k].x, rh.ray.dir_y[k] = dir[k].y, rh.ray.dir_z[k] = dir[k].z;
+          rh.ray.tnear[k] = 0.0f, rh.ray.tfar[k] = std::numeric_limits<float>::infinity();
+          rh.ray.time[k] = 0.0f, rh.ray.mask[k] = ~0u, rh.ray.id[k] = 0, rh.ray.flags[k] = 0;
+          rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID, rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+        }
+        rtcIntersect16(valid, rtc_scene, &ctx, &rh);
+        for (int k = 0; k < 16 && i0 + k < W; ++k)
+          if (rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID && is_lit[rh.hit.primID[k]])
+            hits.push_back(lit_of((r - band.row_begin) * W + i0 + k, rh.hit.primID[k], dir[k],
+                                  {rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]}));
+      }
+    }
+    return hits;
+  }
+
+  lit_hit lit_of(int64_t pixel, unsigned prim, const float3& d, const float3& ng) const {
+    lit_hit h{};
+    h.pixel = pixel;
+    h.prim = prim;
+    const float inv = 1.0f / std::sqrt((ng.x * ng.x + ng.y * ng.y) + ng.z * ng.z);
+    const float out[3] = {ng.x * inv, ng.y * inv, ng.z * inv};
+    const bool front = (d.x * ng.x + d.y * ng.y) + d.z * ng.z < 0.0f;
+    const sphere& sp = s.spheres[prim];
+    const float r = float(sp.radius);
+    for (int c = 0; c < 3; ++c) {
+      h.n[c] = front ? out[c] : -out[c];
+      h.p[c] = float(sp.center[c]) + r * out[c];
+    }
+    h.tnear = r * 0x1p-10f;
+    if (s.light.direction) {
+      const vec3 l = unit_vector(*s.light.direction);
+      h.diffuse = std::max((h.n[0] * float(l.x) + h.n[1] * float(l.y)) + h.n[2] * float(l.z), 0.0f);
+    } else {
+      const float len = std::sqrt((d.x * d.x + d.y * d.y) + d.z * d.z);
+      h.diffuse = std::max(-((h.n[0] * d.x + h.n[1] * d.y) + h.n[2] * d.z) / len, 0.0f);
+    }
+    return h;
+  }
+
   // One ray from the camera origin along d, rtcIntersect1.
   RTCRayHit intersect1(const float3& d) const {
     RTCIntersectContext ctx;
@@ -234,6 +308,97 @@ struct embree_peer::impl {
     return {int64_t(rh.hit.primID), double(rh.ray.tfar) * len};
   }
 };
+
+namespace {
+
+double since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Casts count rays with rtcOccluded16, ray k from make(k, org, dir, tnear,
+// tfar) and reports each verdict to done(k, occluded); in parallel packets.
+template <class Make, class Done>
+void occluded16(RTCScene scene, int threads, bool coherent, int64_t count, Make make, Done done) {
+  const int64_t packets = (count + 15) / 16;
+#pragma omp parallel for schedule(dynamic, 64) num_threads(threads) if (threads > 1)
+  for (int64_t q = 0; q < packets; ++q) {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    ctx.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    alignas(64) RTCRay16 ray;
+    alignas(64) int valid[16];
+    for (int l = 0; l < 16; ++l) {
+      const int64_t k = q * 16 + l;
+      valid[l] = k < count ? -1 : 0;
+      float o[3] = {0, 0, 0}, d[3] = {0, 0, 1}, tnear = 0, tfar = 0;
+      if (k < count) make(k, o, d, tnear, tfar);
+      ray.org_x[l] = o[0], ray.org_y[l] = o[1], ray.org_z[l] = o[2];
+      ray.dir_x[l] = d[0], ray.dir_y[l] = d[1], ray.dir_z[l] = d[2];
+      ray.tnear[l] = tnear, ray.tfar[l] = tfar, ray.time[l] = 0, ray.mask[l] = ~0u, ray.id[l] = 0, ray.flags[l] = 0;
+    }
+    const ftz_daz guard;
+    rtcOccluded16(valid, scene, &ctx, &ray);
+    for (int l = 0; l < 16 && q * 16 + l < count; ++l) done(q * 16 + l, ray.tfar[l] < 0.0f);
+  }
+}
+
+}  // namespace
+
+embree_peer::light_seconds embree_peer::render_lit(const image_band& band, const sampling::ao_plan& ao) const {
+  light_seconds sec;
+  if (!impl_->error.empty()) return sec;
+  const impl& m = *impl_;
+  const scene& s = m.s;
+  const int64_t W = s.cam.image_width, H = s.cam.image_height;
+  auto t0 = std::chrono::steady_clock::now();
+  render(band, mode::packet16);  // every pixel as the primary frame shades it; lit ones are redone below
+  sec.primary = since(t0);
+  // The lit hits, traced again (not timed: the peer's primary cost is the frame's above).
+  std::vector<lit_hit> hits = m.lit_hits(band);
+  const float inf = std::numeric_limits<float>::infinity();
+  const vec3 l = s.light.direction ? unit_vector(*s.light.direction) : vec3(0, 0, 1);
+  const float light[3] = {float(l.x), float(l.y), float(l.z)};
+  t0 = std::chrono::steady_clock::now();
+  if (s.light.shadows) {
+    std::vector<int64_t> lit;
+    for (int64_t k = 0; k < int64_t(hits.size()); ++k)
+      if (hits[size_t(k)].diffuse > 0.0f) lit.push_back(k);
+    occluded16(
+        m.rtc_scene, m.threads, true, int64_t(lit.size()),
+        [&](int64_t k, float o[3], float d[3], float& tn, float& tf) {
+          const lit_hit& h = hits[size_t(lit[size_t(k)])];
+          for (int c = 0; c < 3; ++c) o[c] = h.p[c], d[c] = light[c];
+          tn = h.tnear, tf = inf;
+        },
+        [&](int64_t k, bool occ) { hits[size_t(lit[size_t(k)])].shadowed = occ; });
+  }
+  sec.shadow = since(t0);
+  t0 = std::chrono::steady_clock::now();
+  const int64_t per = ao.count, rays = int64_t(hits.size()) * per;
+  const float distance = float(s.light.ao_distance);
+  occluded16(
+      m.rtc_scene, m.threads, false, rays,
+      [&](int64_t k, float o[3], float d[3], float& tn, float& tf) {
+        const lit_hit& h = hits[size_t(k / per)];
+        float u1, u2;
+        sampling::ao_numbers(ao, uint32_t(h.pixel % W), uint32_t(H - 1 - (band.row_begin + h.pixel / W)), 0,
+                             uint32_t(k % per), u1, u2);
+        ao_direction(h.n, u1, u2, d);
+        for (int c = 0; c < 3; ++c) o[c] = h.p[c];
+        tn = h.tnear, tf = distance;
+      },
+      [&](int64_t k, bool occ) {
+        if (!occ) __atomic_fetch_add(&hits[size_t(k / per)].open, 1u, __ATOMIC_RELAXED);
+      });
+  sec.ao = since(t0);
+  for (const lit_hit& h : hits) {
+    const float a = per > 0 ? float(h.open) / float(per) : 1.0f;
+    const float f = lit_ambient * a + (lit_diffuse * h.diffuse) * (h.shadowed ? 0.0f : 1.0f);
+    const float3& c = m.flat[h.prim];
+    impl::store(band, band.row(band.row_begin + h.pixel / W), h.pixel % W, {c.x * f, c.y * f, c.z * f});
+  }
+  return sec;
+}
 
 embree_peer::embree_peer(const scene& s, int threads) : impl_(std::make_unique<impl>(s, threads)) {}
 embree_peer::~embree_peer() = default;

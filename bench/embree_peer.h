@@ -12,6 +12,7 @@
 #include <string>
 
 #include "image/image.h"
+#include "scene/sampler.h"
 #include "scene/scene.h"
 
 namespace raycast::bench {
@@ -43,6 +44,19 @@ class embree_peer {
     double distance = 0.0;
   };
   hit trace(int64_t i, int64_t j) const;
+
+  // Lit spheres under the scene's light (scene/light.h), rgb8: rtcIntersect16
+  // for the primary rays (coherent), then rtcOccluded16 for the shadow rays
+  // (coherent) and the ambient-occlusion rays (incoherent, 16 a packet), each
+  // phase over the whole band before the next, on the constructor's threads.
+  // The secondary rays are ours (light/secondary.h): from P = C + r n with
+  // the same directions, but as an Embree user casts them: tnear = 2^-10 r,
+  // since Embree cannot skip the sphere a ray leaves. Returns each phase's
+  // seconds.
+  struct light_seconds {
+    double primary = 0, shadow = 0, ao = 0;
+  };
+  light_seconds render_lit(const image_band& band, const sampling::ao_plan& ao) const;
 
  private:
   struct impl;

@@ -24,6 +24,7 @@
 #include "errors.h"
 #include "gbench_flags.h"
 #include "rows.h"
+#include "light_rows.h"
 #include "scale_rows.h"
 #include "spheres.h"
 #include "sphere_numerics.h"
@@ -454,6 +455,7 @@ int run(int argc, char** argv) {
   register_aa_rows(aa_config_for(opt.quick, opt.aa_reference_dir));
   register_embree_rows(scene_sizes);
   register_scale_rows(opt.quick);
+  register_light_rows(opt.quick);
   register_stiff_rows();
   add_context(opt);
 

@@ -59,6 +59,13 @@ const refused refused_cases[] = {
     {"orthographic_focal_length", {"--focal-length", "2", "--projection", "orthographic"},
      "--focal-length: means nothing with --projection orthographic"},
     {"projection_unknown", {"--projection", "fisheye"}, "not one of perspective, orthographic"},
+    // The light: shadows need a directional light; a direction is not zero.
+    {"shadows_without_light", {"--scene", "lit-world", "--shadows"}, "--shadows: needs a directional light"},
+    {"light_zero", {"--scene", "lit-world", "--light", "0,0,0"}, "--light: must not be 0,0,0"},
+    {"light_two_numbers", {"--light", "1,2"}, "--light"},
+    {"ao_negative", {"--ao", "-1"}, "--ao: '-1' is too small (at least 0)"},
+    {"ao_too_many", {"--ao", "4097"}, "--ao: '4097' is too large (at most 4096)"},
+    {"ao_distance_zero", {"--ao-distance", "0"}, "--ao-distance: '0' is too small (above 0)"},
 };
 
 INSTANTIATE_TEST_SUITE_P(Options, CliCameraRefused, ::testing::ValuesIn(refused_cases),
@@ -98,6 +105,30 @@ TEST(CliCamera, OrthographicFromTheOptionOrTheSceneFile) {
   ASSERT_EQ(box.run({"--scene", "ortho.json", "-o", "file.ppm"}).exit_code, 0);
   EXPECT_EQ(raycast_test::read_file(box.work() / "option.ppm"), raycast_test::read_file(box.work() / "file.ppm"));
   EXPECT_NE(raycast_test::read_file(box.work() / "option.ppm"), raycast_test::read_file(box.work() / "perspective.ppm"));
+}
+
+// The light from the command line and from a scene file's light and
+// ambient_occlusion keys is the same picture; without them, today's.
+TEST(CliCamera, TheLightFromTheOptionsOrTheSceneFile) {
+  cli_sandbox box;
+  ASSERT_EQ(box.run({"--scene", "lit-world", "-w", "160", "-o", "headlight.ppm"}).exit_code, 0);
+  const run_result r = box.run({"--scene", "lit-world", "-w", "160", "--light", "1,1,0.5", "--shadows", "--ao", "4",
+                                "--ao-distance", "2", "-o", "option.ppm"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  raycast_test::write_file(box.work() / "lit.json",
+                           "{\"camera\": {\"width\": 160},"
+                           " \"light\": {\"direction\": [1, 1, 0.5], \"shadows\": true},"
+                           " \"ambient_occlusion\": {\"samples\": 4, \"distance\": 2},"
+                           " \"spheres\": [{\"center\": [0, 0, -1], \"radius\": 0.5, \"shade\": \"lit\", \"color\": [1.0, 0.55, 0.1]},"
+                           " {\"center\": [0, -100.5, -1], \"radius\": 100, \"shade\": \"lit\", \"color\": [0.7, 0.7, 0.7]}]}");
+  const run_result f = box.run({"--scene", "lit.json", "-o", "file.ppm"});
+  ASSERT_EQ(f.exit_code, 0) << f.err;
+  EXPECT_EQ(raycast_test::read_file(box.work() / "option.ppm"), raycast_test::read_file(box.work() / "file.ppm"));
+  EXPECT_NE(raycast_test::read_file(box.work() / "option.ppm"), raycast_test::read_file(box.work() / "headlight.ppm"));
+  raycast_test::write_file(box.work() / "bad.json", "{\"light\": {\"shadows\": 1}}");
+  const run_result bad = box.run({"--scene", "bad.json", "-o", "bad.ppm"});
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("light.shadows: must be true or false"), std::string::npos) << bad.err;
 }
 
 }  // namespace

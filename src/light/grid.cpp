@@ -69,6 +69,7 @@ sphere_grid::sphere_grid(const scene& s, int /*threads*/) {
   }
   h_ = float(h);
   inv_h_ = float(1.0 / h);
+  for (int a = 0; a < 3; ++a) hi_[a] = lo_[a] + float(dims_[a]) * h_;
   const size_t cells = size_t(dims_[0]) * size_t(dims_[1]) * size_t(dims_[2]);
   first_.assign(cells + 1, 0);
   const auto each_cell = [&](const cell_range& r, auto&& f) {
@@ -105,17 +106,20 @@ bool sphere_grid::cell_occluded(size_t cell, const float o[3], const float d[3],
 
 bool sphere_grid::occluded(const float o[3], const float d[3], float tmax, uint32_t skip) const {
   if (refs_.empty()) return false;
-  // The segment clipped to the grid's box.
+  // The segment clipped to the grid's box (a hit point starts inside it:
+  // no clipping, the walk ends where it leaves the box).
   float t0 = 0.0f, t1 = tmax, inv[3];
+  bool inside = true;
   for (int a = 0; a < 3; ++a) {
-    const float hi = lo_[a] + float(dims_[a]) * h_;
+    inv[a] = d[a] == 0.0f ? std::numeric_limits<float>::infinity() : 1.0f / d[a];
+    inside = inside && o[a] >= lo_[a] && o[a] < hi_[a];
+  }
+  for (int a = 0; a < 3 && !inside; ++a) {
     if (d[a] == 0.0f) {
-      inv[a] = std::numeric_limits<float>::infinity();
-      if (o[a] < lo_[a] || o[a] > hi) return false;
+      if (o[a] < lo_[a] || o[a] > hi_[a]) return false;
       continue;
     }
-    inv[a] = 1.0f / d[a];
-    float ta = (lo_[a] - o[a]) * inv[a], tb = (hi - o[a]) * inv[a];
+    float ta = (lo_[a] - o[a]) * inv[a], tb = (hi_[a] - o[a]) * inv[a];
     if (ta > tb) std::swap(ta, tb);
     t0 = std::max(t0, ta);
     t1 = std::min(t1, tb);

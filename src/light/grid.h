@@ -47,7 +47,7 @@ class sphere_grid {
  private:
   bool cell_occluded(size_t cell, const float o[3], const float d[3], float tmax, uint32_t skip) const;
 
-  float lo_[3] = {0, 0, 0};
+  float lo_[3] = {0, 0, 0}, hi_[3] = {0, 0, 0};
   float h_ = 1, inv_h_ = 1;  // the cell's side, and 1 / it
   int dims_[3] = {0, 0, 0};
   std::vector<float> spheres_;   // 4 per sphere, the scene's order

@@ -37,10 +37,10 @@ float light_lane(const secondary_rays& r, const lit_lanes& ls, int l) {
   float ambient = 1.0f;
   if (r.ao.count > 0) {
     uint32_t open = 0;
-    const uint32_t i = uint32_t(ls.i0 + l), j = uint32_t(ls.j);
+    const sampling::ao_seeds seeds = sampling::ao_pixel(r.ao, uint32_t(ls.i0 + l), uint32_t(ls.j));
     for (uint32_t a = 0; a < r.ao.count; ++a) {
       float u1, u2, dir[3];
-      sampling::ao_numbers(r.ao, i, j, ls.sample, a, u1, u2);
+      sampling::ao_numbers(r.ao, seeds, ls.sample, a, u1, u2);
       ao_direction(n, u1, u2, dir);
       if (!g.occluded(p, dir, r.ao_distance, skip)) ++open;
     }

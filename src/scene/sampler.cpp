@@ -24,10 +24,12 @@ namespace {
 
 // Dimension 0 of the Sobol sequence: the van der Corput sequence, index's
 // bits reversed.
-uint32_t sobol_dimension0(uint32_t index) {
-  uint32_t x = 0;
-  for (int b = 0; b < 32; ++b) x |= ((index >> b) & 1u) << (31 - b);
-  return x;
+uint32_t sobol_dimension0(uint32_t x) {
+  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+  x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
+  x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
+  return (x >> 16) | (x << 16);
 }
 
 // Dimension 1 (its generator matrix is Pascal's triangle mod 2; Burley,
@@ -64,15 +66,20 @@ ao_plan make_ao_plan(sampler_kind kind, uint32_t count, uint64_t seed) {
   return p;
 }
 
-void ao_numbers(const ao_plan& p, uint32_t i, uint32_t j, uint32_t s, uint32_t k, float& u1, float& u2) {
+ao_seeds ao_pixel(const ao_plan& p, uint32_t i, uint32_t j) {
   const uint32_t key = mix(mix(mix(i ^ p.seed_key) + j * golden) ^ 0x2c1b3c6du);
+  if (p.kind == sampler_kind::sobol) return {mix(key ^ 0x68bc21ebu), mix(key ^ 0x02e5be93u)};
+  return {key, key};
+}
+
+void ao_numbers(const ao_plan& p, const ao_seeds& px, uint32_t s, uint32_t k, float& u1, float& u2) {
   const uint32_t g = s * p.count + k;
   if (p.kind == sampler_kind::sobol) {
-    u1 = float((sobol_dimension0(g) ^ mix(key ^ 0x68bc21ebu)) >> 8) * 0x1p-24f;
-    u2 = float((sobol_dimension1(g) ^ mix(key ^ 0x02e5be93u)) >> 8) * 0x1p-24f;
+    u1 = float((sobol_dimension0(g) ^ px.a) >> 8) * 0x1p-24f;
+    u2 = float((sobol_dimension1(g) ^ px.b) >> 8) * 0x1p-24f;
     return;
   }
-  const uint32_t r = mix(key + (g + 1) * golden);
+  const uint32_t r = mix(px.a + (g + 1) * golden);
   if (p.kind == sampler_kind::random) {
     u1 = float(r >> 8) * 0x1p-24f;
     u2 = float(mix(r ^ 0x297a2d39u) >> 8) * 0x1p-24f;
@@ -80,6 +87,10 @@ void ao_numbers(const ao_plan& p, uint32_t i, uint32_t j, uint32_t s, uint32_t k
     u1 = min((float(k % p.nx) + unit_high<float>(r)) * p.inv_nx, one_below);
     u2 = min((float(k / p.nx) + unit_low<float>(r)) * p.inv_ny, one_below);
   }
+}
+
+void ao_numbers(const ao_plan& p, uint32_t i, uint32_t j, uint32_t s, uint32_t k, float& u1, float& u2) {
+  ao_numbers(p, ao_pixel(p, i, j), s, k, u1, u2);
 }
 
 sample_table::sample_table(sampler_kind kind, uint32_t count, uint64_t seed) {

@@ -171,6 +171,12 @@ struct ao_plan {
 };
 ao_plan make_ao_plan(sampler_kind kind, uint32_t count, uint64_t seed);
 void ao_numbers(const ao_plan& p, uint32_t i, uint32_t j, uint32_t s, uint32_t k, float& u1, float& u2);
+// The same in two steps: the pixel's seeds once, then each ray's numbers.
+struct ao_seeds {
+  uint32_t a, b;
+};
+ao_seeds ao_pixel(const ao_plan& p, uint32_t i, uint32_t j);
+void ao_numbers(const ao_plan& p, const ao_seeds& px, uint32_t s, uint32_t k, float& u1, float& u2);
 
 // (xi, eta) of sample s of pixel (i, j), for the double reference and tests;
 // and as counts of offset_unit_of(p.kind), for the scalar float renderer.

@@ -22,7 +22,7 @@ raycast::camera_params sized(int64_t w, int64_t h);
 
 inline raycast::scene make_scene(const raycast::camera_params& p = {}, const raycast::sky& s = {},
                                  std::vector<raycast::sphere> spheres = {}) {
-  return raycast::make_scene(raycast::scene_params{p, s, std::move(spheres)});
+  return raycast::make_scene(raycast::scene_params{p, s, std::move(spheres), std::nullopt, {}});
 }
 
 // S = max(1, |bottom|, |top|) over all channels: the scale of the error bounds

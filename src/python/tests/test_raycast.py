@@ -269,3 +269,15 @@ def test_orthographic_is_the_clis_bytes(tmp_path):
     with pytest.raises(ValueError) as e:
         raycast.render("world", projection="orthographic", vfov=30)
     assert "means nothing with" in str(e.value)
+
+
+def test_light_shadows_and_ao_are_the_clis_bytes(tmp_path):
+    img = raycast.render("lit-world", width=160, light=(1, 1, 0.5), shadows=True, ao=4, ao_distance=2)
+    out = tmp_path / "l.ppm"
+    subprocess.run([CLI, "--scene", "lit-world", "-w", "160", "--light", "1,1,0.5", "--shadows", "--ao", "4",
+                    "--ao-distance", "2", "-o", str(out)], check=True)
+    assert img.tobytes() == out.read_bytes()[-img.size:]
+    assert img.tobytes() != raycast.render("lit-world", width=160, light=(1, 1, 0.5), shadows=False).tobytes()
+    with pytest.raises(ValueError) as e:
+        raycast.render("lit-world", shadows=True)
+    assert e.value.field == "light.shadows" and "needs a directional light" in str(e.value)

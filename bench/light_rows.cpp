@@ -1,0 +1,136 @@
+#include "light_rows.h"
+
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cloud.h"
+#include "embree_peer.h"
+#include "render/render.h"
+#include "rows.h"
+
+namespace raycast::bench {
+namespace {
+
+using steady = std::chrono::steady_clock;
+double seconds_since(steady::time_point t0) { return std::chrono::duration<double>(steady::now() - t0).count(); }
+benchmark::Counter per_iteration(double v) { return {v, benchmark::Counter::kAvgIterations}; }
+
+// A family's scene, every sphere lit in one colour, under a directional light.
+struct family {
+  const char* name;
+  scene_params (*make)(int64_t n);
+  vec3 light;
+  bool bounded_ao;  // AO distance 5 radii (the packed box), else unbounded
+};
+const family families[] = {
+    {"box", [](int64_t n) { return raycast_test::particle_box(n); }, {0.3, 1.0, 0.6}, true},
+    {"dense", [](int64_t n) { return raycast_test::particle_cloud(n, 3.0); }, {-0.5, 1.0, 0.3}, false},
+    {"cloud", [](int64_t n) { return raycast_test::particle_cloud(n, 1.5); }, {-0.5, 1.0, 0.3}, false},
+};
+
+struct variant {
+  const char* name;
+  uint32_t ao;
+};
+const variant variants[] = {{"shadows", 0}, {"shadows-ao8", 8}};
+
+scene lit_scene(const family& f, int64_t n, const variant& v, int64_t w, int64_t h, bool secondary = true) {
+  scene_params p = f.make(n);
+  p.camera.image_width = w;
+  p.camera.image_height = h;
+  for (sphere& s : p.spheres) {
+    s.shade = shading::lit;
+    s.flat_color = color(0.85, 0.6, 0.35);
+  }
+  p.light.direction = f.light;
+  p.light.shadows = secondary;
+  p.light.ao_samples = secondary ? v.ao : 0;
+  if (f.bounded_ao && !p.spheres.empty()) p.light.ao_distance = 5 * p.spheres[0].radius;
+  return make_scene(p);
+}
+
+struct frame {
+  int64_t w, h;
+  std::vector<unsigned char> pixels;
+  image_band band() { return {pixels.data(), size_t(w) * 3, pixel_format::rgb8, 0, h}; }
+};
+
+void bench_ours(benchmark::State& state, const family* f, int64_t n, const variant* v, int64_t w, int64_t h,
+                bool all) {
+  const scene s = lit_scene(*f, n, *v, w, h), primary = lit_scene(*f, n, *v, w, h, false);
+  render_options o;
+  o.threads = all ? available_cores() : 1;
+  frame fr{w, h, std::vector<unsigned char>(size_t(w * h) * 3)};
+  double prep = 0, render = 0, first = 0;
+  for (auto _ : state) {
+    steady::time_point t0 = steady::now();
+    auto r = std::make_unique<renderer>(s, o);
+    prep += seconds_since(t0);
+    t0 = steady::now();
+    r->render(fr.band());
+    benchmark::ClobberMemory();
+    render += seconds_since(t0);
+    state.PauseTiming();
+    r.reset();
+    const renderer p(primary, o);
+    t0 = steady::now();
+    p.render(fr.band());
+    first += seconds_since(t0);
+    state.ResumeTiming();
+  }
+  state.counters["prepare_s"] = per_iteration(prep);
+  state.counters["render_s"] = per_iteration(render);
+  state.counters["primary_s"] = per_iteration(first);
+}
+
+void bench_embree(benchmark::State& state, const family* f, int64_t n, const variant* v, int64_t w, int64_t h) {
+  const scene s = lit_scene(*f, n, *v, w, h);
+  const sampling::ao_plan ao = sampling::make_ao_plan(default_sampler, s.light.ao_samples, 0);
+  frame fr{w, h, std::vector<unsigned char>(size_t(w * h) * 3)};
+  double build = 0, primary = 0, shadow = 0, occlusion = 0;
+  for (auto _ : state) {
+    const steady::time_point t0 = steady::now();
+    auto peer = std::make_unique<embree_peer>(s, 1);
+    build += seconds_since(t0);
+    if (!peer->error().empty()) return state.SkipWithError(peer->error().c_str());
+    const embree_peer::light_seconds t = peer->render_lit(fr.band(), ao);
+    primary += t.primary;
+    shadow += t.shadow;
+    occlusion += t.ao;
+    state.PauseTiming();
+    peer.reset();
+    state.ResumeTiming();
+  }
+  state.counters["build_s"] = per_iteration(build);
+  state.counters["primary_s"] = per_iteration(primary);
+  state.counters["shadow_s"] = per_iteration(shadow);
+  state.counters["ao_s"] = per_iteration(occlusion);
+  state.counters["render_s"] = per_iteration(primary + shadow + occlusion);
+}
+
+}  // namespace
+
+void register_light_rows(bool quick) {
+  const int64_t w = quick ? 640 : 1920, h = quick ? 360 : 1080;
+  for (const family& f : families)
+    for (int64_t n : quick ? std::vector<int64_t>{1000} : std::vector<int64_t>{10'000, 100'000, 1'000'000}) {
+      if (quick && f.name != std::string("box")) continue;
+      for (const variant& v : variants) {
+        const std::string base = strf("light/%s/%%s/%lld/%s/%%s", f.name, static_cast<long long>(n), v.name);
+        const std::string fields = strf("kind=light family=%s spheres=%lld variant=%s size=%s", f.name,
+                                        static_cast<long long>(n), v.name, size_text(w, h).c_str());
+        for (bool all : {false, true})
+          add_row(strf(base.c_str(), "ours", all ? "tall" : "t1"), fields + " peer=ours threads=" + (all ? "all" : "1"),
+                  benchmark::kMillisecond, bench_ours, &f, n, &v, w, h, all);
+        add_row(strf(base.c_str(), "embree", "t1"), fields + " peer=embree threads=1", benchmark::kMillisecond,
+                bench_embree, &f, n, &v, w, h);
+      }
+    }
+}
+
+}  // namespace raycast::bench

@@ -1,0 +1,233 @@
+// Lit spheres under a directional light with shadows and ambient occlusion
+// (scene/light.h, light/README.md): every backend gives the same bytes at
+// any thread count and region, the secondary rays' verdicts agree with the
+// double reference but for grazing rays, and no hit is shadowed by its own
+// sphere at any scale.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "backend_test.h"
+#include "cloud.h"
+#include "light/grid.h"
+#include "light/secondary.h"
+#include "reference/hittable.h"
+#include "render_support.h"
+
+namespace raycast_test {
+namespace {
+using namespace raycast;
+
+// A packed box of n lit spheres, w x h, under a light, with shadows and ao rays.
+scene lit_box(int64_t n, uint32_t ao, int64_t w = 192, int64_t h = 108) {
+  scene_params p = particle_box(n);
+  p.camera.image_width = w;
+  p.camera.image_height = h;
+  for (sphere& s : p.spheres) {
+    s.shade = shading::lit;
+    s.flat_color = color(0.9, 0.7, 0.4);
+  }
+  p.light.direction = vec3(0.3, 1.0, 0.6);
+  p.light.shadows = true;
+  p.light.ao_samples = ao;
+  p.light.ao_distance = 5 * p.spheres[0].radius;
+  return make_scene(p);
+}
+
+image render(const scene& s, backend b, int threads = 1, uint32_t samples = 1) {
+  render_options o;
+  o.which = b;
+  o.threads = threads;
+  o.samples = samples;
+  return render_with(renderer(s, o), pixel_format::rgb8);
+}
+
+class LightBackends : public backend_test<backend> {};
+
+TEST_P(LightBackends, EveryBackendAndThreadCountGivesTheScalarBytes) {
+  const scene s = lit_box(3000, 8);
+  const image want = render(s, backend::scalar);
+  EXPECT_EQ(render(s, GetParam()).bytes, want.bytes);
+  EXPECT_EQ(render(s, GetParam(), 2).bytes, want.bytes);
+  // The sampled path: ambient occlusion's numbers per sample.
+  EXPECT_EQ(render(s, GetParam(), 2, 4).bytes, render(s, backend::scalar, 1, 4).bytes);
+}
+
+TEST_P(LightBackends, ARegionIsTheWholeFramesWindow) {
+  const scene s = lit_box(3000, 4);
+  const image whole = render(s, GetParam());
+  render_options o;
+  o.which = GetParam();
+  const renderer r(s, o);
+  image part(whole.width, whole.height, pixel_format::rgb8);
+  image_band band = part.band();
+  band.row_begin = 30;
+  band.row_end = 70;
+  band.col_begin = 50;
+  band.col_end = 131;
+  band.data = part.bytes.data() + 30 * part.stride();
+  r.render(band);
+  for (int64_t row = 30; row < 70; ++row)
+    for (int64_t col = 50; col < 131; ++col)
+      for (int k = 0; k < 3; ++k)  // the window's memory starts at its first column
+        ASSERT_EQ(part.byte(row, col - 50, k), whole.byte(row, col, k)) << row << "," << col;
+}
+
+INSTANTIATE_TEST_SUITE_P(Light, LightBackends, ::testing::ValuesIn(simd_backends), backend_name);
+
+// Without secondary rays the directional light changes nothing but N . L:
+// shadows in an empty sky darken nothing; and the headlight without ambient
+// occlusion is today's picture, byte for byte.
+TEST(Light, ShadowsWithNothingInTheWayAndTheHeadlightChangeNoByte) {
+  scene s = lit_box(1, 0);
+  const image shadowed = render(s, backend::automatic);
+  s.light.shadows = false;
+  EXPECT_EQ(render(s, backend::automatic).bytes, shadowed.bytes);
+  scene head = lit_box(500, 0);
+  head.light = lighting{};
+  const image today = render(head, backend::automatic);
+  head.light.ao_distance = 1e30;  // ambient occlusion off: the distance means nothing
+  EXPECT_EQ(render(head, backend::automatic).bytes, today.bytes);
+  EXPECT_EQ(render_with_reference(head, pixel_format::rgb8).bytes.size(), today.bytes.size());
+}
+
+// The float renderers' light against the double reference's: bytes within
+// one LSB but where a secondary ray's verdict flips (a grazing ray), which
+// moves a pixel by one AO ray's share or by the shadow.
+TEST(Light, TheFloatPictureIsTheReferencesButForGrazingRays) {
+  const scene s = lit_box(2000, 8);
+  const image ours = render(s, backend::automatic), ref = render_with_reference(s, pixel_format::rgb8);
+  size_t off = 0;
+  for (size_t k = 0; k < ours.bytes.size(); ++k) off += std::abs(int(ours.bytes[k]) - int(ref.bytes[k])) > 1;
+  EXPECT_LE(double(off), 2e-3 * double(ours.bytes.size())) << off << " bytes differ by more than 1";
+}
+
+// How near the segment o + t d, t in [0, tmax], passes to being a different
+// verdict for some sphere but skip: min over spheres of | distance of the
+// segment from the centre - r | / r.
+double grazing(std::span<const sphere> world, const point3& o, const vec3& d, double tmax, const sphere* skip) {
+  double g = INFINITY;
+  for (const sphere& s : world) {
+    if (&s == skip) continue;
+    const double t = std::clamp(glm::dot(s.center - o, d), 0.0, tmax);
+    const double dist = glm::length(o + t * d - s.center);
+    g = std::min(g, std::abs(dist - s.radius) / s.radius);
+  }
+  return g;
+}
+
+// Verdict by verdict: the grid's float rays (light/grid.h) against the
+// reference's blocked() in double, from the same hit points in the same
+// directions, on a box whose spheres touch (packing 0.3 at random: many
+// near-contacts).
+TEST(Light, GridVerdictsAgreeWithTheReferenceButForGrazingRays) {
+  const scene s = lit_box(4000, 0);
+  const sphere_grid grid(s);
+  const double unit = std::ldexp(1.0, -grid.scale_exp);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  size_t rays = 0, disagree = 0, not_grazing = 0;
+  for (uint32_t k = 0; k < s.spheres.size(); ++k) {
+    const sphere& sp = s.spheres[k];
+    for (int q = 0; q < 16; ++q) {
+      const vec3 n = unit_vector(vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5));
+      const vec3 d = cosine_direction(n, u(rng), u(rng));
+      const double tmax = q % 2 ? INFINITY : 5 * sp.radius;
+      const point3 p = sp.center + sp.radius * n;
+      const bool want = blocked(s.spheres, p, d, tmax, &sp);
+      const float* c = grid.sphere(k);
+      const float nf[3] = {float(n.x), float(n.y), float(n.z)}, df[3] = {float(d.x), float(d.y), float(d.z)};
+      float pf[3];
+      for (int a = 0; a < 3; ++a) pf[a] = c[a] + c[3] * nf[a];
+      const bool got = grid.occluded(pf, df, float(tmax * unit), k);
+      ++rays;
+      if (got == want) continue;
+      ++disagree;
+      not_grazing += grazing(s.spheres, p, d, tmax, &sp) > 1e-3;
+    }
+  }
+  RecordProperty("secondary_rays", int(rays));
+  RecordProperty("disagreeing", int(disagree));
+  EXPECT_LE(double(disagree), 1e-4 * double(rays)) << disagree << " of " << rays;
+  EXPECT_EQ(not_grazing, 0u) << "verdicts that differ though no sphere is within 1e-3 r of the ray";
+}
+
+// Touching and overlapping spheres: no light passes between them.
+TEST(Light, NoLightPassesBetweenTouchingOrOverlappingSpheres) {
+  scene_params p;
+  p.spheres = {sphere{point3(0, 0, -5), 1.0}, sphere{point3(2, 0, -5), 1.0}, sphere{point3(0, 1.5, -5), 1.0}};
+  const scene s = make_scene(p);
+  const sphere_grid g(s);
+  const double unit = std::ldexp(1.0, -g.scale_exp);
+  const auto grid_point = [&](const point3& w, float out[3]) {
+    for (int a = 0; a < 3; ++a) out[a] = float((w[a] - g.origin[a]) * unit);
+  };
+  // From sphere 0's point of contact with sphere 1, any ray into sphere 1's side.
+  float o[3];
+  grid_point(point3(1, 0, -5), o);
+  const float along[3] = {0.6f, 0.8f, 0.0f}, grazing_up[3] = {0.001f, 0.9999995f, 0.0f};
+  EXPECT_TRUE(g.occluded(o, along, INFINITY, 0));
+  EXPECT_TRUE(g.occluded(o, grazing_up, INFINITY, 0));
+  // From sphere 0's surface inside sphere 2 (they overlap): blocked whatever the direction.
+  grid_point(point3(0, 1, -5), o);
+  const float up[3] = {0, 1, 0}, side[3] = {1, 0, 0};
+  EXPECT_TRUE(g.occluded(o, up, INFINITY, 0));
+  EXPECT_TRUE(g.occluded(o, side, INFINITY, 0));
+  // Away from both, open.
+  grid_point(point3(-1, 0, -5), o);
+  const float left[3] = {-1, 0, 0};
+  EXPECT_FALSE(g.occluded(o, left, INFINITY, 0));
+}
+
+// No acne: a lit sphere alone casts no shadow on itself and occludes none of
+// its own ambient rays, so shadows and AO change no byte of its picture, at
+// every scale and up to a light that grazes its surface.
+struct stiff_light {
+  const char* name;
+  double scale;       // the whole scene's
+  double radius;      // the sphere's, at distance 5 from the camera
+  double far;         // the camera's distance in radii
+  vec3 light;
+};
+
+class LightStiff : public ::testing::TestWithParam<stiff_light> {};
+
+TEST_P(LightStiff, AHitIsNeverShadowedByItsOwnSphere) {
+  const stiff_light& c = GetParam();
+  scene_params p;
+  p.camera.image_width = 96;
+  p.camera.image_height = 54;
+  p.camera.vfov_degrees = 2 * std::atan(1.5 / c.far) * 180 / M_PI;
+  const point3 centre(0, 0, -c.far * c.radius * c.scale);  // straight ahead of the camera at the origin
+  p.spheres = {sphere{centre, c.radius * c.scale, shading::lit, color(1, 1, 1)}};
+  p.light.direction = c.light;
+  const scene plain = make_scene(p);
+  p.light.shadows = true;
+  p.light.ao_samples = 16;
+  const scene shadowed = make_scene(p);
+  for (backend b : {backend::scalar, backend::automatic}) {
+    const image want = render(plain, b), got = render(shadowed, b);
+    EXPECT_EQ(got.bytes, want.bytes) << to_string(b);
+  }
+  // A tiny sphere beside a huge one: the tiny one's lit side stays lit.
+  p.spheres.push_back(sphere{centre + vec3(-1e4, 0, 0) * c.scale * c.radius, 1e4 * c.radius * c.scale * 0.5,
+                             shading::lit, color(1, 1, 1)});
+  p.light.ao_samples = 0;
+  const scene beside = make_scene(p);
+  p.light.shadows = false;
+  EXPECT_EQ(render(beside, backend::automatic).bytes, render(make_scene(p), backend::automatic).bytes);
+}
+
+INSTANTIATE_TEST_SUITE_P(Light, LightStiff,
+                         ::testing::Values(stiff_light{"unit", 1.0, 1.0, 5.0, vec3(1, 1, 1)},
+                                           stiff_light{"scale_1e6", 1e6, 1.0, 5.0, vec3(1, 1, 1)},
+                                           stiff_light{"scale_1em6", 1e-6, 1.0, 5.0, vec3(1, 1, 1)},
+                                           stiff_light{"radius_1em4_from_1e3", 1.0, 1e-4, 1e7, vec3(1, 1, 1)},
+                                           stiff_light{"grazing_light", 1.0, 1.0, 5.0, vec3(1, 0, 1e-6)}),
+                         [](const auto& i) { return std::string(i.param.name); });
+
+}  // namespace
+}  // namespace raycast_test
