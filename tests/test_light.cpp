@@ -14,6 +14,7 @@
 #include "cloud.h"
 #include "light/grid.h"
 #include "light/secondary.h"
+#include "light/shadow_bins.h"
 #include "reference/hittable.h"
 #include "render_support.h"
 
@@ -153,6 +154,41 @@ TEST(Light, GridVerdictsAgreeWithTheReferenceButForGrazingRays) {
   RecordProperty("disagreeing", int(disagree));
   EXPECT_LE(double(disagree), 1e-4 * double(rays)) << disagree << " of " << rays;
   EXPECT_EQ(not_grazing, 0u) << "verdicts that differ though no sphere is within 1e-3 r of the ray";
+}
+
+// The same for shadow rays through the light-space bins (light/shadow_bins.h),
+// from points on every sphere's lit side.
+TEST(Light, ShadowBinVerdictsAgreeWithTheReferenceButForGrazingRays) {
+  const scene s = lit_box(4000, 0);
+  const sphere_grid grid(s, false);
+  const vec3 l = unit_vector(vec3(0.3, 1.0, 0.6));
+  const float lf[3] = {float(l.x), float(l.y), float(l.z)};
+  const shadow_bins bins(grid, lf);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  size_t rays = 0, disagree = 0, shadowed = 0, not_grazing = 0;
+  for (uint32_t k = 0; k < s.spheres.size(); ++k) {
+    const sphere& sp = s.spheres[k];
+    for (int q = 0; q < 16; ++q) {
+      const vec3 n = cosine_direction(l, u(rng), u(rng));  // a point on the lit side
+      const point3 p = sp.center + sp.radius * n;
+      const bool want = blocked(s.spheres, p, l, INFINITY, &sp);
+      const float* c = grid.sphere(k);
+      float pf[3];
+      for (int a = 0; a < 3; ++a) pf[a] = c[a] + c[3] * float(n[a]);
+      const bool got = bins.occluded(pf, k);
+      ++rays;
+      shadowed += want;
+      if (got == want) continue;
+      ++disagree;
+      not_grazing += grazing(s.spheres, p, l, INFINITY, &sp) > 1e-3;
+    }
+  }
+  RecordProperty("shadow_rays", int(rays));
+  RecordProperty("disagreeing", int(disagree));
+  EXPECT_GT(shadowed, rays / 10) << "a box's shadow rays are often blocked";
+  EXPECT_LE(double(disagree), 1e-4 * double(rays)) << disagree << " of " << rays;
+  EXPECT_EQ(not_grazing, 0u);
 }
 
 // Touching and overlapping spheres: no light passes between them.

@@ -18,7 +18,7 @@ struct cell_range {
 
 }  // namespace
 
-sphere_grid::sphere_grid(const scene& s, int /*threads*/) {
+sphere_grid::sphere_grid(const scene& s, bool cells) {
   const size_t n = s.sphere_count();
   if (n == 0) return;
   double lo[3], hi[3];
@@ -42,6 +42,11 @@ sphere_grid::sphere_grid(const scene& s, int /*threads*/) {
     for (int a = 0; a < 3; ++a) spheres_[k * 4 + a] = float(std::ldexp(sp.center[a] - origin[a], -scale_exp));
     spheres_[k * 4 + 3] = float(std::ldexp(sp.radius, -scale_exp));
   }
+  if (cells) build_cells(lo, hi);
+}
+
+void sphere_grid::build_cells(const double lo[3], const double hi[3]) {
+  const size_t n = size();
   // Grid units: the box lies within [-1, 1]. About one cell per sphere.
   double size[3], volume = 1;
   for (int a = 0; a < 3; ++a) {
@@ -80,27 +85,18 @@ sphere_grid::sphere_grid(const scene& s, int /*threads*/) {
   for (size_t k = 0; k < n; ++k) each_cell(range_of(k), [&](size_t c) { ++first_[c + 1]; });
   for (size_t c = 0; c < cells; ++c) first_[c + 1] += first_[c];
   refs_.resize(first_[cells]);
+  occupied_.assign((cells + 63) / 64, 0);
+  for (size_t c = 0; c < cells; ++c)
+    if (first_[c + 1] != first_[c]) occupied_[c >> 6] |= uint64_t(1) << (c & 63);
   std::vector<uint32_t> fill(first_.begin(), first_.end() - 1);
   for (size_t k = 0; k < n; ++k) each_cell(range_of(k), [&](size_t c) { refs_[fill[c]++] = uint32_t(k); });
 }
 
-bool sphere_grid::cell_occluded(size_t cell, const float o[3], const float d[3], float tmax, uint32_t skip) const {
-  for (uint32_t e = first_[cell]; e < first_[cell + 1]; ++e) {
-    const uint32_t k = refs_[e];
-    if (k == skip) continue;
-    const float* s = sphere(k);
-    const float ox = o[0] - s[0], oy = o[1] - s[1], oz = o[2] - s[2];
-    const float r2 = s[3] * s[3];
-    if ((ox * ox + oy * oy) + oz * oz <= r2) return true;  // the ray starts inside it
-    const float b = (ox * d[0] + oy * d[1]) + oz * d[2];
-    if (b >= 0.0f) continue;  // outside, and moving away
-    // Hearn and Baker: the squared distance of the line from the centre, no
-    // cancellation against |o - c|^2.
-    const float vx = ox - b * d[0], vy = oy - b * d[1], vz = oz - b * d[2];
-    const float m2 = (vx * vx + vy * vy) + vz * vz;
-    if (m2 > r2) continue;
-    if (-b - std::sqrt(r2 - m2) <= tmax) return true;
-  }
+// Whether a sphere of refs [e0, e1) but skip blocks the segment.
+inline bool sphere_grid::cell_occluded(uint32_t e0, uint32_t e1, const float o[3], const float d[3], float tmax,
+                                       uint32_t skip) const {
+  for (uint32_t e = e0; e < e1; ++e)
+    if (refs_[e] != skip && blocks(refs_[e], o, d, tmax)) return true;
   return false;
 }
 
@@ -108,44 +104,49 @@ bool sphere_grid::occluded(const float o[3], const float d[3], float tmax, uint3
   if (refs_.empty()) return false;
   // The segment clipped to the grid's box (a hit point starts inside it:
   // no clipping, the walk ends where it leaves the box).
-  float t0 = 0.0f, t1 = tmax, inv[3];
+  float t0 = 0.0f, t1 = tmax;
   bool inside = true;
-  for (int a = 0; a < 3; ++a) {
-    inv[a] = d[a] == 0.0f ? std::numeric_limits<float>::infinity() : 1.0f / d[a];
-    inside = inside && o[a] >= lo_[a] && o[a] < hi_[a];
-  }
+  for (int a = 0; a < 3; ++a) inside = inside && o[a] >= lo_[a] && o[a] < hi_[a];
   for (int a = 0; a < 3 && !inside; ++a) {
     if (d[a] == 0.0f) {
       if (o[a] < lo_[a] || o[a] > hi_[a]) return false;
       continue;
     }
-    float ta = (lo_[a] - o[a]) * inv[a], tb = (hi_[a] - o[a]) * inv[a];
+    float ta = (lo_[a] - o[a]) / d[a], tb = (hi_[a] - o[a]) / d[a];
     if (ta > tb) std::swap(ta, tb);
     t0 = std::max(t0, ta);
     t1 = std::min(t1, tb);
   }
   if (!(t0 <= t1)) return false;
-  // Amanatides and Woo's walk, each boundary's t computed afresh (no sum of
-  // steps drifts across a long ray).
-  int c[3], step[3];
-  float next[3];
-  size_t stride[3] = {1, size_t(dims_[0]), size_t(dims_[0]) * size_t(dims_[1])};
-  size_t cell = 0;
+  // Amanatides and Woo's walk; the boundaries' t in double, so that a sum of
+  // thousands of steps drifts by far less than the spheres' widening.
+  int c[3];
+  ptrdiff_t move[3];
+  double next[3], delta[3];
+  const ptrdiff_t stride[3] = {1, ptrdiff_t(dims_[0]), ptrdiff_t(dims_[0]) * dims_[1]};
+  ptrdiff_t cell = 0;
   for (int a = 0; a < 3; ++a) {
-    c[a] = std::clamp(int(std::floor((o[a] + t0 * d[a] - lo_[a]) * inv_h_)), 0, dims_[a] - 1);
-    step[a] = d[a] > 0.0f ? 1 : -1;
-    next[a] = d[a] == 0.0f ? std::numeric_limits<float>::infinity()
-                           : (lo_[a] + float(c[a] + (step[a] > 0)) * h_ - o[a]) * inv[a];
-    cell += size_t(c[a]) * stride[a];
+    const float p = (o[a] + t0 * d[a] - lo_[a]) * inv_h_;
+    c[a] = p <= 0.0f ? 0 : std::min(int(p), dims_[a] - 1);
+    cell += c[a] * stride[a];
+    move[a] = d[a] > 0.0f ? stride[a] : -stride[a];
+    if (d[a] == 0.0f) {
+      next[a] = delta[a] = std::numeric_limits<double>::infinity();
+      continue;
+    }
+    const double inv = 1.0 / double(d[a]);
+    next[a] = (double(lo_[a]) + double(c[a] + (d[a] > 0.0f)) * double(h_) - double(o[a])) * inv;
+    delta[a] = double(h_) * std::abs(inv);
   }
   for (;;) {
-    if (cell_occluded(cell, o, d, tmax, skip)) return true;
+    if (occupied_[size_t(cell) >> 6] >> (cell & 63) & 1u)
+      if (cell_occluded(first_[size_t(cell)], first_[size_t(cell) + 1], o, d, tmax, skip)) return true;
     const int a = next[0] < next[1] ? (next[0] < next[2] ? 0 : 2) : (next[1] < next[2] ? 1 : 2);
-    if (next[a] > t1) return false;
-    c[a] += step[a];
-    if (c[a] < 0 || c[a] >= dims_[a]) return false;
-    cell = step[a] > 0 ? cell + stride[a] : cell - stride[a];
-    next[a] = (lo_[a] + float(c[a] + (step[a] > 0)) * h_ - o[a]) * inv[a];
+    if (next[a] > double(t1)) return false;
+    c[a] += move[a] > 0 ? 1 : -1;
+    if (unsigned(c[a]) >= unsigned(dims_[a])) return false;
+    cell += move[a];
+    next[a] += delta[a];
   }
 }
 

@@ -16,6 +16,7 @@
 // 6 a sphere in a packed box, fewer in a sparse cloud) and 4 bytes a cell
 // (about one a sphere): some 45 bytes a sphere in a packed box.
 #pragma once
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -27,8 +28,9 @@ namespace raycast {
 class sphere_grid {
  public:
   sphere_grid() = default;
-  // Over every sphere of s; up to `threads` threads for large scenes.
-  explicit sphere_grid(const scene& s, int threads = 1);
+  // Over every sphere of s; without `cells`, the spheres alone (in the
+  // grid's frame, for shadow_bins), and occluded() is never asked.
+  explicit sphere_grid(const scene& s, bool cells = true);
 
   // Whether the segment o + t d, t in [0, tmax] (grid units; d of unit
   // length), meets a sphere's solid ball other than `skip`: a ray that
@@ -37,15 +39,33 @@ class sphere_grid {
 
   // Sphere k's centre (grid frame) and radius (grid units), x y z r.
   const float* sphere(uint32_t k) const { return &spheres_[size_t(k) * 4]; }
+  size_t size() const { return spheres_.size() / 4; }
+
+  // Whether the segment o + t d, t in [0, tmax], meets sphere k's solid ball
+  // (light/secondary.h's rule): a start inside it, or the near root of a
+  // sphere ahead within tmax, from Hearn and Baker's squared distance of the
+  // line from the centre (no cancellation against |o - c|^2).
+  bool blocks(uint32_t k, const float o[3], const float d[3], float tmax) const {
+    const float* s = sphere(k);
+    const float ox = o[0] - s[0], oy = o[1] - s[1], oz = o[2] - s[2];
+    const float r2 = s[3] * s[3];
+    if ((ox * ox + oy * oy) + oz * oz <= r2) return true;
+    const float b = (ox * d[0] + oy * d[1]) + oz * d[2];
+    if (b >= 0.0f) return false;  // outside, and moving away
+    const float vx = ox - b * d[0], vy = oy - b * d[1], vz = oz - b * d[2];
+    const float m2 = (vx * vx + vy * vy) + vz * vz;
+    return m2 <= r2 && -b - std::sqrt(r2 - m2) <= tmax;
+  }
   double origin[3] = {0, 0, 0};
   int scale_exp = 0;  // grid units = world units * 2^-scale_exp
 
   size_t cells() const { return first_.empty() ? 0 : first_.size() - 1; }
   size_t references() const { return refs_.size(); }
-  size_t bytes() const { return spheres_.size() * 4 + first_.size() * 4 + refs_.size() * 4; }
+  size_t bytes() const { return spheres_.size() * 4 + first_.size() * 4 + refs_.size() * 4 + occupied_.size() * 8; }
 
  private:
-  bool cell_occluded(size_t cell, const float o[3], const float d[3], float tmax, uint32_t skip) const;
+  void build_cells(const double lo[3], const double hi[3]);
+  bool cell_occluded(uint32_t e0, uint32_t e1, const float o[3], const float d[3], float tmax, uint32_t skip) const;
 
   float lo_[3] = {0, 0, 0}, hi_[3] = {0, 0, 0};
   float h_ = 1, inv_h_ = 1;  // the cell's side, and 1 / it
@@ -53,6 +73,7 @@ class sphere_grid {
   std::vector<float> spheres_;   // 4 per sphere, the scene's order
   std::vector<uint32_t> first_;  // cells + 1: cell c's references are refs_[first_[c] .. first_[c + 1])
   std::vector<uint32_t> refs_;   // sphere indices, each cell's in the scene's order
+  std::vector<uint64_t> occupied_;  // bit c: cell c lists a sphere (a sparse scene's walk reads 1 bit an empty cell)
 };
 
 }  // namespace raycast

@@ -18,6 +18,7 @@
 #include <cstdint>
 
 #include "light/grid.h"
+#include "light/shadow_bins.h"
 #include "scene/sampler.h"
 
 namespace raycast {
@@ -25,6 +26,7 @@ namespace raycast {
 // What a render's lit spheres need beyond the kernel's N . L (built once per render).
 struct secondary_rays {
   const sphere_grid* grid = nullptr;
+  const shadow_bins* bins = nullptr;  // the shadow rays' structure (shadows only)
   float light[3] = {0, 0, 0};  // unit, toward the light (shadows)
   bool shadows = false;
   sampling::ao_plan ao;        // ao.count rays a hit; 0: none

@@ -138,10 +138,11 @@ void renderer::set_light(const scene& s) {
     for (int k = 0; k < 3; ++k) light_[k] = float(l[k]);
   }
   if (s.light.secondary()) {
-    grid_.emplace(s, preparation_threads(s, threads_));
+    grid_.emplace(s, s.light.ao_samples > 0);  // the cells for AO rays; shadows ask the bins
     secondary_.grid = &*grid_;
     for (int k = 0; k < 3; ++k) secondary_.light[k] = light_[k];
     secondary_.shadows = s.light.shadows;
+    if (s.light.shadows) secondary_.bins = &bins_.emplace(*grid_, light_);
     secondary_.ao = ao_;
     secondary_.ao_distance = float(std::ldexp(s.light.ao_distance, -grid_->scale_exp));
   }

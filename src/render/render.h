@@ -80,6 +80,7 @@ class renderer {
   float light_[3] = {0, 0, 0};
   sampling::ao_plan ao_;
   std::optional<sphere_grid> grid_;
+  std::optional<shadow_bins> bins_;
   secondary_rays secondary_;
 };
 

@@ -1,0 +1,110 @@
+#include "light/shadow_bins.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace raycast {
+namespace {
+
+constexpr float margin = 0x1p-20f;  // grid units, as the 3-D grid's widening
+constexpr size_t max_entries = size_t(1) << 31;
+
+float dot(const float a[3], const float* b) { return (a[0] * b[0] + a[1] * b[1]) + a[2] * b[2]; }
+
+}  // namespace
+
+shadow_bins::shadow_bins(const sphere_grid& grid, const float light[3]) : grid_(&grid) {
+  // The plane's axes: Duff et al.'s frame about L.
+  for (int k = 0; k < 3; ++k) l_[k] = light[k];
+  const float sign = std::copysign(1.0f, l_[2]), a = -1.0f / (sign + l_[2]), b = l_[0] * l_[1] * a;
+  const float u[3] = {1.0f + sign * l_[0] * l_[0] * a, sign * b, -sign * l_[0]}, v[3] = {b, sign + l_[1] * l_[1] * a, -l_[1]};
+  for (int k = 0; k < 3; ++k) u_[k] = u[k], v_[k] = v[k];
+  const size_t n = grid.size();
+  if (n == 0) return;
+  // Each sphere's entry, once: its disc across L and its reach along L.
+  std::vector<entry> disc(n);
+  float hi[2];
+  lo_[0] = lo_[1] = std::numeric_limits<float>::infinity();
+  hi[0] = hi[1] = -lo_[0];
+  for (size_t k = 0; k < n; ++k) {
+    const float* s = grid.sphere(uint32_t(k));
+    disc[k] = {dot(l_, s) + s[3] + margin, uint32_t(k), dot(u_, s), dot(v_, s), s[3] + margin};
+    lo_[0] = std::min(lo_[0], disc[k].u - disc[k].r - margin);
+    lo_[1] = std::min(lo_[1], disc[k].v - disc[k].r - margin);
+    hi[0] = std::max(hi[0], disc[k].u + disc[k].r + margin);
+    hi[1] = std::max(hi[1], disc[k].v + disc[k].r + margin);
+  }
+  bin(disc, hi);
+}
+
+void shadow_bins::bin(const std::vector<entry>& disc, const float hi[2]) {
+  const size_t n = disc.size();
+  double g = std::sqrt(double(hi[0] - lo_[0]) * double(hi[1] - lo_[1]) / double(n));
+  const auto range_of = [&](const entry& e, int r[4]) {  // the cells of a disc: x0, x1, y0, y1
+    const float p[2] = {e.u, e.v};
+    for (int a = 0; a < 2; ++a) {
+      r[2 * a] = std::clamp(int((double(p[a]) - e.r - lo_[a]) / g), 0, dims_[a] - 1);
+      r[2 * a + 1] = std::clamp(int((double(p[a]) + e.r - lo_[a]) / g), 0, dims_[a] - 1);
+    }
+  };
+  for (;;) {  // coarser until the entries fit
+    for (int a = 0; a < 2; ++a) dims_[a] = int(std::clamp(std::ceil((hi[a] - lo_[a]) / g), 1.0, double(1 << 15)));
+    size_t total = 0;
+    for (size_t k = 0; k < n && total <= max_entries; ++k) {
+      int r[4];
+      range_of(disc[k], r);
+      total += size_t(r[1] - r[0] + 1) * size_t(r[3] - r[2] + 1);
+    }
+    if (total <= max_entries && total <= 64 * n + 4096) break;
+    g *= 2;
+  }
+  inv_g_ = float(1.0 / g);
+  const size_t cells = size_t(dims_[0]) * size_t(dims_[1]);
+  first_.assign(cells + 1, 0);
+  const auto each_cell = [&](const entry& e, auto&& f) {
+    int r[4];
+    range_of(e, r);
+    for (int y = r[2]; y <= r[3]; ++y)
+      for (int x = r[0]; x <= r[1]; ++x) f(size_t(x) + size_t(dims_[0]) * size_t(y));
+  };
+  for (const entry& e : disc) each_cell(e, [&](size_t c) { ++first_[c + 1]; });
+  for (size_t c = 0; c < cells; ++c) first_[c + 1] += first_[c];
+  entries_.resize(first_[cells]);
+  std::vector<uint32_t> fill(first_.begin(), first_.end() - 1);
+  for (const entry& e : disc) each_cell(e, [&](size_t c) { entries_[fill[c]++] = e; });
+  // Each cell's list by reach (most cells hold a few entries: insertion
+  // sort; a long list, of coincident or huge spheres, a real sort).
+  const auto by_reach = [](const entry& a, const entry& b) { return a.reach < b.reach; };
+  for (size_t c = 0; c < cells; ++c) {
+    entry* begin = entries_.data() + first_[c];
+    const size_t count = first_[c + 1] - first_[c];
+    if (count > 16) std::stable_sort(begin, begin + count, by_reach);
+    for (size_t i = 1; i < count && count <= 16; ++i)
+      for (size_t j = i; j > 0 && by_reach(begin[j], begin[j - 1]); --j) std::swap(begin[j], begin[j - 1]);
+  }
+}
+
+bool shadow_bins::occluded(const float p[3], uint32_t skip) const {
+  if (entries_.empty()) return false;
+  const float u = dot(u_, p), v = dot(v_, p);
+  const float pu = (u - lo_[0]) * inv_g_, pv = (v - lo_[1]) * inv_g_;
+  if (!(pu >= 0.0f && pv >= 0.0f)) return false;  // outside every disc (or NaN)
+  const int x = int(pu), y = int(pv);
+  if (x >= dims_[0] || y >= dims_[1]) return false;
+  const size_t c = size_t(x) + size_t(dims_[0]) * size_t(y);
+  const entry* begin = entries_.data() + first_[c];
+  const entry* end = entries_.data() + first_[c + 1];
+  // The spheres that reach past P along L (the rest lie wholly behind it).
+  const float depth = dot(l_, p);
+  const entry* e = std::lower_bound(begin, end, depth, [](const entry& a, float d) { return a.reach < d; });
+  const float inf = std::numeric_limits<float>::infinity();
+  for (; e != end; ++e) {
+    const float du = u - e->u, dv = v - e->v;
+    if (du * du + dv * dv > e->r * e->r) continue;  // the ray passes outside its disc
+    if (e->k != skip && grid_->blocks(e->k, p, l_, inf)) return true;
+  }
+  return false;
+}
+
+}  // namespace raycast

@@ -1,0 +1,53 @@
+// The shadow rays of a directional light are parallel: every one runs
+// along L. So the spheres are binned once in the light's own orthographic
+// view (the "irregular z-buffer" idea of Johnson et al. and Wyman et al.):
+// a 2-D grid over the plane across L, each sphere listed in every cell its
+// disc (widened by 2^-20 of the grid) overlaps, each cell's list sorted by
+// how far along L the sphere reaches, C . L + r. A shadow ray from P looks
+// up the one cell that P's projection falls in, skips the spheres that end
+// before P (C . L + r < P . L: wholly behind it), and tests the rest in
+// order with the grid's own test (light/grid.h), stopping at the first that
+// blocks. Only the candidates differ from the 3-D walk's, never the test,
+// so the verdicts are the same.
+//
+// Built only for shadows, in the sphere grid's frame; about one cell a
+// sphere. Each entry carries its disc, so that a ray passing outside it (by
+// more than the margin: the test could not have said otherwise) costs no
+// read of the sphere. Memory: 20 bytes an entry and 4 bytes a cell: with
+// about 4 entries a sphere in a dense cloud, some 84 bytes a sphere.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "light/grid.h"
+
+namespace raycast {
+
+class shadow_bins {
+ public:
+  shadow_bins() = default;
+  // light: the unit direction toward the light, in the grid's frame (the world's axes).
+  shadow_bins(const sphere_grid& grid, const float light[3]);
+
+  // Whether the ray from p (grid frame) along the light meets a sphere's ball but skip's.
+  bool occluded(const float p[3], uint32_t skip) const;
+
+  size_t bytes() const { return first_.size() * 4 + entries_.size() * sizeof(entry); }
+
+ private:
+  struct entry {
+    float reach;  // C . L + r, plus the margin
+    uint32_t k;
+    float u, v, r;  // the disc: C's projection, and r plus the margin
+  };
+  void bin(const std::vector<entry>& disc, const float hi[2]);
+
+  const sphere_grid* grid_ = nullptr;
+  float l_[3] = {0, 0, 0}, u_[3] = {0, 0, 0}, v_[3] = {0, 0, 0};  // L and the plane's axes
+  float lo_[2] = {0, 0}, inv_g_ = 1;
+  int dims_[2] = {0, 0};
+  std::vector<uint32_t> first_;  // cells + 1
+  std::vector<entry> entries_;
+};
+
+}  // namespace raycast
