@@ -113,9 +113,83 @@ void bench_embree(benchmark::State& state, const family* f, int64_t n, const var
   state.counters["render_s"] = per_iteration(primary + shadow + occlusion);
 }
 
+// Ambient occlusion's Monte Carlo error against run time: a lit box of 2000
+// spheres, AO distance 5 radii, no shadows, rgb_f32, one thread, against a
+// converged image (sobol, converged_ao rays a hit), computed once.
+struct ao_config {
+  int64_t w, h;
+  uint32_t converged;
+};
+
+scene ao_scene(const ao_config& c, uint32_t n) {
+  scene s = lit_scene(families[0], 2000, variants[0], c.w, c.h);
+  s.light.shadows = false;
+  s.light.ao_samples = n;
+  return s;
+}
+
+std::vector<float> render_f32(const scene& s, sampler_kind k) {
+  render_options o;
+  o.threads = 1;
+  o.sampler = k;
+  std::vector<float> px(size_t(s.cam.image_width * s.cam.image_height) * 3);
+  const renderer r(s, o);
+  r.render({px.data(), size_t(s.cam.image_width) * 12, pixel_format::rgb_f32, 0, s.cam.image_height});
+  return px;
+}
+
+const std::vector<float>& converged(const ao_config& c) {
+  static std::vector<float> image;
+  if (image.empty()) {
+    render_options o;
+    o.threads = available_cores();
+    const scene s = ao_scene(c, c.converged);
+    image.resize(size_t(c.w * c.h) * 3);
+    const renderer r(s, o);
+    r.render({image.data(), size_t(c.w) * 12, pixel_format::rgb_f32, 0, c.h});
+  }
+  return image;
+}
+
+void bench_ao(benchmark::State& state, ao_config c, sampler_kind k, uint32_t n) {
+  const scene s = ao_scene(c, n);
+  const std::vector<float>& want = converged(c);
+  std::vector<float> got;
+  double t = 0;
+  for (auto _ : state) {
+    const steady::time_point t0 = steady::now();
+    got = render_f32(s, k);
+    t += seconds_since(t0);
+  }
+  double sum = 0, most = 0;
+  for (size_t i = 0; i < got.size(); ++i) {
+    const double e = double(got[i]) - double(want[i]);
+    sum += e * e;
+    most = std::max(most, std::abs(e));
+  }
+  state.counters["ns_per_px"] = per_iteration(t * 1e9 / double(c.w * c.h));
+  state.counters["rms_err"] = std::sqrt(sum / double(got.size()));
+  state.counters["max_abs_err"] = most;
+  state.counters["converged_ao"] = c.converged;
+}
+
 }  // namespace
 
+void register_ao_rows(bool quick) {
+  const ao_config c = quick ? ao_config{160, 90, 256} : ao_config{320, 180, 4096};
+  const std::vector<uint32_t> counts = quick ? std::vector<uint32_t>{1, 4, 16}
+                                             : std::vector<uint32_t>{1, 2, 4, 8, 16, 32, 64, 128, 256};
+  for (sampler_kind k : {sampler_kind::random, sampler_kind::stratified, sampler_kind::sobol})
+    for (uint32_t n : counts) {
+      const std::string sampler(to_string(k)), size = size_text(c.w, c.h);
+      add_row(strf("ao/%s/box2000/%s/ao%u", sampler.c_str(), size.c_str(), n),
+              strf("kind=ao sampler=%s scene=box2000 size=%s ao=%u", sampler.c_str(), size.c_str(), n),
+              benchmark::kMillisecond, bench_ao, c, k, n);
+    }
+}
+
 void register_light_rows(bool quick) {
+  register_ao_rows(quick);
   const int64_t w = quick ? 640 : 1920, h = quick ? 360 : 1080;
   for (const family& f : families)
     for (int64_t n : quick ? std::vector<int64_t>{1000} : std::vector<int64_t>{10'000, 100'000, 1'000'000}) {

@@ -36,13 +36,23 @@ sphere_grid::sphere_grid(const scene& s, bool cells) {
     half = std::max(half, hi[a] - origin[a]);
   }
   std::frexp(half, &scale_exp);  // half < 2^scale_exp
+  const double unit = std::ldexp(1.0, -scale_exp);  // a power of two: the products are exact
   spheres_.resize(n * 4);
   for (size_t k = 0; k < n; ++k) {
     const raycast::sphere sp = s.sphere_at(k);
-    for (int a = 0; a < 3; ++a) spheres_[k * 4 + a] = float(std::ldexp(sp.center[a] - origin[a], -scale_exp));
-    spheres_[k * 4 + 3] = float(std::ldexp(sp.radius, -scale_exp));
+    for (int a = 0; a < 3; ++a) spheres_[k * 4 + a] = float((sp.center[a] - origin[a]) * unit);
+    spheres_[k * 4 + 3] = float(sp.radius * unit);
   }
   if (cells) build_cells(lo, hi);
+}
+
+double sphere_grid::typical_radius() const {
+  const size_t n = size(), step = n / 4096 + 1;
+  std::vector<float> r;
+  for (size_t k = 0; k < n; k += step) r.push_back(sphere(uint32_t(k))[3]);
+  if (r.empty()) return 0;
+  std::nth_element(r.begin(), r.begin() + r.size() / 2, r.end());
+  return r[r.size() / 2];
 }
 
 void sphere_grid::build_cells(const double lo[3], const double hi[3]) {
@@ -54,14 +64,15 @@ void sphere_grid::build_cells(const double lo[3], const double hi[3]) {
     size[a] = std::ldexp(hi[a] - lo[a], -scale_exp) + 4 * margin;
     volume *= size[a];
   }
-  double h = std::cbrt(volume / double(n));
+  double h = std::max(std::cbrt(volume / double(n)), 2 * typical_radius());
   const auto range_of = [&](size_t k) {
     cell_range r;
     const float* sp = sphere(uint32_t(k));
-    for (int a = 0; a < 3; ++a) {
-      const double x0 = (double(sp[a]) - sp[3] - margin - lo_[a]) / h, x1 = (double(sp[a]) + sp[3] + margin - lo_[a]) / h;
-      r.c0[a] = std::clamp(int(std::floor(x0)), 0, dims_[a] - 1);
-      r.c1[a] = std::clamp(int(std::floor(x1)), 0, dims_[a] - 1);
+    const double inv = 1.0 / h;
+    for (int a = 0; a < 3; ++a) {  // every coordinate is above lo_: int() is floor()
+      const double x0 = (double(sp[a]) - sp[3] - margin - lo_[a]) * inv, x1 = (double(sp[a]) + sp[3] + margin - lo_[a]) * inv;
+      r.c0[a] = std::clamp(int(x0), 0, dims_[a] - 1);
+      r.c1[a] = std::clamp(int(x1), 0, dims_[a] - 1);
     }
     return r;
   };

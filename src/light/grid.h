@@ -40,6 +40,10 @@ class sphere_grid {
   // Sphere k's centre (grid frame) and radius (grid units), x y z r.
   const float* sphere(uint32_t k) const { return &spheres_[size_t(k) * 4]; }
   size_t size() const { return spheres_.size() / 4; }
+  // The median radius of up to 4096 spheres spread over the scene: the
+  // structures' cells are no smaller than its diameter, so that a packed
+  // scene's spheres are listed a few times each, not dozens.
+  double typical_radius() const;
 
   // Whether the segment o + t d, t in [0, tmax], meets sphere k's solid ball
   // (light/secondary.h's rule): a start inside it, or the near root of a

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace raycast {
@@ -11,6 +12,27 @@ constexpr float margin = 0x1p-20f;  // grid units, as the 3-D grid's widening
 constexpr size_t max_entries = size_t(1) << 31;
 
 float dot(const float a[3], const float* b) { return (a[0] * b[0] + a[1] * b[1]) + a[2] * b[2]; }
+
+// The spheres' indices in the order of their reach, ties in the scene's
+// order: a stable radix sort on the floats' bits, two 16-bit digits.
+std::vector<uint32_t> by_reach(const std::vector<shadow_bins::entry>& disc) {
+  const size_t n = disc.size();
+  std::vector<uint32_t> key(n), order(n), next(n);
+  for (size_t k = 0; k < n; ++k) {
+    uint32_t b;
+    std::memcpy(&b, &disc[k].reach, sizeof b);
+    key[k] = (b >> 31) ? ~b : b | 0x80000000u;  // the floats' order as unsigned integers
+    order[k] = uint32_t(k);
+  }
+  for (int shift : {0, 16}) {
+    std::vector<size_t> count((1 << 16) + 1, 0);
+    for (uint32_t k : order) ++count[((key[k] >> shift) & 0xffffu) + 1];
+    for (size_t d = 0; d < (1 << 16); ++d) count[d + 1] += count[d];
+    for (uint32_t k : order) next[count[(key[k] >> shift) & 0xffffu]++] = k;
+    order.swap(next);
+  }
+  return order;
+}
 
 }  // namespace
 
@@ -40,7 +62,7 @@ shadow_bins::shadow_bins(const sphere_grid& grid, const float light[3]) : grid_(
 
 void shadow_bins::bin(const std::vector<entry>& disc, const float hi[2]) {
   const size_t n = disc.size();
-  double g = std::sqrt(double(hi[0] - lo_[0]) * double(hi[1] - lo_[1]) / double(n));
+  double g = std::max(std::sqrt(double(hi[0] - lo_[0]) * double(hi[1] - lo_[1]) / double(n)), 2 * grid_->typical_radius());
   const auto range_of = [&](const entry& e, int r[4]) {  // the cells of a disc: x0, x1, y0, y1
     const float p[2] = {e.u, e.v};
     for (int a = 0; a < 2; ++a) {
@@ -71,18 +93,10 @@ void shadow_bins::bin(const std::vector<entry>& disc, const float hi[2]) {
   for (const entry& e : disc) each_cell(e, [&](size_t c) { ++first_[c + 1]; });
   for (size_t c = 0; c < cells; ++c) first_[c + 1] += first_[c];
   entries_.resize(first_[cells]);
+  // Filled in the order of reach (ties: the scene's), so that each cell's
+  // list comes out sorted.
   std::vector<uint32_t> fill(first_.begin(), first_.end() - 1);
-  for (const entry& e : disc) each_cell(e, [&](size_t c) { entries_[fill[c]++] = e; });
-  // Each cell's list by reach (most cells hold a few entries: insertion
-  // sort; a long list, of coincident or huge spheres, a real sort).
-  const auto by_reach = [](const entry& a, const entry& b) { return a.reach < b.reach; };
-  for (size_t c = 0; c < cells; ++c) {
-    entry* begin = entries_.data() + first_[c];
-    const size_t count = first_[c + 1] - first_[c];
-    if (count > 16) std::stable_sort(begin, begin + count, by_reach);
-    for (size_t i = 1; i < count && count <= 16; ++i)
-      for (size_t j = i; j > 0 && by_reach(begin[j], begin[j - 1]); --j) std::swap(begin[j], begin[j - 1]);
-  }
+  for (uint32_t k : by_reach(disc)) each_cell(disc[k], [&](size_t c) { entries_[fill[c]++] = disc[k]; });
 }
 
 bool shadow_bins::occluded(const float p[3], uint32_t skip) const {

@@ -11,7 +11,7 @@
 // so the verdicts are the same.
 //
 // Built only for shadows, in the sphere grid's frame; about one cell a
-// sphere. Each entry carries its disc, so that a ray passing outside it (by
+// sphere, and no smaller than a typical sphere's disc (light/grid.h). Each entry carries its disc, so that a ray passing outside it (by
 // more than the margin: the test could not have said otherwise) costs no
 // read of the sphere. Memory: 20 bytes an entry and 4 bytes a cell: with
 // about 4 entries a sphere in a dense cloud, some 84 bytes a sphere.
@@ -34,12 +34,13 @@ class shadow_bins {
 
   size_t bytes() const { return first_.size() * 4 + entries_.size() * sizeof(entry); }
 
- private:
+  // A sphere's entry: public for the build's helpers.
   struct entry {
     float reach;  // C . L + r, plus the margin
     uint32_t k;
     float u, v, r;  // the disc: C's projection, and r plus the margin
   };
+ private:
   void bin(const std::vector<entry>& disc, const float hi[2]);
 
   const sphere_grid* grid_ = nullptr;

@@ -174,7 +174,9 @@ void renderer::render(const image_band& band) const {
   // thread costs tens of microseconds to start, about what 2^17 rays take
   // to render: smaller jobs (the default 400x225 sky) stay on one thread.
   const int64_t W = scene_.cam.image_width;
-  const int64_t work = rows * (band.cols_end(W) - band.col_begin) * int64_t(samples());  // rays
+  // Rays: a lit hit's secondary rays count as much as its primary one.
+  const int64_t per_pixel = int64_t(samples()) * (1 + (secondary_.grid ? int64_t(ao_.count) + secondary_.shadows : 0));
+  const int64_t work = rows * (band.cols_end(W) - band.col_begin) * per_pixel;
   int64_t nthreads = std::min<int64_t>({threads_, units, std::max<int64_t>(1, work >> 17)});
   if (nthreads > 1) nthreads = threads_that_start(int(nthreads));
   if (nthreads <= 1) {
