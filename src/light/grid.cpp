@@ -49,7 +49,7 @@ sphere_grid::sphere_grid(const scene& s, bool cells) {
 double sphere_grid::typical_radius() const {
   const size_t n = size(), step = n / 4096 + 1;
   std::vector<float> r;
-  for (size_t k = 0; k < n; k += step) r.push_back(sphere(uint32_t(k))[3]);
+  for (size_t k = 0; k < n; k += step) r.push_back(at(uint32_t(k))[3]);
   if (r.empty()) return 0;
   std::nth_element(r.begin(), r.begin() + r.size() / 2, r.end());
   return r[r.size() / 2];
@@ -67,7 +67,7 @@ void sphere_grid::build_cells(const double lo[3], const double hi[3]) {
   double h = std::max(std::cbrt(volume / double(n)), 2 * typical_radius());
   const auto range_of = [&](size_t k) {
     cell_range r;
-    const float* sp = sphere(uint32_t(k));
+    const float* sp = at(uint32_t(k));  // by position
     const double inv = 1.0 / h;
     for (int a = 0; a < 3; ++a) {  // every coordinate is above lo_: int() is floor()
       const double x0 = (double(sp[a]) - sp[3] - margin - lo_[a]) * inv, x1 = (double(sp[a]) + sp[3] + margin - lo_[a]) * inv;
@@ -93,6 +93,7 @@ void sphere_grid::build_cells(const double lo[3], const double hi[3]) {
       for (int y = r.c0[1]; y <= r.c1[1]; ++y)
         for (int x = r.c0[0]; x <= r.c1[0]; ++x) f(size_t(x) + size_t(dims_[0]) * (size_t(y) + size_t(dims_[1]) * size_t(z)));
   };
+  sort_by_home_cell(h);
   for (size_t k = 0; k < n; ++k) each_cell(range_of(k), [&](size_t c) { ++first_[c + 1]; });
   for (size_t c = 0; c < cells; ++c) first_[c + 1] += first_[c];
   refs_.resize(first_[cells]);
@@ -103,6 +104,32 @@ void sphere_grid::build_cells(const double lo[3], const double hi[3]) {
   for (size_t k = 0; k < n; ++k) each_cell(range_of(k), [&](size_t c) { refs_[fill[c]++] = uint32_t(k); });
 }
 
+// The spheres stored in the order of the cells their centres lie in (a
+// stable counting sort), rank_ mapping scene indices to positions.
+void sphere_grid::sort_by_home_cell(double h) {
+  const size_t n = size(), cells = size_t(dims_[0]) * size_t(dims_[1]) * size_t(dims_[2]);
+  std::vector<uint32_t> home(n), count(cells + 1, 0);
+  const double inv = 1.0 / h;
+  for (size_t k = 0; k < n; ++k) {
+    const float* s = &spheres_[k * 4];
+    size_t c = 0, stride = 1;
+    for (int a = 0; a < 3; ++a) {
+      c += size_t(std::clamp(int((double(s[a]) - lo_[a]) * inv), 0, dims_[a] - 1)) * stride;
+      stride *= size_t(dims_[a]);
+    }
+    home[k] = uint32_t(c);
+    ++count[c + 1];
+  }
+  for (size_t c = 0; c < cells; ++c) count[c + 1] += count[c];
+  rank_.resize(n);
+  std::vector<float> sorted(n * 4);
+  for (size_t k = 0; k < n; ++k) {
+    rank_[k] = count[home[k]]++;
+    for (int a = 0; a < 4; ++a) sorted[size_t(rank_[k]) * 4 + a] = spheres_[k * 4 + a];
+  }
+  spheres_.swap(sorted);
+}
+
 // Whether a sphere of refs [e0, e1) but skip blocks the segment.
 inline bool sphere_grid::cell_occluded(uint32_t e0, uint32_t e1, const float o[3], const float d[3], float tmax,
                                        uint32_t skip) const {
@@ -111,8 +138,9 @@ inline bool sphere_grid::cell_occluded(uint32_t e0, uint32_t e1, const float o[3
   return false;
 }
 
-bool sphere_grid::occluded(const float o[3], const float d[3], float tmax, uint32_t skip) const {
+bool sphere_grid::occluded(const float o[3], const float d[3], float tmax, uint32_t skip_index) const {
   if (refs_.empty()) return false;
+  const uint32_t skip = skip_index < size() ? position(skip_index) : skip_index;
   // The segment clipped to the grid's box (a hit point starts inside it:
   // no clipping, the walk ends where it leaves the box).
   float t0 = 0.0f, t1 = tmax;

@@ -12,9 +12,10 @@
 // most 2^31 references; a scene of a few huge spheres among small ones
 // (whose boxes would list them in most cells) gets a coarser grid.
 //
-// Memory: 16 bytes a sphere (centre and radius), 4 bytes a reference (about
-// 6 a sphere in a packed box, fewer in a sparse cloud) and 4 bytes a cell
-// (about one a sphere): some 45 bytes a sphere in a packed box.
+// Memory: 20 bytes a sphere (centre, radius and position), 4 bytes a
+// reference (about 6 a sphere in a packed box, fewer in a sparse cloud) and
+// 4 bytes a cell (about one a sphere): some 50 bytes a sphere in a packed
+// box.
 #pragma once
 #include <cmath>
 #include <cstddef>
@@ -33,24 +34,31 @@ class sphere_grid {
   explicit sphere_grid(const scene& s, bool cells = true);
 
   // Whether the segment o + t d, t in [0, tmax] (grid units; d of unit
-  // length), meets a sphere's solid ball other than `skip`: a ray that
-  // starts inside a sphere is blocked by it. Grid units: world * 2^-scale_exp.
+  // length), meets a sphere's solid ball other than sphere `skip` (its
+  // index in the scene): a ray that starts inside a sphere is blocked by
+  // it. Grid units: world * 2^-scale_exp.
   bool occluded(const float o[3], const float d[3], float tmax, uint32_t skip) const;
 
-  // Sphere k's centre (grid frame) and radius (grid units), x y z r.
-  const float* sphere(uint32_t k) const { return &spheres_[size_t(k) * 4]; }
+  // Sphere k's (its index in the scene) centre (grid frame) and radius (grid
+  // units), x y z r. The spheres are stored in the order of the cells their
+  // centres lie in (with cells: the spheres a ray meets together lie
+  // together in memory), at position(k); at(p) reads position p.
+  const float* sphere(uint32_t k) const { return at(position(k)); }
+  uint32_t position(uint32_t k) const { return rank_.empty() ? k : rank_[k]; }
+  const float* at(uint32_t p) const { return &spheres_[size_t(p) * 4]; }
   size_t size() const { return spheres_.size() / 4; }
   // The median radius of up to 4096 spheres spread over the scene: the
   // structures' cells are no smaller than its diameter, so that a packed
   // scene's spheres are listed a few times each, not dozens.
   double typical_radius() const;
 
-  // Whether the segment o + t d, t in [0, tmax], meets sphere k's solid ball
-  // (light/secondary.h's rule): a start inside it, or the near root of a
-  // sphere ahead within tmax, from Hearn and Baker's squared distance of the
-  // line from the centre (no cancellation against |o - c|^2).
-  bool blocks(uint32_t k, const float o[3], const float d[3], float tmax) const {
-    const float* s = sphere(k);
+  // Whether the segment o + t d, t in [0, tmax], meets the solid ball of
+  // the sphere at position p (light/secondary.h's rule): a start inside it,
+  // or the near root of a sphere ahead within tmax, from Hearn and Baker's
+  // squared distance of the line from the centre (no cancellation against
+  // |o - c|^2).
+  bool blocks(uint32_t p, const float o[3], const float d[3], float tmax) const {
+    const float* s = at(p);
     const float ox = o[0] - s[0], oy = o[1] - s[1], oz = o[2] - s[2];
     const float r2 = s[3] * s[3];
     if ((ox * ox + oy * oy) + oz * oz <= r2) return true;
@@ -65,18 +73,22 @@ class sphere_grid {
 
   size_t cells() const { return first_.empty() ? 0 : first_.size() - 1; }
   size_t references() const { return refs_.size(); }
-  size_t bytes() const { return spheres_.size() * 4 + first_.size() * 4 + refs_.size() * 4 + occupied_.size() * 8; }
+  size_t bytes() const {
+    return spheres_.size() * 4 + rank_.size() * 4 + first_.size() * 4 + refs_.size() * 4 + occupied_.size() * 8;
+  }
 
  private:
   void build_cells(const double lo[3], const double hi[3]);
+  void sort_by_home_cell(double h);
   bool cell_occluded(uint32_t e0, uint32_t e1, const float o[3], const float d[3], float tmax, uint32_t skip) const;
 
   float lo_[3] = {0, 0, 0}, hi_[3] = {0, 0, 0};
   float h_ = 1, inv_h_ = 1;  // the cell's side, and 1 / it
   int dims_[3] = {0, 0, 0};
-  std::vector<float> spheres_;   // 4 per sphere, the scene's order
+  std::vector<float> spheres_;   // 4 per sphere, by position
+  std::vector<uint32_t> rank_;   // with cells: each sphere's position (empty: the scene's order)
   std::vector<uint32_t> first_;  // cells + 1: cell c's references are refs_[first_[c] .. first_[c + 1])
-  std::vector<uint32_t> refs_;   // sphere indices, each cell's in the scene's order
+  std::vector<uint32_t> refs_;   // sphere positions, each cell's in ascending order
   std::vector<uint64_t> occupied_;  // bit c: cell c lists a sphere (a sparse scene's walk reads 1 bit an empty cell)
 };
 

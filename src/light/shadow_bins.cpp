@@ -50,7 +50,7 @@ shadow_bins::shadow_bins(const sphere_grid& grid, const float light[3]) : grid_(
   lo_[0] = lo_[1] = std::numeric_limits<float>::infinity();
   hi[0] = hi[1] = -lo_[0];
   for (size_t k = 0; k < n; ++k) {
-    const float* s = grid.sphere(uint32_t(k));
+    const float* s = grid.at(uint32_t(k));  // by position
     disc[k] = {dot(l_, s) + s[3] + margin, uint32_t(k), dot(u_, s), dot(v_, s), s[3] + margin};
     lo_[0] = std::min(lo_[0], disc[k].u - disc[k].r - margin);
     lo_[1] = std::min(lo_[1], disc[k].v - disc[k].r - margin);
@@ -99,8 +99,9 @@ void shadow_bins::bin(const std::vector<entry>& disc, const float hi[2]) {
   for (uint32_t k : by_reach(disc)) each_cell(disc[k], [&](size_t c) { entries_[fill[c]++] = disc[k]; });
 }
 
-bool shadow_bins::occluded(const float p[3], uint32_t skip) const {
+bool shadow_bins::occluded(const float p[3], uint32_t skip_index) const {
   if (entries_.empty()) return false;
+  const uint32_t skip = skip_index < grid_->size() ? grid_->position(skip_index) : skip_index;
   const float u = dot(u_, p), v = dot(v_, p);
   const float pu = (u - lo_[0]) * inv_g_, pv = (v - lo_[1]) * inv_g_;
   if (!(pu >= 0.0f && pv >= 0.0f)) return false;  // outside every disc (or NaN)

@@ -29,7 +29,8 @@ class shadow_bins {
   // light: the unit direction toward the light, in the grid's frame (the world's axes).
   shadow_bins(const sphere_grid& grid, const float light[3]);
 
-  // Whether the ray from p (grid frame) along the light meets a sphere's ball but skip's.
+  // Whether the ray from p (grid frame) along the light meets a sphere's
+  // ball but sphere skip's (its index in the scene).
   bool occluded(const float p[3], uint32_t skip) const;
 
   size_t bytes() const { return first_.size() * 4 + entries_.size() * sizeof(entry); }
@@ -37,7 +38,7 @@ class shadow_bins {
   // A sphere's entry: public for the build's helpers.
   struct entry {
     float reach;  // C . L + r, plus the margin
-    uint32_t k;
+    uint32_t k;     // the sphere's position in the grid (light/grid.h)
     float u, v, r;  // the disc: C's projection, and r plus the margin
   };
  private:
