@@ -248,9 +248,8 @@ TEST_P(LightStiff, AHitIsNeverShadowedByItsOwnSphere) {
     const image want = render(plain, b), got = render(shadowed, b);
     EXPECT_EQ(got.bytes, want.bytes) << to_string(b);
   }
-  // A tiny sphere beside a huge one: the tiny one's lit side stays lit.
-  p.spheres.push_back(sphere{centre + vec3(-1e4, 0, 0) * c.scale * c.radius, 1e4 * c.radius * c.scale * 0.5,
-                             shading::lit, color(1, 1, 1)});
+  // Beside a sphere of radius 1e4 (out of view, away from the light), its lit side stays lit.
+  p.spheres.push_back(sphere{centre + vec3(-2e4, 0, 0) * c.scale, 1e4 * c.scale, shading::lit, color(1, 1, 1)});
   p.light.ao_samples = 0;
   const scene beside = make_scene(p);
   p.light.shadows = false;
@@ -262,6 +261,7 @@ INSTANTIATE_TEST_SUITE_P(Light, LightStiff,
                                            stiff_light{"scale_1e6", 1e6, 1.0, 5.0, vec3(1, 1, 1)},
                                            stiff_light{"scale_1em6", 1e-6, 1.0, 5.0, vec3(1, 1, 1)},
                                            stiff_light{"radius_1em4_from_1e3", 1.0, 1e-4, 1e7, vec3(1, 1, 1)},
+                                           stiff_light{"radius_1em3_beside_1e4", 1.0, 1e-3, 5.0, vec3(1, 1, 1)},
                                            stiff_light{"grazing_light", 1.0, 1.0, 5.0, vec3(1, 0, 1e-6)}),
                          [](const auto& i) { return std::string(i.param.name); });
 
