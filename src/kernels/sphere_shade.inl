@@ -78,7 +78,10 @@ RAYCAST_INLINE vfloat lit_light(const sphere_arrays& sp, const closest_hit<Shade
   store(bits[1], select(back, vfloat(1.0f), vfloat(0.0f)));
   store(light, as_float(h.index));
   for (int l = 0; l < N; ++l) __builtin_memcpy(&ls.sphere[l], &light[l], sizeof(float));
-  for (int k = 0; k < 3; ++k) store(light, n[k]), __builtin_memcpy(ls.n[k], light, sizeof(float) * N);
+  for (int k = 0; k < 3; ++k) {
+    store(light, n[k]);
+    __builtin_memcpy(ls.n[k], light, sizeof(float) * N);
+  }
   store(light, diffuse);
   __builtin_memcpy(ls.diffuse, light, sizeof(float) * N);
   for (int l = 0; l < N; ++l) {
