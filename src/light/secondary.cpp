@@ -3,16 +3,14 @@
 #include <cmath>
 #include <limits>
 
+#include "light/frame.h"
 #include "scene/sphere.h"
 
 namespace raycast {
 
 void ao_direction(const float n[3], float u1, float u2, float dir[3]) {
-  const float sign = std::copysign(1.0f, n[2]);
-  const float a = -1.0f / (sign + n[2]);
-  const float b = n[0] * n[1] * a;
-  const float t[3] = {1.0f + sign * n[0] * n[0] * a, sign * b, -sign * n[0]};
-  const float bt[3] = {b, sign + n[1] * n[1] * a, -n[1]};
+  float t[3], bt[3];
+  frame_about(n, t, bt);
   const float phi = 6.28318530717958647692f * u1, rad = std::sqrt(u2);
   const float x = rad * std::cos(phi), y = rad * std::sin(phi), z = std::sqrt(1.0f - u2);
   for (int k = 0; k < 3; ++k) dir[k] = (x * t[k] + y * bt[k]) + z * n[k];

@@ -50,7 +50,7 @@ struct lit_lanes {
 void light_lanes(const secondary_rays& r, const lit_lanes& lanes, float light[lit_lanes::most]);
 
 // The cosine-weighted direction of numbers (u1, u2) about the unit normal n
-// (Duff et al.'s branchless frame): phi = 2 pi u1, (sqrt(u2) cos phi,
+// (light/frame.h's frame): phi = 2 pi u1, (sqrt(u2) cos phi,
 // sqrt(u2) sin phi, sqrt(1 - u2)) in (t, b, n).
 void ao_direction(const float n[3], float u1, float u2, float dir[3]);
 

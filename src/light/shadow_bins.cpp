@@ -1,5 +1,7 @@
 #include "light/shadow_bins.h"
 
+#include "light/frame.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -13,8 +15,8 @@ constexpr size_t max_entries = size_t(1) << 31;
 
 float dot(const float a[3], const float* b) { return (a[0] * b[0] + a[1] * b[1]) + a[2] * b[2]; }
 
-// The spheres' indices in the order of their reach, ties in the scene's
-// order: a stable radix sort on the floats' bits, two 16-bit digits.
+// The spheres' positions in the order of their reach, ties by position: a
+// stable radix sort on the floats' bits, two 16-bit digits.
 std::vector<uint32_t> by_reach(const std::vector<shadow_bins::entry>& disc) {
   const size_t n = disc.size();
   std::vector<uint32_t> key(n), order(n), next(n);
@@ -37,11 +39,8 @@ std::vector<uint32_t> by_reach(const std::vector<shadow_bins::entry>& disc) {
 }  // namespace
 
 shadow_bins::shadow_bins(const sphere_grid& grid, const float light[3]) : grid_(&grid) {
-  // The plane's axes: Duff et al.'s frame about L.
   for (int k = 0; k < 3; ++k) l_[k] = light[k];
-  const float sign = std::copysign(1.0f, l_[2]), a = -1.0f / (sign + l_[2]), b = l_[0] * l_[1] * a;
-  const float u[3] = {1.0f + sign * l_[0] * l_[0] * a, sign * b, -sign * l_[0]}, v[3] = {b, sign + l_[1] * l_[1] * a, -l_[1]};
-  for (int k = 0; k < 3; ++k) u_[k] = u[k], v_[k] = v[k];
+  frame_about(l_, u_, v_);  // the plane's axes
   const size_t n = grid.size();
   if (n == 0) return;
   // Each sphere's entry, once: its disc across L and its reach along L.
@@ -93,7 +92,7 @@ void shadow_bins::bin(const std::vector<entry>& disc, const float hi[2]) {
   for (const entry& e : disc) each_cell(e, [&](size_t c) { ++first_[c + 1]; });
   for (size_t c = 0; c < cells; ++c) first_[c + 1] += first_[c];
   entries_.resize(first_[cells]);
-  // Filled in the order of reach (ties: the scene's), so that each cell's
+  // Filled in the order of reach (ties by position), so that each cell's
   // list comes out sorted.
   std::vector<uint32_t> fill(first_.begin(), first_.end() - 1);
   for (uint32_t k : by_reach(disc)) each_cell(disc[k], [&](size_t c) { entries_[fill[c]++] = disc[k]; });
