@@ -263,6 +263,15 @@ TEST(Culling, RowOrderIsTheSameForAnyThreadCount) {
   for (int threads : {2, 3, 7}) EXPECT_TRUE(bytes(prepare_float_scene(s, threads)) == bytes(one)) << threads << " threads";
 }
 
+// s rendered by backend b with every scene reordered (sort_from 0), in `order`.
+image render_sorted(const scene& s, backend b, sphere_order order) {
+  render_options o;
+  o.which = b;
+  o.sort_from = 0;
+  o.order = order;
+  return raycast_test::render_with(renderer(s, o), pixel_format::rgb8);
+}
+
 // The row order is stable: of two coincident spheres the later in the scene
 // still wins the tie (float_spheres.h), however many spheres come between.
 TEST(Culling, SortingKeepsTheLaterOfCoincidentSpheres) {
@@ -275,12 +284,7 @@ TEST(Culling, SortingKeepsTheLaterOfCoincidentSpheres) {
   const scene s = make_scene(p);
   for (backend b : target_backends) {
     if (backend_unavailable(b)) continue;
-    render_options o;
-    o.which = b;
-    o.sort_from = 0;
-    const renderer r(s, o);
-    image got(64, 36, pixel_format::rgb8);
-    r.render(got.band());
+    const image got = render_sorted(s, b, sphere_order::automatic);
     const unsigned char* mid = got.bytes.data() + size_t(19) * got.stride() + 31 * 3;  // the lower pair's centre
     EXPECT_EQ(mid[0], 0) << to_string(b);
     EXPECT_EQ(mid[2], 255) << to_string(b) << ": the later sphere should win";
@@ -375,11 +379,7 @@ TEST(DepthOrder, ALaterSphereAtTheSameDistanceWinsAcrossAnEarlyStop) {
   const scene s = make_scene(p);
   for (backend b : target_backends) {
     if (backend_unavailable(b)) continue;
-    render_options o;
-    o.which = b;
-    o.sort_from = 0;
-    o.order = sphere_order::depth;
-    const image got = raycast_test::render_with(renderer(s, o), pixel_format::rgb8);
+    const image got = render_sorted(s, b, sphere_order::depth);
     for (int64_t row = 17; row <= 19; ++row)
       for (int64_t col = 31; col <= 33; ++col) {
         EXPECT_EQ(got.byte(row, col, 0), 0) << to_string(b) << " at " << col << ", " << row;
