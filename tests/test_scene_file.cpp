@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -181,7 +182,71 @@ TEST(SceneFile, ErrorsSayWhereWithAShortQuote) {
   EXPECT_NE(e.message.find("line 3, column 36: -0.5)"), std::string::npos) << e.message;
   const scene_file_error syntax = error_of(parse_scene_file("{\"camera\": {\"width\": 400,}}"));
   EXPECT_EQ(syntax.path, "");
-  EXPECT_NE(syntax.message.find("line 1, column 26"), std::string::npos) << syntax.message;
+  EXPECT_NE(syntax.message.find("a comma with no key after it (at line 1, column 25: ,}})"), std::string::npos)
+      << syntax.message;
+}
+
+// Syntax errors are reported where the text breaks JSON's grammar, in plain
+// terms, not where simdjson's iterator got to (a comma too many or too few in
+// the spheres array was once reported at the file's last line as "more after
+// the scene's object"). Texts of spheres one a line: "{"spheres": [" on line
+// 1, sphere k on line k + 2, then the close padded with spaces to `bytes`, so
+// that a text falls on either side of windowed_from.
+enum class defect { doubled_comma, trailing_comma, missing_comma };
+
+std::string sphere_line(int k) {
+  return "  {\"center\": [" + std::to_string(k % 100) + ", " + std::to_string(k / 100) + ", -3], \"radius\": 0.25}";
+}
+
+std::string spheres_text(int n, int bad, defect d, size_t bytes) {
+  std::string text = "{\"spheres\": [\n";
+  for (int k = 0; k < n; ++k) {
+    text += sphere_line(k);
+    if (k == bad && d == defect::doubled_comma) text += ",";
+    if (k < n - 1 ? !(k == bad && d == defect::missing_comma) : d == defect::trailing_comma) text += ",";
+    text += "\n";
+  }
+  const std::string close = "]}\n";
+  if (text.size() + close.size() < bytes) text += std::string(bytes - text.size() - close.size(), ' ');
+  return text + close;
+}
+
+// As many spheres as such a text of `bytes` bytes holds.
+int spheres_in(size_t bytes) {
+  size_t size = std::string("{\"spheres\": [\n]}\n,").size();
+  int n = 0;
+  while ((size += sphere_line(n).size() + 2) <= bytes) ++n;
+  return n;
+}
+
+// Each defect after sphere `bad` of n (the trailing comma after the last), in
+// texts of `bytes` bytes, read from a string and from a file: the message,
+// with the line and column of the comma too many, or of the sphere after the
+// one missing.
+void expect_syntax_errors_placed(int n, int bad, size_t bytes, const std::string& file) {
+  for (const defect d : {defect::doubled_comma, defect::trailing_comma, defect::missing_comma}) {
+    const int at = d == defect::trailing_comma ? n - 1 : bad;
+    const std::string text = spheres_text(n, at, d, bytes);
+    ASSERT_TRUE(bytes == 0 || text.size() == bytes) << text.size();
+    const std::string place =
+        d == defect::missing_comma
+            ? std::to_string(at + 3) + ", column 3: " + sphere_line(at + 1).substr(2, 12)
+            : std::to_string(at + 2) + ", column " + std::to_string(sphere_line(at).size() + 1) + ": " +
+                  (d == defect::doubled_comma ? ",,)" : ",)");
+    const std::string want = std::string("not valid JSON: ") +
+                             (d == defect::missing_comma ? "a comma is missing before this value"
+                                                         : "a comma with no value after it") +
+                             " (at line " + place;
+    SCOPED_TRACE(want);
+    const scene_file_error e = error_of(parse_scene_file(text));
+    EXPECT_EQ(e.path, "");
+    EXPECT_EQ(e.message.rfind(want, 0), 0u) << e.message;
+    if (text.size() >= windowed_from) {
+      EXPECT_FALSE(read_scene_windows(text, 4096).has_value());
+    }
+    std::ofstream(file, std::ios::binary) << text;
+    EXPECT_EQ(error_of(load_scene_file(file)).message, e.message);
+  }
 }
 
 // A file of tens of megabytes hands its text back as the spheres fill
@@ -398,6 +463,79 @@ TEST_F(SceneFileLoad, RefusesAFileLargerThanTheCapWithoutReadingIt) {
 TEST_F(SceneFileLoad, RefusesAFileThatGrowsWhileRead) {
   const scene_file_error e = error_of(load_scene_file("/proc/self/status"));
   EXPECT_EQ(e.message, "grew while being read (was 0 bytes)");
+}
+
+// Each class of syntax error, in the spheres and in the camera and sky: the
+// place where the text breaks the grammar (a comma too many: that comma).
+TEST(SceneFile, SyntaxErrorsSayWhatAndWhere) {
+  const std::pair<const char*, const char*> cases[] = {
+      {R"({"camera": {"width": 40 "vfov": 30}})",
+       R"(a comma is missing before this key (at line 1, column 25: "vfov"))"},
+      {R"({"camera": {"width" 40}})", "expected a colon after the key (at line 1, column 21: 40)"},
+      {R"({"camera": {"width": 40,, "vfov": 30}})",
+       R"(a comma with no key after it (at line 1, column 24: ,, "vfov": 30}}))"},
+      {R"({"camera": {"width": 40}, "sky": {"top": [1, 1, 1}})",
+       "expected ']' to close the array before this '}' (at line 1, column 50: }})"},
+      {R"({"sky": {"top": [1, 1, 1,]}})", "a comma with no value after it (at line 1, column 25: ,]}})"},
+      {R"({"sky": {"top": @}})", "expected a value (at line 1, column 17: @)"},
+      {"{\"sky\": {\"top\": [1, 1, 1]},\n \"camera\": {\"width\": 40}",
+       R"(an object is not closed (at line 1, column 1: {"sky")"},
+      {R"({"spheres": [{"center": [0, 0, -1], "radius" 1}]})",
+       "expected a colon after the key (at line 1, column 46: 1)"},
+      {R"({"spheres": [{"center": [0, 0, -1], "radius": 1} x]})",
+       "expected a comma or ']' after a value (at line 1, column 50: x)"},
+      {R"({"spheres": [{"center": [0, 0, -1], "radius": 1})", "an array is not closed (at line 1, column 13: [{"},
+      {R"({"spheres": [{"center": [0, 0, -1, "radius": 1}]})",
+       "expected a comma or ']' after a value (at line 1, column 44: : 1}]})"},
+      {R"({"spheres": [{"center": [0, 0, -1], "radius": 1}], "camera": {"width": 4})",
+       "an object is not closed (at line 1, column 1: {"},
+      {"{\"spheres\": [{\"center\": [0, 0, -1], \"shade: \"flat\",\n \"radius\": 1}]}",
+       R"(expected a colon after the key (at line 1, column 46: flat"))"},
+      {"{\"spheres\": [{\"center\": [0, 0, -1], \"radius: 1},\n {}]}",
+       R"(a string is not closed on its line (at line 1, column 37: "radius: 1},))"},
+  };
+  for (const auto& [text, want] : cases) {
+    const scene_file_error e = error_of(parse_scene_file(text));
+    EXPECT_EQ(e.path, "") << text;
+    EXPECT_EQ(e.message.rfind("not valid JSON: " + std::string(want), 0), 0u) << text << "\n" << e.message;
+  }
+}
+
+// A few spheres, parsed whole.
+TEST_F(SceneFileLoad, SyntaxErrorsInASmallFileSayWhereTheyAre) {
+  expect_syntax_errors_placed(5, 1, 0, at("small.json"));
+}
+
+// Either side of windowed_from (1 MiB): one byte short, parsed whole; from
+// it on, read a window at a time, which gives up at the error and leaves it
+// to the whole parse. The error far past the first window.
+TEST_F(SceneFileLoad, SyntaxErrorsInLargeFilesSayWhereTheyAre) {
+  const int n = spheres_in(windowed_from - 1);
+  expect_syntax_errors_placed(n, n - 10, windowed_from - 1, at("below.json"));
+  expect_syntax_errors_placed(n, n - 10, windowed_from, at("at.json"));
+  expect_syntax_errors_placed(2 * n, n - 10, 0, at("above.json"));
+}
+
+// A text of 16 MiB or more hands its start back as the spheres are read
+// (release_text_before): a syntax error past that is still placed, in a
+// sphere and in the camera after the array.
+TEST(SceneFile, SyntaxErrorsPastTheTextHandedBackSayWhereTheyAre) {
+  constexpr int n = 420000;
+  std::string text = spheres_text(n, -1, defect::missing_comma, 0);
+  text.resize(text.size() - 3);  // "]}\n"
+  text += "],\n\"camera\": {\"width\": 40 \"vfov\": 30}}";
+  ASSERT_GE(text.size(), size_t(16) << 20);
+  const scene_file_error camera = error_of(parse_scene_file(text));
+  EXPECT_EQ(camera.message, "not valid JSON: a comma is missing before this key (at line " + std::to_string(n + 3) +
+                                ", column 24: \"vfov\")");
+  // The colon of a sphere's radius left out, 1 MB before the end.
+  const size_t colon = text.find("\"radius\":", text.size() - 1000000) + 8;
+  text.erase(colon, 1);
+  const size_t line_start = text.rfind('\n', colon) + 1;
+  const std::string place = std::to_string(std::count(text.begin(), text.begin() + long(colon), '\n') + 1) +
+                            ", column " + std::to_string(colon + 2 - line_start);
+  EXPECT_EQ(error_of(parse_scene_file(text)).message,
+            "not valid JSON: expected a colon after the key (at line " + place + ": 0.25)");
 }
 
 // 100,000 spheres : parsed, and rendered by a

@@ -168,6 +168,162 @@ std::string json_error(error_code e) {
   }
 }
 
+bool json_space(char c) { return c == ' ' || c == '\n' || c == '\r' || c == '\t'; }
+
+// Whether text is a number as JSON writes it: -?(0|[1-9][0-9]*)(.[0-9]+)?([eE][+-]?[0-9]+)?
+bool json_number(std::string_view t) {
+  size_t k = 0;
+  const auto digits = [&] {
+    const size_t from = k;
+    while (k < t.size() && t[k] >= '0' && t[k] <= '9') ++k;
+    return k > from;
+  };
+  if (k < t.size() && t[k] == '-') ++k;
+  if (k < t.size() && t[k] == '0') ++k;
+  else if (!digits()) return false;
+  if (k < t.size() && t[k] == '.' && (++k, !digits())) return false;
+  if (k < t.size() && (t[k] == 'e' || t[k] == 'E')) {
+    ++k;
+    if (k < t.size() && (t[k] == '+' || t[k] == '-')) ++k;
+    if (!digits()) return false;
+  }
+  return k == t.size();
+}
+
+// The first place where a text breaks JSON's grammar, and why in plain
+// terms. simdjson's On-Demand parser says where its iterator got to, which
+// after a syntax error can be far past it (array::count_elements, meeting a
+// comma too many or too few in the spheres array, leaves it at the end of
+// the text), and says it in its own terms ("a missing or extra comma, colon,
+// brace, bracket or key"); its syntax errors are placed by this scan instead.
+struct syntax_fault {
+  const char* at;
+  std::string why;
+};
+
+// A container open where the scan starts or met on the way: '{' or '[', and
+// where (nullptr: before the scan's start; the end of the text is named).
+struct open_bracket {
+  char kind;
+  const char* at;
+};
+
+// Whether c can start a JSON value.
+bool starts_value(char c) {
+  return std::string_view("{[\"-tfn").find(c) != std::string_view::npos || (c >= '0' && c <= '9');
+}
+
+// The end of the scalar at p (a string, number or word), or nullptr and why.
+const char* scalar_end(const char* p, const char* end, std::string& why) {
+  if (*p == '"') {
+    for (const char* q = p + 1; q < end; ++q) {
+      if (*q == '\\') {
+        ++q;
+      } else if (*q == '"') {
+        return q + 1;
+      } else if (static_cast<unsigned char>(*q) < 0x20) {
+        why = *q == '\n' || *q == '\r' ? "a string is not closed on its line"
+                                     : "a string has an unescaped control character";
+        return nullptr;
+      }
+    }
+    why = "a string is not closed";
+    return nullptr;
+  }
+  const char* q = p;
+  while (q < end && !json_space(*q) && std::string_view(",:[]{}\"").find(*q) == std::string_view::npos) ++q;
+  const std::string_view token(p, size_t(q - p));
+  if (token == "true" || token == "false" || token == "null" || json_number(token)) return q;
+  if (*p == '-' || (*p >= '0' && *p <= '9')) why = quote_token(token) + " is not a JSON number";
+  else if (std::isalpha(static_cast<unsigned char>(*p))) why = "a word that is not true, false or null";
+  else why = "expected a value";
+  return nullptr;
+}
+
+// After a value in the innermost of open (or at the end of the text): a
+// comma, the container's close, or nothing more. p at the token.
+enum class expect { value, key, colon, next };
+std::optional<syntax_fault> after_value(const char*& p, const char* end, std::vector<open_bracket>& open,
+                                        expect& want, const char*& comma) {
+  if (open.empty()) return syntax_fault{p, "more after the scene's object"};
+  const bool array = open.back().kind == '[';
+  if (*p == ',') {
+    comma = p++;
+    want = array ? expect::value : expect::key;
+    return std::nullopt;
+  }
+  if (*p == (array ? ']' : '}')) {
+    open.pop_back();
+    ++p;
+    return std::nullopt;
+  }
+  if (*p == (array ? '}' : ']'))
+    return syntax_fault{p, array ? "expected ']' to close the array before this '}'"
+                                 : "expected '}' to close the object before this ']'"};
+  if (!array)
+    return syntax_fault{p, *p == '"' ? "a comma is missing before this key" : "expected a comma or '}' after a value"};
+  if (!starts_value(*p)) return syntax_fault{p, "expected a comma or ']' after a value"};
+  // A string followed by a colon is a key: the array before it never closed.
+  std::string why;
+  const char* q = *p == '"' ? scalar_end(p, end, why) : nullptr;
+  while (q && q < end && json_space(*q)) ++q;
+  if (q && q < end && *q == ':') return syntax_fault{p, "expected ']' to close the array before this key"};
+  return syntax_fault{p, "a comma is missing before this value"};
+}
+
+// The first syntax error from p on, where a value is expected inside the
+// containers open (outermost first), or nullopt when the text to end is JSON.
+std::optional<syntax_fault> first_syntax_error(const char* p, const char* end, std::vector<open_bracket> open) {
+  expect want = expect::value;
+  const char* comma = nullptr;  // the comma just passed, while the next token is looked for
+  std::string why;
+  while (p < end) {
+    if (json_space(*p)) {
+      ++p;
+      continue;
+    }
+    const char c = *p;
+    if (want == expect::next) {
+      if (auto f = after_value(p, end, open, want, comma)) return f;
+      continue;
+    }
+    if (want == expect::colon) {
+      if (c != ':') return syntax_fault{p, "expected a colon after the key"};
+      ++p;
+      want = expect::value;
+      continue;
+    }
+    const char* const after_comma = std::exchange(comma, nullptr);
+    if (want == expect::key && c != '"') {
+      if (after_comma && (c == '}' || c == ',')) return syntax_fault{after_comma, "a comma with no key after it"};
+      return syntax_fault{p, "expected a key in double quotes"};
+    }
+    if (after_comma && (c == ']' || c == ',')) return syntax_fault{after_comma, "a comma with no value after it"};
+    if (c == '{' || c == '[') {  // opened, and closed at once when empty
+      open.push_back({c, p});
+      for (++p; p < end && json_space(*p);) ++p;
+      want = c == '{' ? expect::key : expect::value;
+      if (p < end && *p == (c == '{' ? '}' : ']')) {
+        open.pop_back();
+        ++p;
+        want = expect::next;
+      }
+      continue;
+    }
+    if (want == expect::value && !starts_value(c) && !std::isalpha(static_cast<unsigned char>(c)))
+      return syntax_fault{p, "expected a value"};
+    const char* const q = scalar_end(p, end, why);
+    if (!q) return syntax_fault{p, why};
+    p = q;
+    want = want == expect::key ? expect::colon : expect::next;
+  }
+  if (!open.empty())
+    return syntax_fault{open.back().at ? open.back().at : end,
+                        open.back().kind == '{' ? "an object is not closed" : "an array is not closed"};
+  if (want != expect::next) return syntax_fault{end, "expected a value"};
+  return std::nullopt;
+}
+
 class reader {
  public:
   // text: memory of ours (padded_text); page-aligned and released as it is
@@ -181,6 +337,9 @@ class reader {
   // window's (failures thrown as window_failed).
   void skeleton_of(const text_gap& gap) { gap_ = gap; }
   void window() { quiet_ = true; }
+
+  // An error of the text's index (stage one), with the place the scan finds.
+  [[noreturn]] void fail_index(error_code e) const { fail_syntax(e, nullptr); }
 
   // The spheres of a window ("[" + whole spheres + "]"), numbered on from k,
   // up to the first that fails; the place after the last one read (its ','
@@ -254,17 +413,35 @@ class reader {
     return at;
   }
 
+  // An error about the value at `at`. Where no value stands there ("[1,,2]",
+  // "[1,]", "{"a": }", a stray character), a syntax error instead.
   [[noreturn]] void fail(std::string path, const std::string& why, const char* at) const {
     if (quiet_) throw window_failed{};
+    if (at && !starts_value(*at)) fail_syntax(simdjson::TAPE_ERROR, at);
     throw failure{{std::move(path), why + where(at)}};
   }
 
-  // Input simdjson refuses: a file error (empty path), as the JSON is not a scene at all.
+  // Input simdjson refuses: a file error (empty path), as the JSON is not a
+  // scene at all. A syntax error is reported where the text first breaks the
+  // grammar (first_syntax_error), not where simdjson's iterator got to.
   [[noreturn]] void fail_json(error_code e, const char* at) const {
+    if (e == simdjson::TAPE_ERROR || e == simdjson::INCOMPLETE_ARRAY_OR_OBJECT || e == simdjson::TRAILING_CONTENT)
+      fail_syntax(e, at);
     fail_json(json_error(e), at);
+  }
+  [[noreturn]] void fail_syntax(error_code e, const char* at) const {
+    if (quiet_) throw window_failed{};
+    // From the start of the text, or from a sphere whose text before was
+    // handed back (release_text_before): inside the root object's spheres array.
+    std::vector<open_bracket> open;
+    if (scan_from_) open = {{'{', nullptr}, {'[', nullptr}};
+    if (auto f = first_syntax_error(scan_from_ ? scan_from_ : text_, text_ + size_, std::move(open)))
+      throw failure{{"", "not valid JSON: " + f->why + where(f->at)}};
+    throw failure{{"", "not valid JSON: " + json_error(e) + where(at)}};
   }
   [[noreturn]] void fail_json(const std::string& why, const char* at) const {
     if (quiet_) throw window_failed{};
+    if (at && !starts_value(*at)) fail_syntax(simdjson::TAPE_ERROR, at);
     throw failure{{"", "not valid JSON: " + why + where(at)}};
   }
 
@@ -352,7 +529,8 @@ class reader {
     for (auto result : arr) {
       od::value el;
       if (error_code e = std::move(result).get(el)) fail_json(e, here());
-      if (n == 3) fail(path(), "must be an array of 3 numbers", start);
+      // A fourth element, or a syntax error there ("[1, 2, 3,]": fail()).
+      if (n == 3) fail(path(), "must be an array of 3 numbers", starts_value(*at(el)) ? start : at(el));
       r[n] = number(el, [&] { return path() + "[" + std::to_string(n) + "]"; });
       ++n;
     }
@@ -372,6 +550,9 @@ class reader {
   size_t size_;
   bool release_;
   bool quiet_ = false;
+  // Where a syntax error is looked for from (fail_syntax): the text's start,
+  // or a sphere once text before it may have been handed back.
+  const char* scan_from_ = nullptr;
   text_gap gap_;
   od::document& doc_;
   const char* released_to_;          // text before this was handed back (release_text_before)
@@ -382,26 +563,6 @@ class reader {
   mutable size_t line_ = 1;
   mutable const char* line_start_ = text_;
 };
-
-// Whether text is a number as JSON writes it: -?(0|[1-9][0-9]*)(.[0-9]+)?([eE][+-]?[0-9]+)?
-bool json_number(std::string_view t) {
-  size_t k = 0;
-  const auto digits = [&] {
-    const size_t from = k;
-    while (k < t.size() && t[k] >= '0' && t[k] <= '9') ++k;
-    return k > from;
-  };
-  if (k < t.size() && t[k] == '-') ++k;
-  if (k < t.size() && t[k] == '0') ++k;
-  else if (!digits()) return false;
-  if (k < t.size() && t[k] == '.' && (++k, !digits())) return false;
-  if (k < t.size() && (t[k] == 'e' || t[k] == 'E')) {
-    ++k;
-    if (k < t.size() && (t[k] == '+' || t[k] == '-')) ++k;
-    if (!digits()) return false;
-  }
-  return k == t.size();
-}
 
 // The number as written, for the input table's parsers.
 std::string_view reader::number_token(od::value& v, const std::string& path, const char* must_be) {
@@ -443,7 +604,7 @@ void reader::read_setting(od::value& v, const setting& row, given& g) {
       for (auto result : arr) {
         od::value el;
         if (error_code e = std::move(result).get(el)) fail_json(e, here());
-        if (n == 3) fail(path, "must be an array of 3 numbers", start);
+        if (n == 3) fail(path, "must be an array of 3 numbers", starts_value(*at(el)) ? start : at(el));
         const std::string el_path = path + "[" + std::to_string(n) + "]";
         const std::string_view token = number_token(el, el_path, "must be a number");
         if (auto e = parse_real(token, g.v.triple[n])) fail(el_path, *e, at(el));
@@ -498,21 +659,25 @@ void reader::read_settings(od::value& v, std::string_view object_name, settings&
 }
 
 void reader::read_spheres(od::value& v, std::vector<sphere>& out) {
+  const char* start = at(v);
   od::array list = array(v, [] { return std::string("spheres"); }, "must be an array");
-  // Exactly the spheres there are (a pass over the index, not the text); a
-  // malformed array is reported by the loop below.
+  // Exactly the spheres there are (a pass over the index, not the text). A
+  // malformed array fails the count, which leaves the iterator lost (at the
+  // end of the text): the error is reported from the text.
   size_t count = 0;
-  if (list.count_elements().get(count) == simdjson::SUCCESS) {
-    out.reserve(count);
-    advise_huge_pages(out.data(), out.capacity() * sizeof(sphere));
-  }
+  if (error_code e = list.count_elements().get(count)) fail_json(e, start);
+  out.reserve(count);
+  advise_huge_pages(out.data(), out.capacity() * sizeof(sphere));
   size_t k = 0;
   for (auto result : list) {
     od::value item;
     if (error_code e = std::move(result).get(item)) fail_json(e, here());
     const char* sphere_at = at(item);
     out.push_back(read_sphere(item, k));
-    if (++k % 4096 == 0) release_text_before(sphere_at);
+    if (++k % 4096 == 0) {
+      release_text_before(sphere_at);
+      scan_from_ = sphere_at;  // kept, and all before it read
+    }
   }
 }
 
@@ -609,11 +774,16 @@ std::variant<scene_file_contents, scene_file_error> parse_padded(const padded_te
     return scene_file_error{"", (e == simdjson::MEMALLOC ? "out of memory indexing " + bytes_text(t.size())
                                                          : "cannot index: " + json_error(e))};
   od::document doc;
-  // Stage one (the index of the whole text) says nothing of where.
-  if (error_code e = parser.iterate(t.data(), t.size(), t.capacity()).get(doc))
-    return scene_file_error{"", "not valid JSON: " + json_error(e)};
+  // Stage one (the index of the whole text) says nothing of where; a string
+  // not closed or over a line's end (a quote missing, or one too many) is
+  // placed by the scan.
+  const error_code indexed = parser.iterate(t.data(), t.size(), t.capacity()).get(doc);
+  if (indexed && indexed != simdjson::UNCLOSED_STRING && indexed != simdjson::UNESCAPED_CHARS)
+    return scene_file_error{"", "not valid JSON: " + json_error(indexed)};
   try {
-    return reader(t.data(), t.size(), t.mapped(), doc).read();
+    reader r(t.data(), t.size(), t.mapped(), doc);
+    if (indexed) r.fail_index(indexed);
+    return r.read();
   } catch (const failure& x) {
     return x.e;
   } catch (const std::bad_alloc&) {
@@ -648,8 +818,6 @@ constexpr size_t default_window = size_t(512) << 10;
 
 // How far into the text the "spheres" key is looked for.
 constexpr size_t skim_bytes = size_t(64) << 10;
-
-bool json_space(char c) { return c == ' ' || c == '\n' || c == '\r' || c == '\t'; }
 
 // The offset of the '[' of the root object's "spheres" array, found in the
 // text's first bytes by a skim that follows strings and nesting, or nullopt.
