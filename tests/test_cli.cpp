@@ -359,7 +359,7 @@ const usage_case usage_cases[] = {
     {"extension_missing", {"-o", "out"}, "--output"},
     {"output_empty", {"-o", ""}, "--output"},
     {"output_missing", {}, "--output"},
-    {"threads_zero", {"--threads", "0", "-o", "{out}"}, "--threads"},
+    {"threads_negative", {"--threads", "-1", "-o", "{out}"}, "--threads"},
     {"threads_too_many", {"--threads", "1025", "-o", "{out}"}, "--threads"},
     {"backend_unknown", {"--backend", "nope", "-o", "{out}"}, "--backend"},
     {"precision_unknown", {"--precision", "nope", "-o", "{out}"}, "--precision"},
@@ -527,16 +527,60 @@ TEST_F(Cli, RangeErrorsSayTooSmallOrTooLargeWithTheTokenAsTyped) {
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.err, want);
   }
-  // CLI11's own messages quote no more of a token either.
+  // An unknown option is quoted no longer either.
   const run_result bogus = box.run({"--" + std::string(1000, 'x'), "-o", "a.ppm"});
   EXPECT_EQ(bogus.exit_code, 2);
-  EXPECT_EQ(bogus.err, "raycast: error: The following argument was not expected: --" + std::string(30, 'x') +
-                           "\u2026 (see --help)\n");
+  EXPECT_EQ(bogus.err, "raycast: error: --" + std::string(30, 'x') + "\u2026: no such option (see --help)\n");
   write_file(box.work() / "w.json", "{\"camera\": {\"width\": 0}}");
   const run_result r = box.run({"--scene", "w.json", "-o", "a.ppm"});
   EXPECT_EQ(r.err, "raycast: error: --scene: w.json: camera.width: '0' is too small (at least 1) (at line 1, column 22: 0)\n");
   // Overridden, the file's value is no error.
   EXPECT_EQ(box.run({"--scene", "w.json", "-w", "8", "-o", "a.ppm"}).exit_code, 0);
+}
+
+// A slip (a letter swapped, dropped or added) gets the name it most likely
+// meant; an argument no option takes is named as typed, first one first.
+TEST_F(Cli, SlipsGetTheNearestNameAndNothingIsWritten) {
+  const std::pair<std::vector<std::string>, std::string> cases[] = {
+      {{"--sampels", "4"}, "--sampels: no such option; did you mean --samples?"},
+      {{"--sampels=4"}, "--sampels: no such option; did you mean --samples?"},
+      {{"--widht", "8"}, "--widht: no such option; did you mean --width?"},
+      {{"--orth"}, "--orth: no such option (see --help)"},
+      {{"-x"}, "-x: no such option (see --help)"},
+      {{"4"}, "'4': not expected (no option takes it: each takes one value; see --help)"},
+      {{"--scene", "wrld"},
+       "--scene: 'wrld' is not one of sky, red-sphere, normals, world, lit-world, or a .json scene file; did you "
+       "mean world?"},
+      {{"--backend", "avx"}, "--backend: 'avx' is not one of auto, reference, scalar, sse2, avx2, avx512, neon; did "
+                             "you mean avx2?"},
+      {{"--projection", "orth"},
+       "--projection: 'orth' is not one of perspective, orthographic; did you mean orthographic?"},
+      {{"--sampler", "Sobol"}, "--sampler: 'Sobol' is not one of random, stratified, sobol; did you mean sobol?"},
+      {{"--format", "pgn"}, "--format: 'pgn' is not one of png, ppm, pnm, jpg, jpeg, tif, tiff, exr; did you mean "
+                            "png?"},
+      {{"-o", "b.ppm"}, "--output: given 2 times; give it once (see --help)"},
+  };
+  for (const auto& [args, want] : cases) {
+    std::vector<std::string> a = {"-o", "a.ppm"};
+    a.insert(a.end(), args.begin(), args.end());
+    const run_result r = box.run(a);
+    EXPECT_EQ(r.exit_code, 2) << want;
+    EXPECT_EQ(r.err, "raycast: error: " + want + "\n");
+    EXPECT_TRUE(box.entries().empty());
+  }
+  // A scene file's unknown key, too.
+  raycast_test::write_file(box.work() / "k.json", R"({"spheres": [{"center": [0, 0, -1], "raduis": 1}]})");
+  const run_result r = box.run({"--scene", "k.json", "-o", "a.ppm"});
+  EXPECT_EQ(r.err, "raycast: error: --scene: k.json: spheres[0].raduis: unknown key (known here: center, radius, "
+                   "shade, color); did you mean radius? (at line 1, column 37: \"raduis\")\n");
+}
+
+// 0 threads is all cores, as in Python and C++.
+TEST_F(Cli, ZeroThreadsIsAllCores) {
+  const run_result all = box.run({"--scene", "world", "-w", "64", "--threads", "0", "-o", "-"});
+  const run_result one = box.run({"--scene", "world", "-w", "64", "--threads", "1", "-o", "-"});
+  EXPECT_EQ(all.exit_code, 0) << all.err;
+  EXPECT_EQ(all.out, one.out);
 }
 
 TEST_F(Cli, SceneFileErrorsNameTheJsonPath) {
@@ -548,14 +592,16 @@ TEST_F(Cli, SceneFileErrorsNameTheJsonPath) {
   run_result r = box.run({"--scene", "bad.json", "-w", "16", "-o", "a.ppm"});
   EXPECT_EQ(r.exit_code, 2);
   expect_one_error_line(r, "--scene: bad.json: spheres[3].radius: ");
+  // A file that cannot be read is an I/O failure: exit 1.
   r = box.run({"--scene", "missing.json", "-o", "a.ppm"});
-  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.exit_code, 1);
   expect_one_error_line(r, "--scene: missing.json: No such file or directory");
   EXPECT_EQ(box.entries(), std::vector<std::string>{"bad.json"});
 }
 
-// Hostile scene paths: each a one-line usage error, exit 2, nothing written,
-// and nothing that blocks (a FIFO with no writer) or reads without end.
+// Hostile scene paths: each one line, exit 1 (a file that cannot be read is
+// an I/O failure), nothing written, and nothing that blocks (a FIFO with no
+// writer) or reads without end.
 TEST_F(Cli, SceneFilesThatAreNotRegularFilesAreRefused) {
   fs::create_directory(box.work() / "dir.json");
   ASSERT_EQ(mkfifo((box.work() / "fifo.json").c_str(), 0600), 0);
@@ -566,14 +612,14 @@ TEST_F(Cli, SceneFilesThatAreNotRegularFilesAreRefused) {
   };
   for (const auto& [name, want] : cases) {
     const run_result r = box.run({"--scene", name, "-o", "a.ppm"});
-    EXPECT_EQ(r.exit_code, 2) << name;
+    EXPECT_EQ(r.exit_code, 1) << name;
     expect_one_error_line(r, want);
   }
   // /dev/zero never ends; it is refused as a device. Its name lacks ".json", so
   // reach it through a link that has it.
   fs::create_symlink("/dev/zero", box.work() / "zero.json");
   const run_result r = box.run({"--scene", "zero.json", "-o", "a.ppm"});
-  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.exit_code, 1);
   expect_one_error_line(r, "--scene: zero.json: is a character device");
   EXPECT_EQ(box.entries(), (std::vector<std::string>{"dir.json", "fifo.json", "zero.json"}));
 }

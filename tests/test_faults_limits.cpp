@@ -629,8 +629,13 @@ TEST(Environment, BogusMaxIsaIsAUsageError) {
   run_options opts;
   opts.env = {"RAYCAST_MAX_ISA=avx3"};
   expect_usage_error(box.run({"-o", "x.ppm"}, opts),
-                     "RAYCAST_MAX_ISA: 'avx3' is not one of scalar, sse2, avx2, avx512, neon");
+                     "RAYCAST_MAX_ISA: 'avx3' is not one of scalar, sse2, avx2, avx512, neon; did you mean avx2?");
   EXPECT_TRUE(box.entries().empty());
+  // Before anything is printed: --version names the backend it would cap.
+  opts.env = {"RAYCAST_MAX_ISA=foo"};
+  const run_result r = box.run({"--version"}, opts);
+  expect_usage_error(r, "RAYCAST_MAX_ISA: 'foo' is not one of scalar, sse2, avx2, avx512, neon");
+  EXPECT_EQ(r.out, "");
 }
 
 TEST(Environment, EmptyMaxIsaMeansUnset) {

@@ -155,13 +155,9 @@ int main(int argc, char** argv) {
   const auto start = clock::now();
   io::reserve_standard_streams();
   io::install_signal_handlers();
-  cli::parse_result parsed = cli::parse_args(argc, argv, std::cout, std::cerr);
-  if (!parsed.run) {
-    if (parsed.exit_code == 0 && !standard_output_flushed()) return 1;
-    return parsed.exit_code;
-  }
   // The environment is part of the command: a malformed value is refused
-  // like a malformed option, before anything is touched.
+  // like a malformed option, before anything is printed or touched
+  // (--version names the backend RAYCAST_MAX_ISA caps).
   if (auto why = max_isa_error()) {
     print_error("RAYCAST_MAX_ISA: " + *why);
     return 2;
@@ -169,6 +165,11 @@ int main(int argc, char** argv) {
   if (auto why = io::source_date_epoch().error) {
     print_error("SOURCE_DATE_EPOCH: " + *why);
     return 2;
+  }
+  cli::parse_result parsed = cli::parse_args(argc, argv, std::cout, std::cerr);
+  if (!parsed.run) {
+    if (parsed.exit_code == 0 && !standard_output_flushed()) return 1;
+    return parsed.exit_code;
   }
   try {
     run_stats st;

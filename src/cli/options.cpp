@@ -2,6 +2,7 @@
 
 #include "raycast/inputs.h"
 #include "scene/builtin.h"
+#include "scene/names.h"
 #include "scene/scene_file.h"
 
 #include <CLI/CLI.hpp>
@@ -22,6 +23,7 @@ using enum setting_id;
 struct usage_error {
   std::string option;
   std::string why;
+  int exit_code = 2;  // 1: the input could not be read (an I/O failure)
 };
 
 // --help's line for a row: the names it takes, the help, the default.
@@ -102,26 +104,34 @@ std::string cut_long_words(std::string_view message) {
   return r;
 }
 
-// The row a camera, sky or light field is set by (the camera position has two).
-setting_id row_for(scene_field f, const settings& s) {
-  switch (f) {
-    case scene_field::width: return width;
-    case scene_field::height: return height;
-    case scene_field::aspect: return aspect;
-    case scene_field::viewport_height: return viewport_height;
-    case scene_field::focal_length: return focal_length;
-    case scene_field::origin: return s.has(origin) ? origin : lookfrom;
-    case scene_field::lookat: return lookat;
-    case scene_field::vup: return vup;
-    case scene_field::vfov: return vfov;
-    case scene_field::sky_bottom: return sky_bottom;
-    case scene_field::sky_top: return sky_top;
-    case scene_field::light_direction: return light;
-    case scene_field::light_shadows: return shadows;
-    case scene_field::ao_samples: return ao;
-    case scene_field::ao_distance: return ao_distance;
-    default: return scene;
+// The first argument the options did not take, in the user's words: an
+// option we do not have (with the nearest we do), or a value no option took.
+usage_error unexpected(const std::vector<std::string>& extras) {
+  const std::string& a = extras.front();
+  if (a.size() < 2 || a[0] != '-' || (a[1] >= '0' && a[1] <= '9') || a[1] == '.')
+    return {quote_token(a), "not expected (no option takes it: each takes one value; see --help)"};
+  const std::string name = a.substr(0, a.find('='));
+  std::vector<std::string_view> options;
+  for (const setting& row : input_table()) {
+    options.push_back(row.option.substr(2));
+    if (!row.short_option.empty()) options.push_back(row.short_option.substr(1));
   }
+  const std::string_view bare = std::string_view(name).substr(name[1] == '-' ? 2 : 1);
+  const std::string_view near = nearest_name(bare, options);
+  const std::string shown = quote_token(name).substr(1);  // cut short, unquoted
+  const std::string option = shown.substr(0, shown.size() - 1);
+  if (near.empty()) return {option, "no such option (see --help)"};
+  return {option, "no such option; did you mean " + std::string(near.size() == 1 ? "-" : "--") +
+                                 std::string(near) + "?"};
+}
+
+// CLI11's one message not in a user's terms, an option given twice
+// ("--output: At Most 1 required but received 2"), in ours.
+std::string in_our_words(std::string message) {
+  static constexpr std::string_view twice = ": At Most 1 required but received ";
+  const size_t at = message.find(twice);
+  if (at == std::string::npos) return message;
+  return message.substr(0, at) + ": given " + message.substr(at + twice.size()) + " times; give it once";
 }
 
 // The scene: --scene's spheres and keys, the options merged over the keys,
@@ -133,29 +143,30 @@ scene_params scene_of(const settings& cli, job& j) {
     const auto start = std::chrono::steady_clock::now();
     auto read = read_scene(cli[scene]->v.text);
     j.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (auto* e = std::get_if<scene_file_error>(&read))
-      throw usage_error{"--scene", e->message};
+    if (auto* e = std::get_if<scene_file_error>(&read)) {
+      const std::string& name = cli[scene]->v.text;
+      const std::string named = is_scene_file_name(name) ? name + ": " : "";
+      throw usage_error{"--scene", named + (e->path.empty() ? "" : e->path + ": ") + e->message, e->io ? 1 : 2};
+    }
     contents = std::move(std::get<scene_file_contents>(read));
     if (!builtin_spheres(cli[scene]->v.text)) file = cli[scene]->v.text;
   }
   settings merged = contents.keys;
   merge(merged, cli, input_table());
-  const auto blame = [&](std::string_view source, const std::string& why) {
+  const auto blame_source = [&](std::string_view source, const std::string& why) {
     if (source.starts_with("--")) return usage_error{std::string(source), why};
     return usage_error{"--scene", file + ": " + std::string(source) + ": " + why};
   };
   scene_params& params = contents.scene;
-  if (auto e = resolve(merged, params.camera, params.sky, params.light)) throw blame(e->source, e->message);
+  if (auto e = resolve(merged, params.camera, params.sky, params.light)) throw blame_source(e->source, e->message);
   // What one value cannot say (lookat = lookfrom, vup along the view, a
   // derived height, spheres far from the camera) is the scene's to check
   // (scene/scene.h), once; here only the field it blames becomes the
   // setting that set it.
   if (auto e = validate(params)) {
-    const setting_id id = row_for(e->field, merged);
-    // A setting the command line did not give came from the scene file.
-    const bool from_file = !file.empty() && (id == scene || !merged.has(id) || !merged[id]->source.starts_with("--"));
-    if (from_file) throw usage_error{"--scene", file + ": " + path(*e) + ": " + e->message};
-    throw usage_error{std::string(input_row(id).option), e->message};
+    const blamed b = blame(*e, merged, !file.empty());
+    if (b.from_file) throw usage_error{"--scene", file + ": " + path(*e) + ": " + e->message};
+    throw usage_error{std::string(input_row(b.id).option), e->message};
   }
   return std::move(params);
 }
@@ -167,13 +178,11 @@ void output_of(const settings& cli, job& j) {
   if (j.output.empty()) throw usage_error{"--output", "empty file name"};
   if (cli.has(format)) {
     j.format = io::format_names[cli[format]->v.name].format;
-  } else if (j.output == "-") {
-    j.format = file_format::ppm;
   } else if (auto why = io::format_from_path(j.output, j.format)) {
     throw usage_error{"--output", *why};
   }
-  if (j.output == "-" && j.format != file_format::ppm)
-    throw usage_error{"--format", "standard output takes ppm only, got " + std::string(to_string(j.format))};
+  if (j.output == "-")
+    if (auto why = io::stdout_format_error(j.format)) throw usage_error{"--format", *why};
 }
 
 std::string_view name_of(const settings& cli, setting_id id) { return input_row(id).names[cli[id]->v.name]; }
@@ -199,11 +208,7 @@ void region_of(const settings& cli, const camera_params& cp, job& j) {
   j.region = {0, 0, w, h};
   if (cli.has(region)) {
     const auto& r = cli[region]->v.region;
-    const std::string got = quote_token(cli[region]->tokens[0]);
-    if (!(0 <= r[0] && r[0] < r[2] && r[2] <= w))
-      throw usage_error{"--region", "want 0 <= x0 < x1 <= " + std::to_string(w) + " (the image width), got " + got};
-    if (!(0 <= r[1] && r[1] < r[3] && r[3] <= h))
-      throw usage_error{"--region", "want 0 <= y0 < y1 <= " + std::to_string(h) + " (the image height), got " + got};
+    if (auto why = check_region(r, w, h, cli[region]->tokens[0])) throw usage_error{"--region", *why};
     j.region = {r[0], r[1], r[2], r[3]};
   }
   const int64_t side = io::max_side(j.format);
@@ -241,10 +246,11 @@ std::string printable(std::string_view s) {
 
 parse_result parse_args(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
   CLI::App app{
-      "raycast: renders Ray Tracing in One Weekend's sky and spheres (chapters 4-6), on the\n"
+      "raycast: renders Ray Tracing in One Weekend's sky and spheres (chapters 4-7), on the\n"
       "fastest vector unit this CPU has.",
       "raycast"};
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::Throw);
+  app.allow_extras();  // reported here, first one first, with a suggestion
   command_line cl;
   add_options(app, cl);
   try {
@@ -252,9 +258,13 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
     std::vector<const char*> split_argv;
     for (const std::string& a : split) split_argv.push_back(a.c_str());
     app.parse(int(split_argv.size()), split_argv.data());
+    if (!app.remaining().empty()) throw unexpected(app.remaining());
+  } catch (const usage_error& e) {
+    err << "raycast: error: " << printable(e.option) << ": " << printable(e.why) << "\n";
+    return {std::nullopt, 2};
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return {std::nullopt, app.exit(e, out, err)};
-    err << "raycast: error: " << printable(cut_long_words(e.what())) << " (see --help)\n";
+    err << "raycast: error: " << printable(cut_long_words(in_our_words(e.what()))) << " (see --help)\n";
     return {std::nullopt, 2};
   }
   if (cl.flags[size_t(version)]) {
@@ -273,7 +283,7 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
     return {std::move(j), 0};
   } catch (const usage_error& e) {
     err << "raycast: error: " << e.option << ": " << printable(e.why) << "\n";
-    return {std::nullopt, 2};
+    return {std::nullopt, e.exit_code};
   }
 }
 

@@ -42,7 +42,16 @@ std::string supported_extensions() {
   return r;
 }
 
+std::optional<std::string> stdout_format_error(file_format f) {
+  if (f == file_format::ppm) return std::nullopt;
+  return "standard output takes ppm only, got " + std::string(to_string(f));
+}
+
 std::optional<std::string> format_from_path(const std::string& path, file_format& format) {
+  if (path == "-") {
+    format = file_format::ppm;
+    return std::nullopt;
+  }
   const size_t slash = path.find_last_of('/');
   const size_t dot = path.find_last_of('.');
   if (dot == std::string::npos || (slash != std::string::npos && dot < slash))

@@ -32,9 +32,13 @@ std::string_view to_string(file_format f);  // its own name: "png", "ppm", "jpg"
 std::optional<file_format> format_from_name(std::string_view name);
 // "png, ppm, pnm, jpg, ..." (or with another separator), for messages and --help.
 std::string format_names_text(std::string_view separator = ", ");
-// The format a file name's extension gives, or why there is none (no
-// extension, an unknown one); the reason is a sentence for "--output: ".
+// The format a file name's extension gives ("-", standard output: PPM), or
+// why there is none (no extension, an unknown one); the reason is a
+// sentence for "--output: ".
 std::optional<std::string> format_from_path(const std::string& path, file_format& format);
+// "-" names standard output wherever a path is taken: it takes binary PPM
+// only. Why format cannot go there, or nullopt.
+std::optional<std::string> stdout_format_error(file_format f);
 // What a file name's extension supports, for messages: ".png, .ppm, .pnm, ...".
 std::string supported_extensions();
 bool is_float_format(file_format f);        // EXR carries linear 32-bit float

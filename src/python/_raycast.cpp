@@ -5,6 +5,7 @@
 #include <dlfcn.h>
 
 #include <array>
+#include <initializer_list>
 #include <map>
 #include <optional>
 #include <string>
@@ -16,6 +17,7 @@
 #include "io/module_loader.h"
 #include "raycast/raycast.h"
 #include "raycast/inputs.h"
+#include "scene/names.h"
 
 namespace py = pybind11;
 namespace rc = raycast::api;
@@ -30,6 +32,11 @@ const void* last_centers = nullptr;
   throw rc::error(rc::error::kind::invalid_argument, field, message);
 }
 
+// A value of the wrong type: TypeError, with .field and .message as ValueError's.
+struct wrong_type {
+  std::string field, message;
+};
+
 rc::sphere_arrays::column column_of(const py::array& a, const char* name, size_t& count) {
   const bool matrix = std::string(name) != "radii";
   if (a.ndim() != (matrix ? 2 : 1) || (matrix && a.shape(1) != 3))
@@ -42,7 +49,7 @@ rc::sphere_arrays::column column_of(const py::array& a, const char* name, size_t
   c.data = a.data();
   if (a.dtype().is(py::dtype::of<float>())) c.type = rc::sphere_arrays::element::f32;
   else if (a.dtype().is(py::dtype::of<double>())) c.type = rc::sphere_arrays::element::f64;
-  else throw py::type_error(std::string(name) + ": want a float32 or float64 array");
+  else throw wrong_type{name, "want a float32 or float64 array"};
   // Strides as NumPy has them: any layout is read in place (a zero stride,
   // packed to the library, was made contiguous by __init__.py).
   c.stride = a.strides(0);
@@ -50,74 +57,98 @@ rc::sphere_arrays::column column_of(const py::array& a, const char* name, size_t
   return c;
 }
 
-rc::shading shading_of(const std::string& s) {
-  if (s == "normal") return rc::shading::normal;
-  if (s == "flat") return rc::shading::flat;
-  if (s == "lit") return rc::shading::lit;
-  value_error("shade", "'" + s + "' is not one of normal, flat, lit");
+// A name from a list (shade, dtype), refused in the input table's words.
+size_t one_of(const char* field, const std::string& got, std::initializer_list<std::string_view> names) {
+  size_t k = 0;
+  for (std::string_view n : names) {
+    if (n == got) return k;
+    ++k;
+  }
+  value_error(field, raycast::not_one_of(got, raycast::quote_token(got), {names.begin(), names.size()}));
 }
 
-// The camera, sky and light keywords (text, as the command line spells them),
-// parsed by the input table's parsers into settings that override the
-// scene's keys as the command line's options do; errors name the scene
-// file's key ("camera.vfov").
-raycast::settings keyword_settings(const std::map<std::string, std::string>& keywords) {
-  raycast::settings layer;
+// The keywords (text, as the command line spells them), each parsed and
+// range-checked by its input table row's parsers, as the command line's
+// options are. The camera, sky and light rows become settings over the
+// scene's keys (errors name the scene file's key, "camera.vfov"); the
+// run's rows, the options (errors name the keyword, "samples").
+struct keyword_values {
+  raycast::settings scene;
+  rc::options run;
+};
+
+void set_option(rc::options& o, const raycast::setting& row, const raycast::given& g) {
+  using enum raycast::setting_id;
+  const auto name = [&] { return std::string(row.names[g.v.name]); };
+  switch (row.id) {
+    case backend: o.backend = name(); break;
+    case precision: o.precision = name(); break;
+    case threads: o.threads = int(g.v.integer); break;
+    case samples: o.samples = g.v.integer; break;
+    case sampler: o.sampler = name(); break;
+    case seed: o.seed = g.v.seed; break;
+    case region: o.region = rc::region{g.v.region[0], g.v.region[1], g.v.region[2], g.v.region[3]}; break;
+    default: value_error(std::string(row.keyword), "is not a render() keyword");
+  }
+}
+
+keyword_values parse_keywords(const std::map<std::string, std::string>& keywords) {
+  keyword_values out;
   for (const auto& [keyword, text] : keywords) {
     const raycast::setting* row = nullptr;
-    for (const raycast::setting& r : raycast::scene_settings())
+    for (const raycast::setting& r : raycast::input_table())
       if (r.keyword == keyword) row = &r;
-    if (!row) value_error(keyword, "is not a camera, sky or light keyword");
+    if (!row) value_error(keyword, "is not a render() keyword");
+    const bool scene_row = !row->file_key.empty();
     raycast::given g;
-    g.source = std::string(row->file_key);
+    g.source = scene_row ? std::string(row->file_key) : keyword;
     if (auto e = raycast::parse_value(*row, text, g)) value_error(g.source, *e);
-    layer[row->id] = std::move(g);
+    if (scene_row) {
+      out.scene[row->id] = std::move(g);
+      continue;
+    }
+    if (auto e = raycast::check_range(*row, g)) value_error(g.source, *e);
+    set_option(out.run, *row, g);
   }
-  if (auto e = raycast::check_groups(raycast::scene_settings(), layer)) value_error(e->source, e->message);
-  return layer;
+  if (auto e = raycast::check_groups(raycast::scene_settings(), out.scene)) value_error(e->source, e->message);
+  return out;
+}
+
+// The arrays' spheres, read in place.
+void set_arrays(rc::scene& s, std::optional<py::array> centers, std::optional<py::array> radii,
+                std::optional<py::array> colors, rc::shading sh) {
+  if (!centers && !radii && !colors) {
+    last_centers = nullptr;
+    return;
+  }
+  if (!centers || !radii) value_error(centers ? "radii" : "centers", "is required with centers/radii/colors");
+  if (!s.spheres.empty()) value_error("centers", "the scene has spheres already; give a scene without");
+  rc::sphere_arrays a;
+  size_t n = size_t(-1);
+  a.centers = column_of(*centers, "centers", n);
+  a.radii = column_of(*radii, "radii", n);
+  if (colors) a.colors = column_of(*colors, "colors", n);
+  a.count = n;
+  a.shade = sh;
+  s.arrays = a;
+  last_centers = a.centers.data;
 }
 
 py::array render_image(const std::string& kind, const std::string& source, std::optional<py::array> centers,
                        std::optional<py::array> radii, std::optional<py::array> colors, const std::string& shade,
-                       const std::map<std::string, std::string>& camera, const std::string& backend,
-                       const std::string& precision, int threads, int64_t samples, const std::string& sampler,
-                       uint64_t seed, std::optional<std::array<int64_t, 4>> region, const std::string& dtype) {
-  rc::scene s = rc::scene_with(kind, source, keyword_settings(camera));
-
-  const rc::shading sh = shading_of(shade);
-  if (centers || radii || colors) {
-    if (!centers || !radii) value_error(centers ? "radii" : "centers", "is required with centers/radii/colors");
-    if (!s.spheres.empty()) value_error("centers", "the scene has spheres already; give a scene without");
-    rc::sphere_arrays a;
-    size_t n = size_t(-1);
-    a.centers = column_of(*centers, "centers", n);
-    a.radii = column_of(*radii, "radii", n);
-    if (colors) a.colors = column_of(*colors, "colors", n);
-    a.count = n;
-    a.shade = sh;
-    s.arrays = a;
-    last_centers = a.centers.data;
-  } else {
-    last_centers = nullptr;
-  }
-
-  rc::options o;
-  o.backend = backend;
-  o.precision = precision;
-  o.threads = threads;
-  o.samples = samples;
-  o.sampler = sampler;
-  o.seed = seed;
-  if (region) o.region = rc::region{(*region)[0], (*region)[1], (*region)[2], (*region)[3]};
-  rc::pixel_type px;
-  if (dtype == "uint8") px = rc::pixel_type::rgb8;
-  else if (dtype == "float32") px = rc::pixel_type::rgb_f32;
-  else value_error("dtype", "'" + dtype + "' is not one of uint8, float32");
+                       const std::map<std::string, std::string>& keywords, const std::string& dtype) {
+  keyword_values kw = parse_keywords(keywords);
+  static constexpr rc::shading shadings[] = {rc::shading::normal, rc::shading::flat, rc::shading::lit};
+  const rc::shading sh = shadings[one_of("shade", shade, {"normal", "flat", "lit"})];
+  const rc::pixel_type px = one_of("dtype", dtype, {"uint8", "float32"}) == 0 ? rc::pixel_type::rgb8
+                                                                              : rc::pixel_type::rgb_f32;
+  rc::scene s = rc::scene_with(kind, source, kw.scene);
+  set_arrays(s, centers, radii, colors, sh);
 
   std::optional<rc::job> j;
   {
     py::gil_scoped_release free;  // preparing 10^6 spheres takes a while too
-    j.emplace(s, o);
+    j.emplace(s, kw.run);
   }
   const std::vector<py::ssize_t> shape = {py::ssize_t(j->height()), py::ssize_t(j->width()), 3};
   py::array out = px == rc::pixel_type::rgb8 ? py::array(py::dtype::of<uint8_t>(), shape)
@@ -136,7 +167,7 @@ void write_image(const std::string& path, const py::array& image, const std::str
   rc::pixel_type px;
   if (image.dtype().is(py::dtype::of<uint8_t>())) px = rc::pixel_type::rgb8;
   else if (image.dtype().is(py::dtype::of<float>())) px = rc::pixel_type::rgb_f32;
-  else throw py::type_error("image: want a uint8 or float32 array");
+  else throw wrong_type{"image", "want a uint8 or float32 array"};
   const py::ssize_t item = image.itemsize();
   if (image.strides(2) != item || image.strides(1) != 3 * item || image.strides(0) < 3 * item * image.shape(1))
     value_error("image", "rows must be C-contiguous (numpy.ascontiguousarray)");
@@ -159,6 +190,25 @@ void find_image_module() {
   raycast::io::add_image_module_dir(RAYCAST_BUILD_MODULE_DIR);
 }
 
+// The input table as Python values.
+py::list input_table() {
+  static constexpr const char* types[] = {"integer", "real", "aspect", "triple", "name",
+                                          "region", "seed", "text", "flag"};
+  py::list rows;
+  for (const raycast::setting& r : raycast::input_table()) {
+    py::dict row;
+    row["keyword"] = std::string(r.keyword);
+    row["option"] = std::string(r.option);
+    row["file_key"] = std::string(r.file_key);
+    row["type"] = types[size_t(r.type)];
+    py::list names;
+    for (std::string_view n : r.names) names.append(std::string(n));
+    row["names"] = names;
+    rows.append(row);
+  }
+  return rows;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_raycast, m) {
@@ -177,11 +227,20 @@ PYBIND11_MODULE(_raycast, m) {
                         : e.kind() == rc::error::kind::unsupported_backend ? "unsupported_backend"
                                                                             : "invalid_argument";
       PyErr_SetObject(type.ptr(), ex.ptr());
+    } catch (const wrong_type& e) {
+      py::object ex = py::reinterpret_borrow<py::object>(PyExc_TypeError)(e.field + ": " + e.message);
+      ex.attr("field") = e.field;
+      ex.attr("message") = e.message;
+      ex.attr("kind") = "invalid_argument";
+      PyErr_SetObject(PyExc_TypeError, ex.ptr());
     }
   });
   m.def("render", &render_image);
   m.def("write", &write_image, py::arg("path"), py::arg("image"), py::arg("format") = "");
   m.def("builtin_scene_names", &rc::builtin_scene_names);
+  m.def("input_table", &input_table,
+        "The input table's rows (keyword, option, file_key, type, names): what the keywords, the command line's "
+        "options and the scene file's keys are, for docstrings and tests.");
   m.def("_last_centers_address", [] { return reinterpret_cast<uintptr_t>(last_centers); },
         "The address of the centres the last render read (0: none): for tests of the no-copy path.");
 }

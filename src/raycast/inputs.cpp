@@ -47,7 +47,7 @@ std::vector<setting> build() {
        "auto: the best this CPU runs", ""});
   run({setting_id::precision, "--precision", "", "", "precision", vt::name, {}, precisions, "MODE",
        to_string(default_precision), ""});
-  run({threads, "--threads", "", "", "threads", vt::integer, {1, 1024}, {}, "N", "all cores", "Render threads"});
+  run({threads, "--threads", "", "", "threads", vt::integer, {0, 1024}, {}, "N", "0: all cores", "Render threads"});
   run({samples, "--samples", "", "", "samples", vt::integer, {1, double(max_samples)}, {}, "N", "1",
        "Samples per pixel, averaged (antialiasing); 1 is the pixel's own point"});
   run({sampler, "--sampler", "", "", "sampler", vt::name, {}, samplers, "NAME", to_string(default_sampler),
@@ -76,6 +76,39 @@ const setting& input_row(setting_id id) {
   for (const setting& row : input_table())
     if (row.id == id) return row;
   return input_table().front();
+}
+
+namespace {
+
+// The row a camera, sky or light field is set by (the camera position has two).
+setting_id row_for(scene_field f, const settings& s) {
+  switch (f) {
+    case scene_field::width: return width;
+    case scene_field::height: return height;
+    case scene_field::aspect: return aspect;
+    case scene_field::viewport_height: return viewport_height;
+    case scene_field::focal_length: return focal_length;
+    case scene_field::origin: return s.has(origin) ? origin : lookfrom;
+    case scene_field::lookat: return lookat;
+    case scene_field::vup: return vup;
+    case scene_field::vfov: return vfov;
+    case scene_field::sky_bottom: return sky_bottom;
+    case scene_field::sky_top: return sky_top;
+    case scene_field::light_direction: return light;
+    case scene_field::light_shadows: return shadows;
+    case scene_field::ao_samples: return ao;
+    case scene_field::ao_distance: return ao_distance;
+    default: return setting_id::scene;
+  }
+}
+
+}  // namespace
+
+blamed blame(const invalid_field& e, const settings& merged, bool have_file) {
+  const setting_id id = row_for(e.field, merged);
+  // A file's values carry their place in it; other sources' do not.
+  const bool from_file = have_file && (id == setting_id::scene || !merged.has(id) || !merged[id]->where.empty());
+  return {id, from_file};
 }
 
 }  // namespace raycast

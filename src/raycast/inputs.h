@@ -9,6 +9,7 @@
 #include <string>
 
 #include "raycast/raycast.h"
+#include "scene/invalid.h"
 #include "scene/settings.h"
 
 namespace raycast {
@@ -16,14 +17,27 @@ namespace raycast {
 std::span<const setting> input_table();
 const setting& input_row(setting_id id);
 
+// Who set the field a scene's check refused (scene/scene.h's validate): the
+// row that sets it (of the camera position's two, the one given), and whether
+// a scene file gave it -- a field no setting gave (a sphere's, the count of
+// spheres) is the file's when there is one. merged: the file's keys with the
+// other front end's settings over them.
+struct blamed {
+  setting_id id;
+  bool from_file;
+};
+blamed blame(const invalid_field& e, const settings& merged, bool have_file);
+
 }  // namespace raycast
 
 namespace raycast::api {
 
 // A scene -- kind "builtin" (source: its name), "file" (a path), "json" (the
-// text) or "" (the sky alone) -- with settings merged over its camera and
-// sky keys before they are resolved, as the command line's options over a
-// scene file: the Python module's keywords (errors name the scene file's key).
+// text), "name" (as the command line's --scene: a built-in name or a .json
+// file, anything else refused with the built-in names) or "" (the sky
+// alone) -- with settings merged over its camera and sky keys before they
+// are resolved, as the command line's options over a scene file: the Python
+// module's keywords (errors name the scene file's key).
 scene scene_with(const std::string& kind, const std::string& source, const settings& over);
 
 }  // namespace raycast::api

@@ -13,6 +13,7 @@
 #include "raycast/inputs.h"
 #include "render/render.h"
 #include "scene/builtin.h"
+#include "scene/names.h"
 #include "scene/scene_file.h"
 
 namespace raycast::api {
@@ -146,17 +147,17 @@ scene from_internal(const scene_params& p) {
 std::string_view checked_name(setting_id id, const std::string& text) {
   const setting& row = input_row(id);
   size_t k = 0;
-  if (auto e = parse_name(text, row.names, k)) invalid(std::string(row.keyword), *e);
+  if (auto e = parse_name(text, row.names, k, row.any_case)) invalid(std::string(row.keyword), *e);
   return row.names[k];
 }
 
 // A number within the input table's row's range (the command line's message).
-void check_number(setting_id id, int64_t n, const std::string& also = "") {
+void check_number(setting_id id, int64_t n) {
   const setting& row = input_row(id);
   given g;
   g.v.integer = n;
   g.tokens[0] = std::to_string(n);
-  if (auto e = check_range(row, g)) invalid(std::string(row.keyword), *e + also);
+  if (auto e = check_range(row, g)) invalid(std::string(row.keyword), *e);
 }
 
 render_options to_internal(const options& o) {
@@ -165,7 +166,7 @@ render_options to_internal(const options& o) {
   if (auto why = backend_unavailable(b)) throw error(error::kind::unsupported_backend, "backend", *why);
   r.which = b;
   r.prec = *parse_precision(checked_name(setting_id::precision, o.precision));
-  if (o.threads != 0) check_number(setting_id::threads, o.threads, "; or 0: all cores");
+  check_number(setting_id::threads, o.threads);
   r.threads = o.threads;
   check_number(setting_id::samples, o.samples);
   r.samples = uint32_t(o.samples);
@@ -179,10 +180,8 @@ pixel_rect region_of(const options& o, const raycast::camera& cam) {
   const struct region& g = *o.region;
   const std::string got = std::to_string(g.x0) + "," + std::to_string(g.y0) + "," + std::to_string(g.x1) + "," +
                           std::to_string(g.y1);
-  if (!(0 <= g.x0 && g.x0 < g.x1 && g.x1 <= cam.image_width))
-    invalid("region", "want 0 <= x0 < x1 <= " + std::to_string(cam.image_width) + " (the image width), got " + got);
-  if (!(0 <= g.y0 && g.y0 < g.y1 && g.y1 <= cam.image_height))
-    invalid("region", "want 0 <= y0 < y1 <= " + std::to_string(cam.image_height) + " (the image height), got " + got);
+  if (auto why = check_region({g.x0, g.y0, g.x1, g.y1}, cam.image_width, cam.image_height, got))
+    invalid("region", *why);
   return {g.x0, g.y0, g.x1, g.y1};
 }
 
@@ -190,14 +189,17 @@ pixel_format internal(pixel_type t) { return t == pixel_type::rgb8 ? pixel_forma
 
 io::file_format file_format_for(const std::string& path, const std::string& format) {
   io::file_format f{};
-  if (!format.empty()) {
-    auto g = io::format_from_name(format);
-    if (!g) invalid("format", quote_token(format) + " is not one of " + io::format_names_text());
-    return *g;
-  }
   if (path.empty()) invalid("path", "empty file name");
-  if (auto why = io::format_from_path(path, f)) invalid("path", *why);
+  if (!format.empty()) f = *io::format_from_name(checked_name(setting_id::format, format));
+  else if (auto why = io::format_from_path(path, f)) invalid("path", *why);
+  if (path == "-")
+    if (auto why = io::stdout_format_error(f)) invalid("format", *why);
   return f;
+}
+
+// A file, or standard output for "-" (a binary PPM, as the command line's).
+std::unique_ptr<io::image_sink> open_sink(const std::string& path, io::file_format f, int64_t width, int64_t height) {
+  return path == "-" ? io::open_stdout_sink(width, height) : io::open_file_sink(path, f, width, height);
 }
 
 void check_sides(io::file_format f, int64_t w, int64_t h) {
@@ -219,7 +221,7 @@ void find_installed_module() {
 
 scene builtin_scene(const std::string& name) {
   auto spheres = builtin_spheres(name);
-  if (!spheres) invalid("scene", "'" + name + "' is not one of " + builtin_scene_list());
+  if (!spheres) invalid("scene", not_one_of(name, quote_token(name), raycast::builtin_scene_names()));
   scene_params p;
   p.spheres = std::move(*spheres);
   return from_internal(p);
@@ -234,8 +236,7 @@ std::vector<std::string> builtin_scene_names() {
 scene load_scene(const std::string& path) {
   auto parsed = load_scene_file(path);
   if (auto* e = std::get_if<scene_file_error>(&parsed))
-    throw error(e->path.empty() ? error::kind::io : error::kind::invalid_argument, e->path,
-                path + ": " + e->message);
+    throw error(e->io ? error::kind::io : error::kind::invalid_argument, e->path, path + ": " + e->message);
   return from_internal(std::get<scene_params>(parsed));
 }
 
@@ -249,18 +250,29 @@ scene scene_with(const std::string& kind, const std::string& source, const setti
   scene_file_contents c;
   if (kind == "builtin") {
     c.scene = to_internal(builtin_scene(source));
-  } else if (kind == "file" || kind == "json") {
-    auto read = kind == "file" ? read_scene_file(source) : read_scene_text(source);
+  } else if (kind == "file" || kind == "json" || kind == "name") {
+    auto read = kind == "file" ? read_scene_file(source) : kind == "name" ? read_scene(source) : read_scene_text(source);
     if (auto* e = std::get_if<scene_file_error>(&read)) {
-      if (kind == "json") invalid(e->path, e->message);
-      throw error(e->path.empty() ? error::kind::io : error::kind::invalid_argument, e->path,
-                  source + ": " + e->message);
+      const bool named = kind == "file" || (kind == "name" && is_scene_file_name(source));
+      const std::string prefix = named ? source + ": " : "";
+      throw error(e->io ? error::kind::io : error::kind::invalid_argument, e->path.empty() ? "scene" : e->path,
+                  prefix + e->message);
     }
     c = std::move(std::get<scene_file_contents>(read));
   }
   settings merged = c.keys;
   merge(merged, over, scene_settings());
-  if (auto e = resolve(merged, c.scene.camera, c.scene.sky, c.scene.light)) invalid(e->source, e->message);
+  // A file's value is refused as a file's error: the file named first.
+  const std::string file = kind == "file" || (kind == "name" && is_scene_file_name(source)) ? source + ": " : "";
+  if (auto e = resolve(merged, c.scene.camera, c.scene.sky, c.scene.light)) {
+    const bool from_file = e->row && merged.has(e->row->id) && !merged[e->row->id]->where.empty();
+    invalid(e->source, (from_file ? file : "") + e->message);
+  }
+  // The scene's own rules (a lookat at lookfrom, ...), checked here where
+  // who set each value is known; job() checks the spheres.
+  const scene_params& p = c.scene;
+  for (auto e : {validate(p.camera), validate(p.sky), validate(p.light)})
+    if (e) invalid(path(*e), (blame(*e, merged, !file.empty()).from_file ? file : "") + e->message);
   return from_internal(c.scene);
 }
 
@@ -310,7 +322,7 @@ void job::write(const std::string& path, const std::string& format) const {
   check_sides(f, width(), height());
   find_installed_module();
   try {
-    auto sink = io::open_file_sink(path, f, width(), height());
+    auto sink = open_sink(path, f, width(), height());
     render_to_sink(*p_->r, p_->region, io::pixel_format_for(f), *sink, path);
   } catch (const io::io_error& e) {
     rethrow_io(e);
@@ -334,7 +346,7 @@ void write(const std::string& path, const void* data, size_t stride, int64_t wid
   check_sides(f, width, height);
   find_installed_module();
   try {
-    auto sink = io::open_file_sink(path, f, width, height);
+    auto sink = open_sink(path, f, width, height);
     sink->write_rows(0, height, static_cast<const unsigned char*>(data), stride);
     sink->finish();
   } catch (const io::io_error& e) {

@@ -100,7 +100,8 @@ struct scene {
   struct light light;
 };
 
-// "sky", "red-sphere", "normals", "world" (the command line's --scene NAME).
+// A built-in scene by name, as the command line's --scene NAME; the names
+// are builtin_scene_names()'s.
 scene builtin_scene(const std::string& name);
 std::vector<std::string> builtin_scene_names();
 // A scene file (the command line's --scene FILE.json) or its text. Errors
@@ -173,7 +174,8 @@ class job {
   void render_into(void* data, size_t stride, pixel_type pixels) const;
   image render(pixel_type pixels) const;
   // Renders and writes in bands (memory: one band), through a temporary file
-  // renamed into place: an error leaves the destination as it was.
+  // renamed into place: an error leaves the destination as it was. Path "-"
+  // is standard output (a binary PPM), as the command line's -o -.
   void write(const std::string& path, const std::string& format = "") const;
 
  private:

@@ -80,6 +80,10 @@ std::optional<invalid_field> validate(const scene_params& p) {
   for (size_t k = 0; k < n; ++k) {
     const sphere s = p.arrays ? p.arrays->at(k) : p.spheres[k];
     if (auto e = validate(s, k)) return e;
+    // As a scene file's sphere: flat and lit take the colour they show.
+    if (p.arrays && !p.arrays->colors.data && s.shade != shading::normal)
+      return invalid_field{scene_field::sphere_color,
+                           s.shade == shading::flat ? "is required for flat shading" : "is required for lit shading", k};
     for (int c = 0; c < 3; ++c)
       if (!(std::abs(p.camera.origin[c] - s.center[c]) <= max_sphere_extent))
         return invalid_field{scene_field::sphere_center,

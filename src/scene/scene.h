@@ -45,7 +45,7 @@ struct sphere_view {
   size_t count = 0;
   column centers;             // N x 3
   column radii;               // N
-  column colors;              // N x 3, or data null: flat_color's default
+  column colors;              // N x 3; data null: none (normal shading only)
   shading shade = shading::normal;   // every sphere's, unless shades is set
   const shading* shades = nullptr;   // N, one per sphere
 

@@ -23,6 +23,7 @@
 
 #include "scene/builtin.h"
 #include "scene/huge_pages.h"
+#include "scene/names.h"
 
 namespace raycast {
 namespace {
@@ -494,7 +495,7 @@ class reader {
       if (index == int(known.size())) {
         std::string list;
         for (std::string_view k : known) list += (list.empty() ? "" : ", ") + std::string(k);
-        fail(child(path(), excerpt(key)), "unknown key (known here: " + list + ")", key_at);
+        fail(child(path(), excerpt(key)), "unknown key (known here: " + list + ")" + did_you_mean(key, known), key_at);
       }
       if (seen & (1u << index)) fail(child(path(), key), "duplicate key", key_at);
       seen |= 1u << index;
@@ -1023,7 +1024,7 @@ std::variant<scene_file_contents, scene_file_error> read_scene_text(std::string_
 }
 
 std::variant<scene_file_contents, scene_file_error> read_scene_file(const std::string& path) {
-  const auto error = [](std::string why) { return scene_file_error{"", std::move(why)}; };
+  const auto error = [](std::string why) { return scene_file_error{"", std::move(why), true}; };
   // stat first: it neither blocks on a FIFO nor opens a device.
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0) return error(std::strerror(errno));
@@ -1101,20 +1102,22 @@ std::variant<scene_params, scene_file_error> load_scene_file(const std::string& 
   return resolved(read_scene_file(path));
 }
 
+bool is_scene_file_name(std::string_view name) {
+  std::string ext(name.substr(name.size() > 5 ? name.size() - 5 : 0));
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext == ".json" && name.size() > 5;
+}
+
 std::variant<scene_file_contents, scene_file_error> read_scene(const std::string& name_or_path) {
   if (auto spheres = builtin_spheres(name_or_path)) {
     scene_file_contents c;
     c.scene.spheres = std::move(*spheres);
     return c;
   }
-  std::string ext = name_or_path.size() > 5 ? name_or_path.substr(name_or_path.size() - 5) : "";
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  if (ext != ".json")
-    return scene_file_error{"", quote_token(name_or_path) + " is not one of " + builtin_scene_list() + ", or a .json scene file"};
-  auto r = read_scene_file(name_or_path);
-  if (auto* e = std::get_if<scene_file_error>(&r))
-    e->message = name_or_path + ": " + (e->path.empty() ? "" : e->path + ": ") + e->message;
-  return r;
+  if (!is_scene_file_name(name_or_path))
+    return scene_file_error{
+        "", not_one_of(name_or_path, quote_token(name_or_path), builtin_scene_names(), ", or a .json scene file")};
+  return read_scene_file(name_or_path);
 }
 
 }  // namespace raycast

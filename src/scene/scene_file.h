@@ -40,6 +40,7 @@ namespace raycast {
 struct scene_file_error {
   std::string path;     // "camera.vfov", "spheres[3].radius"; empty for the whole file
   std::string message;  // why
+  bool io = false;      // the file could not be read (an I/O failure, not bad input)
 };
 
 // A scene file as read: its spheres (scene.spheres; camera and sky as the
@@ -83,8 +84,10 @@ std::variant<scene_params, scene_file_error> load_scene_file(const std::string& 
 
 // The command line's --scene: a built-in scene's name (its spheres), or a
 // .json scene file read by read_scene_file; another name is an error listing
-// the built-in ones. The error's message is the whole sentence for the user:
-// "FILE: camera.vfov: why" for a file's.
+// the built-in ones (and the nearest, when it looks like a slip). A file's
+// error is read_scene_file's: the caller names the file.
 std::variant<scene_file_contents, scene_file_error> read_scene(const std::string& name_or_path);
+// Whether read_scene reads name as a file: it ends in .json (any case).
+bool is_scene_file_name(std::string_view name);
 
 }  // namespace raycast

@@ -1,5 +1,7 @@
 #include "scene/settings.h"
 
+#include "scene/names.h"
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -175,6 +177,15 @@ std::optional<std::string> parse_region(std::string_view text, std::array<int64_
   return std::nullopt;
 }
 
+std::optional<std::string> check_region(const std::array<int64_t, 4>& r, int64_t width, int64_t height,
+                                        std::string_view token) {
+  if (!(0 <= r[0] && r[0] < r[2] && r[2] <= width))
+    return "want 0 <= x0 < x1 <= " + std::to_string(width) + " (the image width), got " + quote_token(token);
+  if (!(0 <= r[1] && r[1] < r[3] && r[3] <= height))
+    return "want 0 <= y0 < y1 <= " + std::to_string(height) + " (the image height), got " + quote_token(token);
+  return std::nullopt;
+}
+
 std::optional<std::string> parse_name(std::string_view text, std::span<const std::string_view> names,
                                       size_t& index, bool any_case) {
   const auto same = [&](std::string_view name) {
@@ -184,9 +195,7 @@ std::optional<std::string> parse_name(std::string_view text, std::span<const std
   };
   for (index = 0; index < names.size(); ++index)
     if (same(names[index])) return std::nullopt;
-  std::string list;
-  for (std::string_view n : names) list += (list.empty() ? "" : ", ") + std::string(n);
-  return quote_token(text) + " is not one of " + list;
+  return not_one_of(text, quote_token(text), names);
 }
 
 std::optional<std::string> parse_value(const setting& row, std::string_view text, given& g) {

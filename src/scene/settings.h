@@ -164,6 +164,12 @@ std::optional<std::string> parse_value(const setting& row, std::string_view text
 // Why a value is outside row's range ("'0' is too small (at least 1)"), or nullopt.
 std::optional<std::string> check_range(const setting& row, const given& g);
 
+// Why the region r (x0, y0, x1, y1; token: as the user gave it) is not a
+// window of a width x height image, or nullopt: its bounds depend on the
+// image, so the caller checks them once the image is known.
+std::optional<std::string> check_region(const std::array<int64_t, 4>& r, int64_t width, int64_t height,
+                                        std::string_view token);
+
 // Two settings of one group in one source: the error blaming the later row.
 std::optional<setting_error> check_groups(std::span<const setting> table, const settings& s);
 

@@ -1,9 +1,12 @@
 #include "simd/cpu.h"
 
+#include "scene/names.h"
 #include "simd/targets.h"
 
 #include <cstdlib>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <cpuid.h>
@@ -86,12 +89,12 @@ std::optional<std::string> max_isa_error() {
   const char* cap = std::getenv("RAYCAST_MAX_ISA");
   if (!cap || !*cap) return std::nullopt;
   const std::string c = cap;
-  std::string names;
+  std::vector<std::string_view> names;
   for (const target_entry& t : targets) {
     if (c == t.name) return std::nullopt;
-    names += names.empty() ? t.name : std::string(", ") + t.name;
+    names.emplace_back(t.name);
   }
-  return "'" + c + "' is not one of " + names;
+  return not_one_of(c, "'" + c + "'", names);
 }
 
 const cpu_features& cpu() {

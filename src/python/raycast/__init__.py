@@ -11,6 +11,7 @@ also carry .field, .message and .kind.
 """
 import json as _json
 import os as _os
+import sys as _sys
 
 import numpy as _np
 
@@ -20,8 +21,15 @@ __all__ = ["render", "write", "builtin_scenes"]
 
 
 def builtin_scenes():
-    """The built-in scene names: sky, red-sphere, normals, world."""
+    """The built-in scene names, as the command line's --scene takes them."""
     return list(_raycast.builtin_scene_names())
+
+
+def _type_error(field, message):
+    """TypeError with .field, .message and .kind, as the library's ValueError."""
+    e = TypeError(f"{field}: {message}")
+    e.field, e.message, e.kind = field, message, "invalid_argument"
+    return e
 
 
 def _spheres_array(name, a):
@@ -29,36 +37,56 @@ def _spheres_array(name, a):
         return None
     a = _np.asarray(a)
     if a.dtype not in (_np.float32, _np.float64):
-        if a.dtype.kind not in "biuf":
-            raise TypeError(f"{name}: want real numbers, got dtype {a.dtype}")
+        if a.dtype.kind not in "iuf":
+            raise _type_error(name, f"want real numbers, got dtype {a.dtype}")
         a = a.astype(_np.float64)  # integers and the like: converted once
     if 0 in a.strides:
         a = _np.ascontiguousarray(a)  # broadcast rows: the library reads real ones
     return a
 
 
-def _token(name, v):
-    """A keyword's value as the command line would spell it, for the input
-    table's parsers (the same spellings, ranges and messages)."""
+def _scalar_token(name, v):
     if isinstance(v, str):
         return v
     if isinstance(v, (bool, _np.bool_)):
         return "true" if v else "false"
-    if isinstance(v, (int, _np.integer)) and not isinstance(v, bool):
+    if isinstance(v, (int, _np.integer)):
         return str(int(v))
-    try:
+    if isinstance(v, (float, _np.floating)):
         return repr(float(v))
-    except TypeError:
-        pass
-    t = [repr(float(x)) for x in v]
-    if len(t) != 3:
-        raise ValueError(f"{name}: want 3 numbers, got {len(t)}")
-    return ",".join(t)
+    raise _type_error(name, f"want a number or a str, got {type(v).__name__}")
 
 
-_CAMERA_KEYWORDS = ("width", "height", "aspect", "lookfrom", "lookat", "vup", "vfov", "viewport_height",
-                    "focal_length", "projection", "sky_bottom", "sky_top", "light", "shadows", "ao",
-                    "ao_distance")
+def _token(name, v):
+    """A keyword's value as the command line would spell it, for the input
+    table's parsers: the same spellings, ranges and messages. Nothing is
+    rounded or coerced here: 10.5 for a whole number, True for a number or
+    (1, 2) for x, y, z reach the parser as given and are refused there."""
+    if isinstance(v, _np.ndarray) and v.ndim == 0:
+        v = v.item()
+    if isinstance(v, str) or not hasattr(v, "__len__"):
+        return _scalar_token(name, v)
+    if isinstance(v, (bytes, dict)) or _np.ndim(v) != 1:
+        raise _type_error(name, f"want a number, a str or a flat sequence, got {type(v).__name__}")
+    return ",".join(_scalar_token(name, x) for x in v)
+
+
+def _json_value(v):
+    """NumPy's numbers and arrays inside a dict scene, as JSON's."""
+    if isinstance(v, (_np.generic, _np.ndarray)):
+        return v.tolist()
+    raise _type_error("scene", f"a {type(v).__name__} is not a JSON value")
+
+
+# The input table's keywords that render() takes (format is write()'s).
+_TABLE = _raycast.input_table()
+_RENDER_KEYWORDS = tuple(r["keyword"] for r in _TABLE if r["keyword"] and r["keyword"] != "format")
+# What errors name: a scene file's key where the keyword has one (camera.vfov).
+_FIELD = {r["keyword"]: r["file_key"] or r["keyword"] for r in _TABLE}
+
+
+def _names(keyword):
+    return ", ".join(f'"{n}"' for r in _TABLE if r["keyword"] == keyword for n in r["names"])
 
 
 def render(scene=None, *, centers=None, radii=None, colors=None, shade="normal",
@@ -68,19 +96,20 @@ def render(scene=None, *, centers=None, radii=None, colors=None, shade="normal",
            region=None, dtype="uint8"):
     """Render a scene; returns a numpy.ndarray of shape (H, W, 3), rows top first.
 
-    scene: None (the sky alone), a built-in name ("sky", "red-sphere",
-        "normals", "world"), a scene file's path (str or os.PathLike), or a
-        dict with a scene file's keys ({"camera": {...}, "sky": {...},
-        "spheres": [{"center": [x, y, z], "radius": r}, ...]}).
+    scene: None (the sky alone), a built-in name (<scenes>), a .json scene
+        file's path (str or os.PathLike), as the command line's --scene takes
+        them, or a dict with a scene file's keys ({"camera": {...}, "sky": {...},
+        "spheres": [{"center": [x, y, z], "radius": r}, ...]}; NumPy numbers
+        and arrays in it are read as JSON's).
     centers (N, 3), radii (N,), colors (N, 3): spheres as arrays, for a scene
         without spheres of its own. float32 and float64 arrays are read in
         place, whatever their strides (no copy); other dtypes are converted
         once to float64. They must not change during the call.
-    shade: "normal" (0.5 (N + 1)), "flat" (colors, red without) or "lit",
-        for every sphere of the arrays.
+    shade: "normal" (0.5 (N + 1)), "flat" or "lit" (both show colors, which
+        they require), for every sphere of the arrays.
     width, height, aspect (a number or "W:H"), lookfrom, lookat, vup, vfov
-        (degrees), viewport_height, focal_length, projection ("perspective" or
-        "orthographic": parallel rays from an image plane through lookfrom,
+        (degrees), viewport_height, focal_length, projection (<projections>;
+        orthographic: parallel rays from an image plane through lookfrom,
         viewport_height high; vfov and focal_length then mean nothing),
         sky_bottom, sky_top: override the scene's camera and sky, as the
         command line's options do.
@@ -88,41 +117,42 @@ def render(scene=None, *, centers=None, radii=None, colors=None, shade="normal",
         from it), ao (ambient occlusion rays per hit, 0 to 4096), ao_distance
         (how far they look; unbounded by default): how "lit" spheres are lit,
         over the scene's "light" and "ambient_occlusion" keys.
-    backend: "auto", "reference", "scalar", "sse2", "avx2", "avx512", "neon".
-    precision: "exact" or "fast". threads: 0 for all cores.
-    samples, sampler ("random", "stratified", "sobol"), seed: antialiasing.
+    backend: <backends>.
+    precision: <precisions>. threads: 0 for all cores.
+    samples, sampler (<samplers>), seed: antialiasing.
     region: (x0, y0, x1, y1), the pixels x0 <= x < x1, y0 <= y < y1 (y0 = 0
         at the top) of the image; the result is that window.
     dtype: "uint8" (the command line's bytes) or "float32" (linear colour).
 
-    The GIL is released while rendering. Raises ValueError (a field out of
-    range, an unknown name; .field names it), TypeError (a wrong type) or
-    OSError (a scene file that cannot be read).
+    Every keyword of the command line's (its option with _ for -) is parsed
+    as the command line parses it: the same values are accepted and refused
+    with the same words, and nothing is rounded or coerced (10.5 for a whole
+    number, True for a number). The GIL is released while rendering. Raises
+    ValueError (a value out of range, an unknown name), TypeError (a wrong
+    type) or OSError (a scene file that cannot be read); each has .field
+    naming the keyword or the scene file's key.
     """
     kind, source = "", ""
     if scene is None:
         pass
     elif isinstance(scene, dict):
-        kind, source = "json", _json.dumps(scene)
+        kind, source = "json", _json.dumps(scene, default=_json_value)
     elif isinstance(scene, (str, _os.PathLike)):
-        name = _os.fspath(scene)
-        kind = "builtin" if name in builtin_scenes() else "file"
-        source = name
+        kind, source = "name", _os.fspath(scene)  # a built-in name or a .json file, as --scene
     else:
-        raise TypeError(f"scene: want a name, a path or a dict, got {type(scene).__name__}")
-    if region is not None:
-        region = tuple(int(x) for x in region)
-        if len(region) != 4:
-            raise ValueError(f"region: want 4 numbers (x0, y0, x1, y1), got {len(region)}")
+        raise _type_error("scene", f"want a name, a path or a dict, got {type(scene).__name__}")
+    for name, v in (("shade", shade), ("dtype", dtype)):
+        if not isinstance(v, str):
+            raise _type_error(name, f"want a str, got {type(v).__name__}")
     given = dict(width=width, height=height, aspect=aspect, lookfrom=lookfrom, lookat=lookat, vup=vup,
                  vfov=vfov, viewport_height=viewport_height, focal_length=focal_length,
                  projection=projection, sky_bottom=sky_bottom, sky_top=sky_top, light=light, shadows=shadows,
-                 ao=ao, ao_distance=ao_distance)
-    camera = {k: _token(k, given[k]) for k in _CAMERA_KEYWORDS if given[k] is not None}
+                 ao=ao, ao_distance=ao_distance, backend=backend, precision=precision, threads=threads,
+                 samples=samples, sampler=sampler, seed=seed, region=region)
+    keywords = {k: _token(_FIELD[k], given[k]) for k in _RENDER_KEYWORDS if given[k] is not None}
     return _raycast.render(
         kind, source, _spheres_array("centers", centers), _spheres_array("radii", radii),
-        _spheres_array("colors", colors), str(shade), camera,
-        str(backend), str(precision), int(threads), int(samples), str(sampler), int(seed), region, str(dtype))
+        _spheres_array("colors", colors), shade, keywords, dtype)
 
 
 def write(path, image, format=""):
@@ -131,9 +161,22 @@ def write(path, image, format=""):
     The format comes from the extension (.png, .ppm/.pnm, .jpg/.jpeg,
     .tif/.tiff, .exr) unless format names one; uint8 for all but EXR, which
     takes float32. The file is written under a temporary name and renamed
-    into place: an error (OSError, ValueError) leaves path as it was.
+    into place: an error (OSError, ValueError) leaves path as it was. "-"
+    writes a binary PPM to standard output, as the command line's -o -.
     """
+    if not isinstance(path, (str, _os.PathLike)) or isinstance(_os.fspath(path), bytes):
+        raise _type_error("path", f"want a str or os.PathLike, got {type(path).__name__}")
+    if not isinstance(format, str):
+        raise _type_error("format", f"want a str, got {type(format).__name__}")
+    path = _os.fspath(path)
     image = _np.asarray(image)
     if image.ndim == 3 and image.dtype in (_np.uint8, _np.float32):
         image = _np.ascontiguousarray(image)
-    _raycast.write(_os.fspath(path), image, str(format))
+    if path == "-":
+        _sys.stdout.flush()  # what Python printed comes first
+    _raycast.write(path, image, format)
+
+
+render.__doc__ = (render.__doc__.replace("<scenes>", ", ".join(f'"{n}"' for n in builtin_scenes()))
+                  .replace("<projections>", _names("projection")).replace("<backends>", _names("backend"))
+                  .replace("<precisions>", _names("precision")).replace("<samplers>", _names("sampler")))

@@ -5,6 +5,7 @@ Run by CTest (python.pytest) with PYTHONPATH=<build>/python and RAYCAST_CLI
 the raycast executable."""
 import json
 import os
+import sys
 import subprocess
 import threading
 import time
@@ -281,3 +282,64 @@ def test_light_shadows_and_ao_are_the_clis_bytes(tmp_path):
     with pytest.raises(ValueError) as e:
         raycast.render("lit-world", shadows=True)
     assert e.value.field == "light.shadows" and "needs a directional light" in str(e.value)
+
+
+@pytest.mark.parametrize("kwargs, exc, message", [
+    # The binding layer's types never show: every keyword is parsed as the command line's.
+    (dict(seed=-1), ValueError, "seed: '-1' is not a whole number from 0 to 18446744073709551615"),
+    (dict(threads="x"), ValueError, "threads: 'x' is not an integer"),
+    (dict(samples=2.5), ValueError, "samples: '2.5' is not an integer"),
+    (dict(width=True), ValueError, "camera.width: 'true' is not an integer"),
+    # Nothing is cut or coerced that the command line would refuse.
+    (dict(region=(0, 0, 10.5, 10)), ValueError, "region: number 3: '10.5' is not an integer"),
+    (dict(lookfrom=(1, 2)), ValueError, "camera.lookfrom: '1,2' has 2 component(s), want 3 (x,y,z)"),
+    (dict(lookfrom=[[1, 2, 3]]), TypeError, "camera.lookfrom: want a number, a str or a flat sequence, got list"),
+    (dict(vfov=object()), TypeError, "camera.vfov: want a number or a str, got object"),
+    (dict(centers=np.zeros((1, 3)), radii=np.array([True])), TypeError, "radii: want real numbers, got dtype bool"),
+    (dict(shade=3), TypeError, "shade: want a str, got int"),
+    # Names: the nearest one suggested, as on the command line.
+    (dict(backend="avx"), ValueError,
+     "backend: 'avx' is not one of auto, reference, scalar, sse2, avx2, avx512, neon; did you mean avx2?"),
+    (dict(scene="wrld"), ValueError, "scene: 'wrld' is not one of sky, red-sphere, normals, world, lit-world, "
+                                     "or a .json scene file; did you mean world?"),
+    (dict(dtype="float"), ValueError, "dtype: 'float' is not one of uint8, float32; did you mean float32?"),
+    # lit and flat show colours: required, as in a scene file.
+    (dict(centers=np.zeros((2, 3)) - [0, 0, 2], radii=np.ones(2), shade="lit"), ValueError,
+     "spheres[0].color: is required for lit shading"),
+])
+def test_mistakes_are_answered_in_the_command_lines_words(kwargs, exc, message):
+    with pytest.raises(exc) as e:
+        raycast.render(width=8, **kwargs) if "width" not in kwargs else raycast.render(**kwargs)
+    assert str(e.value) == message
+    assert e.value.field == message.split(":")[0]
+
+
+def test_numpy_numbers_in_a_dict_scene_are_jsons():
+    d = {"camera": {"width": np.int64(32), "vfov": np.float32(60)},
+         "spheres": [{"center": np.array([0.0, 0.0, -1.0]), "radius": np.float64(0.5)}]}
+    plain = {"camera": {"width": 32, "vfov": 60.0}, "spheres": [{"center": [0, 0, -1], "radius": 0.5}]}
+    assert np.array_equal(raycast.render(d), raycast.render(plain))
+    with pytest.raises(TypeError) as e:
+        raycast.render({"spheres": [{"center": {1, 2, 3}, "radius": 1}]})
+    assert e.value.field == "scene"
+
+
+def test_a_dash_writes_a_ppm_to_standard_output(tmp_path):
+    script = ("import raycast; raycast.write('-', raycast.render('world', width=96, samples=4))")
+    p = subprocess.run([sys.executable, "-c", script], capture_output=True, env=dict(os.environ), check=True)
+    assert p.stdout == cli(tmp_path, "--scene", "world", "--width", "96", "--samples", "4")
+    assert not os.path.exists("-")
+    with pytest.raises(ValueError) as e:
+        raycast.write("-", raycast.render(width=8), format="png")
+    assert str(e.value) == "format: standard output takes ppm only, got png"
+
+
+def test_a_file_that_cannot_be_read_is_oserror_and_bad_text_valueerror(tmp_path):
+    with pytest.raises(OSError) as e:
+        raycast.render(tmp_path / "missing.json")
+    assert str(e.value) == f"scene: {tmp_path / 'missing.json'}: No such file or directory" and e.value.kind == "io"
+    bad = tmp_path / "bad.json"
+    bad.write_text('{"spheres": [{"center": [0, 0, -1], "radius": 1},, ]}')
+    with pytest.raises(ValueError) as e:
+        raycast.render(bad)
+    assert e.value.field == "scene" and str(e.value).startswith(f"scene: {bad}: not valid JSON")
