@@ -28,6 +28,12 @@ fine) are markers:
                                     with zero thresholds), whatever their
                                     metadata; several markers may be given
 
+A command shown failing promises its exit status, and the message it
+quotes is the one printed, word for word:
+
+    raycast -w 0 -o x.png || echo "exit status $?"   # 2: raycast: error: --width: ...
+    raycast --scene bad.json -o x.png || echo "exit status $?"   # 2, and no x.png
+
 Exit 0 when every block that runs succeeds and every check holds; otherwise
 the first failure's block, output and cause, and exit 1.
 """
@@ -41,6 +47,8 @@ import sys
 import tempfile
 import time
 
+FAILING = re.compile(r'^(?P<cmd>\s*\S.*?)\s*\|\|\s*echo "exit status \$\?"\s*#\s*(?P<code>\d+)\b'
+                     r'(?::\s*(?P<message>raycast: error: .*?))?\s*$')
 FENCE = re.compile(r"^(```+)\s*([A-Za-z0-9_+-]*)\s*$")
 MARKER = re.compile(r"^<!--\s*(not run|outputs|same pixels)\s*:\s*(.*?)\s*-->\s*$")
 OUTPUT_OPTION = re.compile(r"(?:^|\s)(?:-o|--output)(?:\s+|=)([^\s;&|)'\"]+)")
@@ -92,6 +100,35 @@ def promised_outputs(text, markers):
         if kind == "outputs":
             names += arg.split()
     return list(dict.fromkeys(names))
+
+
+def watch_failing(text, scratch, tag):
+    """The block with each command shown failing made to record its exit
+    status and standard error (still shown), and what each promised:
+    (status file, error file, code, message or None, the line)."""
+    lines, promises = [], []
+    for line in text.splitlines():
+        m = FAILING.match(line)
+        if m:
+            k = len(promises)
+            status, err = os.path.join(scratch, f"status-{tag}-{k}"), os.path.join(scratch, f"stderr-{tag}-{k}")
+            line = (f'{{ {m["cmd"]} ; }} 2>{err} || echo "exit status $?" | tee {status}; cat {err} >&2')
+            promises.append((status, err, int(m["code"]), m["message"], m["cmd"].strip()))
+        lines.append(line)
+    return "\n".join(lines) + "\n", promises
+
+
+def broken_promises(promises):
+    """Why a command shown failing did not fail as its comment says."""
+    problems = []
+    for status, err, code, message, cmd in promises:
+        got = int(open(status).read().split()[-1]) if os.path.exists(status) else 0
+        if got != code:
+            problems.append(f"`{cmd}` exited {got}, its comment says {code}")
+        printed = open(err, encoding="utf-8", errors="replace").read() if os.path.exists(err) else ""
+        if message is not None and printed != message + "\n":
+            problems.append(f"`{cmd}` printed {printed.strip()!r}, its comment quotes {message!r}")
+    return problems
 
 
 def stat_key(path):
@@ -181,13 +218,15 @@ def main():
             outputs = promised_outputs(text, markers)
             before = {o: stat_key(os.path.join(work, o)) for o in outputs}
             t0 = time.monotonic()
-            r = subprocess.run(["bash", "-e", "-o", "pipefail", "-c", text], cwd=work, env=env,
+            watched, promises = watch_failing(text, scratch, line)
+            r = subprocess.run(["bash", "-e", "-o", "pipefail", "-c", watched], cwd=work, env=env,
                                stdin=subprocess.DEVNULL, capture_output=True, text=True, timeout=300)
             took = time.monotonic() - t0
             problems = []
             if r.returncode != 0:
                 problems.append(f"the block exited {r.returncode}")
             else:
+                problems += broken_promises(promises)
                 for o in outputs:
                     why = check_file(os.path.join(work, o), before[o])
                     if why:
