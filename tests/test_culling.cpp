@@ -364,6 +364,93 @@ TEST(DepthOrder, CloudsRenderTheSameInEveryOrder) {
   expect_every_order_alike(dense, "dense cloud of 3000");
 }
 
+// Occlusion (culling.cpp): in a depth-ordered box most spheres hide behind
+// the nearest layers and are left out of the row index, and no pixel
+// changes -- in perspective and orthographic views, with one sample a pixel
+// and with four (whose rays stray across the pixel). Along the lattice's
+// axis, where gaps let every tile see through, nothing is hidden.
+scene medium(scene_params p) {
+  p.camera.image_width = 320;
+  p.camera.image_height = 180;
+  return make_scene(p);
+}
+
+void expect_depth_order_bytes(const scene& s, uint32_t samples, const char* what) {
+  render_options o;
+  o.which = backend::scalar;
+  o.sort_from = 0;
+  o.samples = samples;
+  o.order = sphere_order::scene;
+  const image want = raycast_test::render_with(renderer(s, o), pixel_format::rgb8);
+  o.which = best_backend();
+  o.order = sphere_order::depth;
+  const raycast_test::difference d =
+      raycast_test::compare(raycast_test::render_with(renderer(s, o), pixel_format::rgb8), want);
+  EXPECT_EQ(d.max, 0) << what << ", " << samples << " samples: " << d.where();
+}
+
+size_t hidden_in(const scene& s, bool samples) {
+  const float_scene f = prepare_float_scene(s, 1, 0, sphere_order::depth);
+  return row_index::build(f, samples ? f.pixel_spread : 0.0, 1).hidden;
+}
+
+TEST(DepthOrder, OcclusionLeavesOutHiddenSpheresAndChangesNoPixel) {
+  const auto ortho = [](int64_t n) {
+    scene_params p = raycast_test::particle_box(n, true);
+    p.camera.origin = point3(2.0, 1.7, 2.3);  // off the lattice's axes
+    p.camera.viewport_height = 1.8;
+    return medium(p);
+  };
+  // Spheres a few pixels wide with one sample a pixel; wider with four,
+  // which hide fewer (a sphere covers a pixel where all its samples' rays
+  // surely hit it, and its box is widened by a sample's stray).
+  const std::tuple<const char*, scene, uint32_t> views[] = {
+      {"box", medium(raycast_test::particle_box(8000)), 1},
+      {"box", medium(raycast_test::particle_box(4000)), 4},
+      {"orthographic box", ortho(8000), 1},
+      {"orthographic box", ortho(1000), 4}};
+  for (const auto& [what, s, samples] : views) {
+    EXPECT_GT(hidden_in(s, samples > 1), s.sphere_count() / (samples > 1 ? 50 : 4)) << what << ", " << samples
+                                                                                     << " samples";
+    expect_depth_order_bytes(s, samples, what);
+  }
+  const scene along = medium(raycast_test::particle_box(8000, true));
+  EXPECT_EQ(hidden_in(along, false), 0u) << "the lattice's gaps line up: every tile sees through";
+  expect_depth_order_bytes(along, 1, "box along its axis");
+}
+
+// A sphere that comes after another in depth order (its nearest point is
+// farther) can still be seen in front of that one's surface, near its edge:
+// occlusion must keep it though the first sphere covers every tile of its
+// box. Scaled so that the first sphere's far side is within 1 % of the
+// second's nearest point: a hidden test loose by 1 % would drop it.
+TEST(DepthOrder, OcclusionKeepsASphereInFrontOfANearerOnesSurface) {
+  scene_params p;
+  p.camera.image_width = 180;
+  p.camera.image_height = 180;
+  p.camera.vfov_degrees = 2.0;
+  p.spheres.push_back(flat(vec3(0.0, 0.0, -10.0), 0.05, color(1.0, 0.0, 0.0)));  // near 9.95, far 10.05
+  // Its surface 0.025 off the axis is at depth 9.9567; this one's front is
+  // at 9.953 there (after the first's 9.95 in depth order), in front of it.
+  p.spheres.push_back(flat(vec3(0.025, 0.0, -9.958), 0.005, color(0.0, 1.0, 0.0)));
+  for (int k = 0; k < 6; ++k)  // behind both: a depth order worth walking
+    p.spheres.push_back(flat(vec3(0.02 * k - 0.05, 0.03, -20.0 - k), 0.1, color(0.0, 0.0, 1.0)));
+  const scene s = make_scene(p);
+  const float_scene f = prepare_float_scene(s, 1, 0, sphere_order::depth);
+  const row_index ix = row_index::build(f, 0.0, 1);
+  size_t green = 0;
+  render_options o;
+  o.which = backend::scalar;
+  o.sort_from = 0;
+  o.order = sphere_order::scene;
+  const image want = raycast_test::render_with(renderer(s, o), pixel_format::rgb8);
+  for (int64_t row = 0; row < 180; ++row)
+    for (int64_t col = 0; col < 180; ++col) green += want.byte(row, col, 1) == 255;
+  ASSERT_GT(green, 0u) << "the small sphere should be seen in front of the large one";
+  EXPECT_EQ(ix.hidden, 0u);
+  expect_depth_order_bytes(s, 1, "a sphere in front of a nearer one's surface");
+}
+
 // Two coincident spheres (the same distance at every pixel) behind a field
 // of others, in depth order: the walk may stop once every lane has hit
 // something nearer than the next sphere can be -- never before the later of

@@ -124,6 +124,8 @@ struct plane_family {
   float last, mid;
   int64_t count;
 
+  double n_max;  // the most |N0 + s N1| for s in [-1/2, 1/2] (at an end: |n|^2 is convex)
+
   plane_family(const double* a, const double* step, const double* along, float last_, float mid_, int64_t count_)
       : last(last_), mid(mid_), count(count_) {
     cross(a, along, N0);
@@ -131,6 +133,19 @@ struct plane_family {
     n00 = dot(N0, N0);
     n01 = dot(N0, N1);
     n11 = dot(N1, N1);
+    n_max = std::sqrt(std::max(n00 - n01 + 0.25 * n11, n00 + n01 + 0.25 * n11));
+  }
+
+  // Indices holding range()'s, cheaper (no square root): where plane s comes
+  // within w of the sphere, |fk.n(s)| = |p1| |s - s_c| <= w |n(s)| <= w n_max,
+  // s_c the plane through the centre. False when none is near.
+  bool around(const double* fk, double w, int64_t& lo, int64_t& hi) const {
+    lo = 0;
+    hi = count - 1;
+    const double p0 = dot(fk, N0), p1 = dot(fk, N1);
+    if (count == 1 || !(std::abs(p1) > 0.0)) return true;
+    const double inv = 1.0 / p1, s_c = -p0 * inv, delta = w * n_max * std::abs(inv);
+    return index_range(s_c - delta, s_c + delta, last, mid, 1.0, count, lo, hi);
   }
 
   // The indices i in [0, count) whose plane may come near the sphere at fk
@@ -265,6 +280,217 @@ frame_box box_of(const float_scene& f, const frame_vectors& fv, uint32_t k, doub
   return box;
 }
 
+// Occlusion, for a depth-ordered scene (float_spheres::depth_key): its
+// spheres come nearest first, and a sphere every ray of whose box surely hits
+// a nearer one first cannot be seen, so it is left out of the index (a packed
+// box seen from outside hides most of its spheres behind a few layers).
+// Walked in the scene's order, each sphere is either hidden -- every 4x4
+// tile its box touches is covered, and by hits nearer than it can be -- or
+// kept, and then marks the pixels whose rays surely hit it: rays that pass
+// within its radius less twice the culling margin (its sure radius) of the
+// centre, of a sphere wholly ahead. A tile's depth is the farthest of its
+// pixels' first covering hits, |f| + r (from the plane an orthographic
+// camera's depths are measured from; world units, and 1e-5 more); a sphere is
+// hidden when its nearest distance (its bucket's key, at most |f| - r less
+// 2^-15 of it) is beyond that depth in every tile of its box. Both margins
+// are far above the float intersection's rounding of t |d|, so a hidden
+// sphere's hit would be strictly farther than one the kernel finds: leaving
+// it out changes no pixel, and no tie can involve it. Memory, while the index
+// is built: a byte a pixel, 9 bytes a tile, 8 a column.
+class occlusion {
+ public:
+  static constexpr int64_t T = 4;  // a tile's side, in pixels
+  occlusion(const float_scene& f, double spread)
+      : f_(f), spread_(spread), tw_((f.width + T - 1) / T), th_((f.height + T - 1) / T), su_(size_t(f.width)),
+        covered_(size_t(f.width * f.height)),
+        open_(size_t(tw_ * th_)), far_(size_t(tw_ * th_), 0.0f), depth_(size_t(tw_ * th_), INFINITY) {
+    for (int64_t ty = 0; ty < th_; ++ty)
+      for (int64_t tx = 0; tx < tw_; ++tx)
+        open_[size_t(ty * tw_ + tx)] = uint8_t(std::min<int64_t>(T, f.height - T * ty) * std::min<int64_t>(T, f.width - T * tx));
+    for (int k = 0; k < 3; ++k) h_[k] = f.horizontal[k], c_[k] = f.center[k], v_[k] = f.vertical[k];
+    for (int64_t i = 0; i < f.width; ++i) su_[size_t(i)] = pixel_su(f, i);
+  }
+
+  // Whether every tile of the box is covered by hits nearer than `nearest`.
+  bool hidden(const frame_box& b, float nearest) const {
+    for (int64_t ty = b.r_lo / T; ty <= b.r_hi / T; ++ty)
+      for (int64_t tx = b.c_lo / T; tx <= b.c_hi / T; ++tx)
+        if (!(depth_[size_t(ty * tw_ + tx)] < nearest)) return false;
+    return true;
+  }
+
+  // Marks the pixels of sphere k's box whose rays surely hit it. With many
+  // samples (spread > 0), a pixel's sample rays lie between its corners'
+  // (kernels/scalar.h: the offsets are in [0, 1) of a pixel), and the rays
+  // that surely hit a sphere form a convex set (a cone, or a disc on an
+  // orthographic camera's plane): the pixel is covered where its four
+  // corners' rays are.
+  void cover(uint32_t k, const frame_box& b) {
+    const sphere_record& e = f_.spheres.rec[k];
+    const double r = std::sqrt(double(e.r2)), sure = 2.0 * r - double(f_.spheres.cull_radius[k]);
+    if (f_.orthographic) {
+      const double scale = e.scale, cx = double(e.fx) * scale, cy = double(e.fy) * scale, cz = double(e.fz) * scale;
+      // cz: the depth from the plane the hits' depths (and the keys) are
+      // measured from, plane_offset ahead of the image plane.
+      const double margin = 1e-5 * (std::abs(cx) + std::abs(cy) + std::abs(cz) + r * scale);
+      if (!(sure > 0.0) || !(cz + f_.plane_offset - r * scale > margin)) return;
+      const double w = sure * scale;
+      const auto across = [&](double sv, double& s0, double& s1) {  // the disc on the plane's line
+        const double dy = sv * f_.plane_height - cy;
+        if (!(std::abs(dy) < w)) return false;
+        const double half = std::sqrt(w * w - dy * dy);
+        s0 = (cx - half) / f_.plane_width, s1 = (cx + half) / f_.plane_width;
+        return true;
+      };
+      return cover_rows(b, float(cz + r * scale + margin), across);
+    }
+    if (e.inside || e.near || !(sure > 0.0)) return;
+    const double fk[3] = {e.fx, e.fy, e.fz}, len = std::sqrt(dot(fk, fk));
+    double B[3];
+    cross(fk, h_, B);
+    const double s2 = sure * sure, bb = dot(B, B), hh = dot(h_, h_), fh = dot(fk, h_);
+    // Rays d = a + su h, a = c + sv v, with |f x d|^2 < sure^2 |d|^2 (a
+    // quadratic in su) and f.d < 0 (linear): an interval of su.
+    const auto across = [&](double sv, double& s0, double& s1) {
+      const double a[3] = {c_[0] + sv * v_[0], c_[1] + sv * v_[1], c_[2] + sv * v_[2]};
+      double A[3];
+      cross(fk, a, A);
+      if (!below_zero(bb - s2 * hh, dot(A, B) - s2 * dot(a, h_), dot(A, A) - s2 * dot(a, a), s0, s1) ||
+          !std::isfinite(s0) || !std::isfinite(s1))
+        return false;
+      const double fa = dot(fk, a);
+      if (fh > 0.0) s1 = std::min(s1, -fa / fh);
+      else if (fh < 0.0) s0 = std::max(s0, -fa / fh);
+      else if (!(fa < 0.0)) return false;
+      return true;
+    };
+    cover_rows(b, float((len + r) * double(e.scale) * (1.0 + 1e-5)), across);
+  }
+
+ private:
+  // The box's rows: where across(sv, s0, s1) gives the su interval (s0, s1)
+  // of a row's sure rays, the pixels inside it (with samples: the pixel's
+  // two corner rows' intervals, both corners' columns) are covered at depth.
+  template <class Across>
+  void cover_rows(const frame_box& b, float depth, const Across& across) {
+    const bool corners = spread_ > 0.0;
+    const double du = corners ? double(f_.du) : 0.0, dv = corners ? double(f_.dv) : 0.0;
+    for (int64_t row = b.r_lo; row <= b.r_hi; ++row) {
+      const double sv = pixel_sv(f_, f_.height - 1 - row);
+      double s0 = 0, s1 = 0, t0 = 0, t1 = 0;
+      if (!across(sv, s0, s1)) continue;
+      if (corners) {
+        if (!across(sv + dv, t0, t1)) continue;
+        s0 = std::max(s0, t0), s1 = std::min(s1, t1) - du;
+      }
+      mark(row, b, s0, s1, depth);
+    }
+  }
+
+  // Covers the row's pixels of the box whose su lies inside (s0, s1). (The
+  // ends' rounding is far below the sure radius's margin.)
+  void mark(int64_t row, const frame_box& b, double s0, double s1, float depth) {
+    if (!(s0 < s1)) return;
+    const double w = double(f_.width), last = f_.last_col, mid = f_.mid_col;
+    int64_t i0 = std::max<int64_t>(b.c_lo, int64_t(std::clamp(std::floor(s0 * last + mid), 0.0, w)));
+    int64_t i1 = std::min<int64_t>(b.c_hi, int64_t(std::clamp(std::ceil(s1 * last + mid), -1.0, w - 1.0)));
+    while (i0 <= i1 && !(su_[size_t(i0)] > s0)) ++i0;
+    while (i1 >= i0 && !(su_[size_t(i1)] < s1)) --i1;
+    for (int64_t col = i0; col <= i1; ++col) {
+      const size_t p = size_t(row * f_.width + col);
+      if (covered_[p]) continue;
+      covered_[p] = 1;
+      const size_t t = size_t((row / T) * tw_ + col / T);
+      far_[t] = std::max(far_[t], depth);
+      if (--open_[t] == 0) depth_[t] = far_[t];
+    }
+  }
+
+  const float_scene& f_;
+  double spread_;
+  int64_t tw_, th_;
+  double h_[3], c_[3], v_[3];
+  std::vector<double> su_;         // per column (kernels/scalar.h)
+  std::vector<uint8_t> covered_;  // per pixel, rows top-down
+  std::vector<uint8_t> open_;     // per tile: its pixels not covered yet
+  std::vector<float> far_;        // per tile: the farthest first covering hit
+  std::vector<float> depth_;      // per tile: far_ once every pixel is covered, else infinity
+};
+
+// A box that holds box_of's, cheaper (plane_family::around): false where
+// it is empty or too tall to be worth a test.
+bool rough_box(const float_scene& f, const frame_vectors& fv, uint32_t k, double spread, frame_box& box) {
+  const sphere_record& e = f.spheres.rec[k];
+  const double fk[3] = {e.fx, e.fy, e.fz}, wide = widened(f.spheres, k, spread);
+  int64_t j_lo = 0, j_hi = 0, c_lo = 0, c_hi = 0;
+  if (!fv.rows.around(fk, wide, j_lo, j_hi) || j_hi - j_lo >= boxed_rows || !fv.cols.around(fk, wide, c_lo, c_hi))
+    return false;
+  box = {int32_t(f.height - 1 - j_hi), int32_t(f.height - 1 - j_lo), int32_t(c_lo), int32_t(c_hi)};
+  return true;
+}
+
+// A sphere in some row of the frame, and its box.
+struct placed_box {
+  uint32_t sphere;
+  frame_box box;
+};
+using placed_boxes = std::vector<placed_box, huge_page_allocator<placed_box>>;
+
+// Spheres [k0, k1)'s boxes (box_of), with up to `team` threads, appended to
+// out where they are in some row.
+void append_boxes(const float_scene& f, const frame_vectors& fv, double spread, int team, size_t k0, size_t k1,
+                  placed_boxes& out) {
+  std::vector<frame_box, huge_page_allocator<frame_box>> box(k1 - k0);
+#pragma omp parallel for schedule(static) num_threads(team)
+  for (size_t k = k0; k < k1; ++k) box[k - k0] = box_of(f, fv, uint32_t(k), spread);
+  out.reserve(out.size() + box.size());
+  for (size_t k = k0; k < k1; ++k)
+    if (box[k - k0].r_lo <= box[k - k0].r_hi) out.push_back({uint32_t(k), box[k - k0]});
+}
+
+// The spheres in some row of the frame, in the float scene's order, with
+// their boxes (box_of). In a depth-ordered scene, the spheres occlusion
+// hides are left out too (rough boxes first: most of a deep scene's
+// spheres are hidden, and need no exact box); `hidden` counts them. Where
+// the nearest sixteenth of the spheres hides less than an eighth of itself
+// (a lattice seen along its axis, whose gaps let every tile see through),
+// the rest are boxed as in any other scene.
+placed_boxes boxes(const float_scene& f, double spread, int team, size_t& hidden) {
+  const size_t n = f.spheres.size();
+  const frame_vectors fv(f);
+  placed_boxes out;
+  hidden = 0;
+  if (f.spheres.depth_key.empty() || f.tiny_directions) {
+    append_boxes(f, fv, spread, team, 0, n, out);
+    return out;
+  }
+  occlusion occ(f, spread);
+  const size_t check = std::max<size_t>(n / 16, 4096);
+  for (size_t k = 0; k < n; ++k) {
+    if (k == check && hidden < k / 8) {
+      append_boxes(f, fv, spread, team, k, n, out);
+      break;
+    }
+    const float nearest = f.spheres.depth_key[f.spheres.rec[k].depth];
+    frame_box b;
+    if (!f.orthographic && rough_box(f, fv, uint32_t(k), spread, b) && occ.hidden(b, nearest)) {
+      ++hidden;
+      continue;
+    }
+    b = box_of(f, fv, uint32_t(k), spread);
+    if (b.r_lo > b.r_hi) continue;  // in no row
+    if (b.c_lo >= 0) {  // tall spheres are kept, and cover nothing
+      if (occ.hidden(b, nearest)) {
+        ++hidden;
+        continue;
+      }
+      occ.cover(uint32_t(k), b);
+    }
+    out.push_back({uint32_t(k), b});
+  }
+  return out;
+}
+
 }  // namespace
 
 bool sphere_rows(const float_scene& f, uint32_t k, int64_t& j_lo, int64_t& j_hi, double spread) {
@@ -300,14 +526,10 @@ row_index row_index::build(const float_scene& f, double spread, int threads) {
   if (n == 0) return ix;
   // Below this many spheres a thread costs more than it saves.
   const int team = n < (size_t(1) << 15) ? 1 : std::max(1, threads);
-  const frame_vectors fv(f);
-  std::vector<frame_box, huge_page_allocator<frame_box>> box(n);
-#pragma omp parallel for schedule(static) num_threads(team)
-  for (size_t k = 0; k < n; ++k) box[k] = box_of(f, fv, uint32_t(k), spread);
+  const placed_boxes placed = boxes(f, spread, team, ix.hidden);
   // Counts per row from a difference array, then their prefix sums.
   std::vector<int64_t> diff(size_t(H) + 1, 0);
-  for (const frame_box& b : box)
-    if (b.r_lo <= b.r_hi) ++diff[size_t(b.r_lo)], --diff[size_t(b.r_hi) + 1];
+  for (const placed_box& p : placed) ++diff[size_t(p.box.r_lo)], --diff[size_t(p.box.r_hi) + 1];
   int64_t running = 0;
   for (int64_t r = 0; r < H; ++r) {
     running += diff[size_t(r)];
@@ -325,12 +547,12 @@ row_index row_index::build(const float_scene& f, double spread, int threads) {
     const int t = omp_get_thread_num(), p = omp_get_num_threads();
     const int64_t r0 = H * t / p, r1 = H * (t + 1) / p;
     std::vector<uint64_t> cursor(ix.first.begin() + r0, ix.first.begin() + r1);
-    for (size_t k = 0; k < n; ++k) {
-      const frame_box& b = box[k];
+    for (const placed_box& pb : placed) {
+      const frame_box& b = pb.box;
       const int64_t lo = std::max<int64_t>(b.r_lo, r0), hi = std::min<int64_t>(b.r_hi, r1 - 1);
       if (lo > hi) continue;
-      const row_entry e = b.c_lo < 0 ? row_entry{uint32_t(k), row_entry::tall, 0}
-                                     : row_entry{uint32_t(k), uint16_t(b.c_lo >> shift), uint16_t(b.c_hi >> shift)};
+      const row_entry e = b.c_lo < 0 ? row_entry{pb.sphere, row_entry::tall, 0}
+                                     : row_entry{pb.sphere, uint16_t(b.c_lo >> shift), uint16_t(b.c_hi >> shift)};
       for (int64_t r = lo; r <= hi; ++r) ix.list[cursor[size_t(r - r0)]++] = e;
     }
   }

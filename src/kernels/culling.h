@@ -7,9 +7,13 @@
 //  - per frame, a row index: for every image row, the spheres whose
 //    bounding rows cover it (sphere_rows), in the float scene's order, each with the
 //    columns it may touch. Built once by the renderer, in parallel over the
-//    spheres, and read-only afterwards. Memory: 8 bytes per row plus 8 bytes
-//    per entry (an entry is a sphere in a row it may touch: its projected
-//    height in rows plus two), and 16 bytes per sphere while it is built.
+//    spheres, and read-only afterwards. In a depth-ordered scene, spheres
+//    that nearer ones surely hide at every pixel of their box are left out
+//    (occlusion, culling.cpp: a walk in depth order, on one thread). Memory:
+//    8 bytes per row plus 8 bytes per entry (an entry is a sphere in a row it
+//    may touch: its projected height in rows plus two), and while it is
+//    built 16 bytes per sphere (20 per kept sphere with occlusion, and a
+//    byte a pixel).
 //  - per row, while it is rendered: each listed sphere's batches (from its
 //    columns, or for a tall sphere an exact quadratic in the column), turned
 //    into one list per batch of columns (batch_culler). 12 bytes per listed
@@ -77,6 +81,7 @@ struct row_index {
   std::vector<uint64_t> first;  // list[first[r] .. first[r + 1]) for row r
   std::vector<row_entry, huge_page_allocator<row_entry>> list;  // 8 bytes per entry
   size_t most = 0;                // the longest row's count
+  size_t hidden = 0;              // spheres left out as hidden by nearer ones (occlusion)
   int shift = 0;                  // the entries' column unit, 2^shift
 
   // Built with up to `threads` threads; the same bytes for any count.
