@@ -156,20 +156,20 @@ int main(int argc, char** argv) {
   io::reserve_standard_streams();
   io::install_signal_handlers();
   // The environment is part of the command: a malformed value is refused
-  // like a malformed option, before anything is printed or touched
-  // (--version names the backend RAYCAST_MAX_ISA caps).
+  // like a malformed option, before anything is touched -- RAYCAST_MAX_ISA
+  // before anything is printed (--version names the backend it caps).
   if (auto why = max_isa_error()) {
     print_error("RAYCAST_MAX_ISA: " + *why);
-    return 2;
-  }
-  if (auto why = io::source_date_epoch().error) {
-    print_error("SOURCE_DATE_EPOCH: " + *why);
     return 2;
   }
   cli::parse_result parsed = cli::parse_args(argc, argv, std::cout, std::cerr);
   if (!parsed.run) {
     if (parsed.exit_code == 0 && !standard_output_flushed()) return 1;
     return parsed.exit_code;
+  }
+  if (auto why = io::source_date_epoch().error) {
+    print_error("SOURCE_DATE_EPOCH: " + *why);
+    return 2;
   }
   try {
     run_stats st;

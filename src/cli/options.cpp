@@ -282,7 +282,7 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
     region_of(cli, cp, j);
     return {std::move(j), 0};
   } catch (const usage_error& e) {
-    err << "raycast: error: " << e.option << ": " << printable(e.why) << "\n";
+    err << "raycast: error: " << printable(e.option) << ": " << printable(e.why) << "\n";
     return {std::nullopt, e.exit_code};
   }
 }

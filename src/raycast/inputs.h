@@ -32,12 +32,12 @@ blamed blame(const invalid_field& e, const settings& merged, bool have_file);
 
 namespace raycast::api {
 
-// A scene -- kind "builtin" (source: its name), "file" (a path), "json" (the
-// text), "name" (as the command line's --scene: a built-in name or a .json
-// file, anything else refused with the built-in names) or "" (the sky
-// alone) -- with settings merged over its camera and sky keys before they
-// are resolved, as the command line's options over a scene file: the Python
-// module's keywords (errors name the scene file's key).
+// A scene -- kind "name" (as the command line's --scene: a built-in name or
+// a .json file, anything else refused with the built-in names), "json" (a
+// scene file's text) or "" (the sky alone) -- with settings merged over its
+// camera and sky keys before they are resolved, as the command line's
+// options over a scene file: the Python module's keywords (errors name the
+// scene file's key).
 scene scene_with(const std::string& kind, const std::string& source, const settings& over);
 
 }  // namespace raycast::api

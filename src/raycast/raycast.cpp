@@ -248,22 +248,17 @@ scene parse_scene(const std::string& json_text) {
 
 scene scene_with(const std::string& kind, const std::string& source, const settings& over) {
   scene_file_contents c;
-  if (kind == "builtin") {
-    c.scene = to_internal(builtin_scene(source));
-  } else if (kind == "file" || kind == "json" || kind == "name") {
-    auto read = kind == "file" ? read_scene_file(source) : kind == "name" ? read_scene(source) : read_scene_text(source);
-    if (auto* e = std::get_if<scene_file_error>(&read)) {
-      const bool named = kind == "file" || (kind == "name" && is_scene_file_name(source));
-      const std::string prefix = named ? source + ": " : "";
+  // A file's errors, and its values' refused below, name it first.
+  const std::string file = kind == "name" && is_scene_file_name(source) ? source + ": " : "";
+  if (kind == "json" || kind == "name") {
+    auto read = kind == "name" ? read_scene(source) : read_scene_text(source);
+    if (auto* e = std::get_if<scene_file_error>(&read))
       throw error(e->io ? error::kind::io : error::kind::invalid_argument, e->path.empty() ? "scene" : e->path,
-                  prefix + e->message);
-    }
+                  file + e->message);
     c = std::move(std::get<scene_file_contents>(read));
   }
   settings merged = c.keys;
   merge(merged, over, scene_settings());
-  // A file's value is refused as a file's error: the file named first.
-  const std::string file = kind == "file" || (kind == "name" && is_scene_file_name(source)) ? source + ": " : "";
   if (auto e = resolve(merged, c.scene.camera, c.scene.sky, c.scene.light)) {
     const bool from_file = e->row && merged.has(e->row->id) && !merged[e->row->id]->where.empty();
     invalid(e->source, (from_file ? file : "") + e->message);

@@ -87,7 +87,8 @@ struct sphere_arrays {
   size_t count = 0;
   column centers;  // count x 3
   column radii;    // count
-  column colors;   // count x 3, or data null (then every colour is red)
+  column colors;   // count x 3; data null: normal shading only (flat and lit
+                   // spheres show their colours and need them, as a scene file's)
   shading shade = shading::normal;  // all spheres', unless shades is set
   const shading* shades = nullptr;  // one per sphere
 };

@@ -31,8 +31,8 @@ fine) are markers:
 A command shown failing promises its exit status, and the message it
 quotes is the one printed, word for word:
 
-    raycast -w 0 -o x.png || echo "exit status $?"   # 2: raycast: error: --width: ...
-    raycast --scene bad.json -o x.png || echo "exit status $?"   # 2, and no x.png
+    raycast -w 0 -o x.png || echo "exit status $?"   # 2: raycast: error: --width: '0' is too small (at least 1)
+    raycast --scene bad.json -o x.png || echo "exit status $?"   # 2, and no x.png (the status only)
 
 Exit 0 when every block that runs succeeds and every check holds; otherwise
 the first failure's block, output and cause, and exit 1.
@@ -48,7 +48,8 @@ import tempfile
 import time
 
 FAILING = re.compile(r'^(?P<cmd>\s*\S.*?)\s*\|\|\s*echo "exit status \$\?"\s*#\s*(?P<code>\d+)\b'
-                     r'(?::\s*(?P<message>raycast: error: .*?))?\s*$')
+                     r'(?::\s*(?P<message>raycast: error: .*?)|[^:].*)?\s*$')
+SHOWN_FAILING = re.compile(r'\|\|\s*echo "exit status \$\?"')
 FENCE = re.compile(r"^(```+)\s*([A-Za-z0-9_+-]*)\s*$")
 MARKER = re.compile(r"^<!--\s*(not run|outputs|same pixels)\s*:\s*(.*?)\s*-->\s*$")
 OUTPUT_OPTION = re.compile(r"(?:^|\s)(?:-o|--output)(?:\s+|=)([^\s;&|)'\"]+)")
@@ -109,6 +110,8 @@ def watch_failing(text, scratch, tag):
     lines, promises = [], []
     for line in text.splitlines():
         m = FAILING.match(line)
+        if SHOWN_FAILING.search(line) and not m:
+            raise SystemExit(f"a command shown failing without '# CODE' or '# CODE: raycast: error: ...': {line}")
         if m:
             k = len(promises)
             status, err = os.path.join(scratch, f"status-{tag}-{k}"), os.path.join(scratch, f"stderr-{tag}-{k}")

@@ -143,7 +143,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const cli::parse_result parsed = cli::parse_args(int(args.size()), argv.data(), out, err);
 
   if (!parsed.run) {
-    if (parsed.exit_code == 2) {
+    // 2: a usage error; 1: a scene file that cannot be read (an I/O failure).
+    if (parsed.exit_code == 2 || parsed.exit_code == 1) {
       // One line, but for the line breaks of arguments the message quotes.
       const std::string e = err.str();
       long breaks_given = 0;
@@ -151,7 +152,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         breaks_given += std::count(args[k].begin(), args[k].end(), '\n');
       if (e.rfind("raycast: error: ", 0) != 0 || e.back() != '\n' ||
           std::count(e.begin(), e.end(), '\n') > 1 + breaks_given)
-        fail("a usage error must be one line 'raycast: error: ...', got: " + e);
+        fail("an error must be one line 'raycast: error: ...', got: " + e);
     } else if (parsed.exit_code != 0) {
       fail("parse_args returned exit code " + std::to_string(parsed.exit_code));
     }

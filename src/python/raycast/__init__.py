@@ -177,6 +177,7 @@ def write(path, image, format=""):
     _raycast.write(path, image, format)
 
 
-render.__doc__ = (render.__doc__.replace("<scenes>", ", ".join(f'"{n}"' for n in builtin_scenes()))
-                  .replace("<projections>", _names("projection")).replace("<backends>", _names("backend"))
-                  .replace("<precisions>", _names("precision")).replace("<samplers>", _names("sampler")))
+if render.__doc__:  # (python -OO drops docstrings)
+    render.__doc__ = (render.__doc__.replace("<scenes>", ", ".join(f'"{n}"' for n in builtin_scenes()))
+                      .replace("<projections>", _names("projection")).replace("<backends>", _names("backend"))
+                      .replace("<precisions>", _names("precision")).replace("<samplers>", _names("sampler")))
