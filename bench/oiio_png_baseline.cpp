@@ -9,7 +9,7 @@
 
 int main(int argc, char** argv) {
   const char* path = argc > 1 ? argv[1] : "baseline.png";
-  const raycast::scene s{raycast::make_camera({}), {}, {}};
+  const raycast::scene s{raycast::make_camera({}), {}, {}, std::nullopt, {}};
   const int64_t W = s.cam.image_width, H = s.cam.image_height;
   std::vector<unsigned char> pixels(size_t(W * H * 3));
   raycast::renderer(s, {}).render(

@@ -414,6 +414,13 @@ TEST(DepthOrder, OcclusionLeavesOutHiddenSpheresAndChangesNoPixel) {
                                                                                      << " samples";
     expect_depth_order_bytes(s, samples, what);
   }
+  // Tiles cut by the image's edges, and one row.
+  for (const auto& [w, h] : {std::pair<int64_t, int64_t>{321, 179}, {320, 1}}) {
+    scene_params p = raycast_test::particle_box(8000);
+    p.camera.image_width = w;
+    p.camera.image_height = h;
+    expect_depth_order_bytes(make_scene(p), 1, "box, odd sizes");
+  }
   const scene along = medium(raycast_test::particle_box(8000, true));
   EXPECT_EQ(hidden_in(along, false), 0u) << "the lattice's gaps line up: every tile sees through";
   expect_depth_order_bytes(along, 1, "box along its axis");

@@ -355,6 +355,7 @@ class occlusion {
       const double a[3] = {c_[0] + sv * v_[0], c_[1] + sv * v_[1], c_[2] + sv * v_[2]};
       double A[3];
       cross(fk, a, A);
+      s0 = INFINITY, s1 = -INFINITY;  // left so where the set is no bounded interval: no rays
       if (!below_zero(bb - s2 * hh, dot(A, B) - s2 * dot(a, h_), dot(A, A) - s2 * dot(a, a), s0, s1) ||
           !std::isfinite(s0) || !std::isfinite(s1))
         return false;
@@ -377,7 +378,7 @@ class occlusion {
     const double du = corners ? double(f_.du) : 0.0, dv = corners ? double(f_.dv) : 0.0;
     for (int64_t row = b.r_lo; row <= b.r_hi; ++row) {
       const double sv = pixel_sv(f_, f_.height - 1 - row);
-      double s0 = 0, s1 = 0, t0 = 0, t1 = 0;
+      double s0 = 0, s1 = 0, t0 = 0, t1 = 0;  // empty unless across() sets them
       if (!across(sv, s0, s1)) continue;
       if (corners) {
         if (!across(sv + dv, t0, t1)) continue;
@@ -440,12 +441,14 @@ using placed_boxes = std::vector<placed_box, huge_page_allocator<placed_box>>;
 // out where they are in some row.
 void append_boxes(const float_scene& f, const frame_vectors& fv, double spread, int team, size_t k0, size_t k1,
                   placed_boxes& out) {
-  std::vector<frame_box, huge_page_allocator<frame_box>> box(k1 - k0);
+  const size_t at = out.size();
+  out.resize(at + (k1 - k0));
 #pragma omp parallel for schedule(static) num_threads(team)
-  for (size_t k = k0; k < k1; ++k) box[k - k0] = box_of(f, fv, uint32_t(k), spread);
-  out.reserve(out.size() + box.size());
-  for (size_t k = k0; k < k1; ++k)
-    if (box[k - k0].r_lo <= box[k - k0].r_hi) out.push_back({uint32_t(k), box[k - k0]});
+  for (size_t k = k0; k < k1; ++k) out[at + (k - k0)] = {uint32_t(k), box_of(f, fv, uint32_t(k), spread)};
+  // The spheres in no row out, the others kept in their order.
+  out.erase(std::remove_if(out.begin() + ptrdiff_t(at), out.end(),
+                           [](const placed_box& p) { return p.box.r_lo > p.box.r_hi; }),
+            out.end());
 }
 
 // The spheres in some row of the frame, in the float scene's order, with

@@ -12,8 +12,8 @@
 //    (occlusion, culling.cpp: a walk in depth order, on one thread). Memory:
 //    8 bytes per row plus 8 bytes per entry (an entry is a sphere in a row it
 //    may touch: its projected height in rows plus two), and while it is
-//    built 16 bytes per sphere (20 per kept sphere with occlusion, and a
-//    byte a pixel).
+//    built 20 bytes per sphere (with occlusion, per sphere kept, and a byte
+//    a pixel).
 //  - per row, while it is rendered: each listed sphere's batches (from its
 //    columns, or for a tall sphere an exact quadratic in the column), turned
 //    into one list per batch of columns (batch_culler). 12 bytes per listed
