@@ -76,7 +76,7 @@ int run(cli::job& j, run_stats& st) {
   // and written in bands of whole region rows (raycast/bands.h).
   const cli::pixel_region& reg = j.region;
   const int64_t W = reg.width(), H = reg.height();
-  auto sink = j.output == "-" ? io::open_stdout_sink(W, H) : io::open_file_sink(j.output, j.format, W, H);
+  auto sink = io::open_sink(j.output, j.format, W, H);
   progress bar(!j.quiet && isatty(STDERR_FILENO), H);
   const band_timings bt =
       render_to_sink(r, pixel_rect{reg.x0, reg.y0, reg.x1, reg.y1}, io::pixel_format_for(j.format), *sink, j.output,

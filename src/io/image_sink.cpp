@@ -71,6 +71,10 @@ class module_sink final : public image_sink {
 
 }  // namespace
 
+std::unique_ptr<image_sink> open_sink(const std::string& path, file_format format, int64_t width, int64_t height) {
+  return path == "-" ? open_stdout_sink(width, height) : open_file_sink(path, format, width, height);
+}
+
 std::unique_ptr<image_sink> open_stdout_sink(int64_t width, int64_t height) {
   set_failure_subject("standard output");
   if (isatty(STDOUT_FILENO)) throw io_error(std::string("standard output: ") + terminal_refusal);

@@ -31,4 +31,8 @@ std::unique_ptr<image_sink> open_file_sink(const std::string& path, file_format 
 // A binary PPM on standard output (errors name "standard output").
 std::unique_ptr<image_sink> open_stdout_sink(int64_t width, int64_t height);
 
+// Where a path is taken, "-" is standard output (format: PPM, checked by the
+// caller, format.h's stdout_format_error); any other path, a file.
+std::unique_ptr<image_sink> open_sink(const std::string& path, file_format format, int64_t width, int64_t height);
+
 }  // namespace raycast::io

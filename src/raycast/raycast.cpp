@@ -197,11 +197,6 @@ io::file_format file_format_for(const std::string& path, const std::string& form
   return f;
 }
 
-// A file, or standard output for "-" (a binary PPM, as the command line's).
-std::unique_ptr<io::image_sink> open_sink(const std::string& path, io::file_format f, int64_t width, int64_t height) {
-  return path == "-" ? io::open_stdout_sink(width, height) : io::open_file_sink(path, f, width, height);
-}
-
 void check_sides(io::file_format f, int64_t w, int64_t h) {
   if (const int64_t side = io::max_side(f); side > 0 && std::max(w, h) > side)
     invalid("format", std::string(io::display_name(f)) + " supports at most " + std::to_string(side) +
@@ -317,7 +312,7 @@ void job::write(const std::string& path, const std::string& format) const {
   check_sides(f, width(), height());
   find_installed_module();
   try {
-    auto sink = open_sink(path, f, width(), height());
+    auto sink = io::open_sink(path, f, width(), height());
     render_to_sink(*p_->r, p_->region, io::pixel_format_for(f), *sink, path);
   } catch (const io::io_error& e) {
     rethrow_io(e);
@@ -341,7 +336,7 @@ void write(const std::string& path, const void* data, size_t stride, int64_t wid
   check_sides(f, width, height);
   find_installed_module();
   try {
-    auto sink = open_sink(path, f, width, height);
+    auto sink = io::open_sink(path, f, width, height);
     sink->write_rows(0, height, static_cast<const unsigned char*>(data), stride);
     sink->finish();
   } catch (const io::io_error& e) {
