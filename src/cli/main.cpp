@@ -70,7 +70,7 @@ int run(cli::job& j, run_stats& st) {
   st.prepare = seconds_since(t);
   // The renderer keeps its own copy of the scene: the job's spheres (a scene
   // file's millions) are not needed any more.
-  st.spheres = j.sc.spheres.size();
+  st.spheres = j.sc.arrays ? j.sc.arrays->count : j.sc.spheres.size();
   std::vector<sphere>().swap(j.sc.spheres);
   // The output is the region (the whole image unless --region), rendered
   // and written in bands of whole region rows (raycast/bands.h).

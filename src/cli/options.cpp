@@ -139,9 +139,11 @@ std::string in_our_words(std::string message) {
 scene_params scene_of(const settings& cli, job& j) {
   scene_file_contents contents;
   std::string file;  // a scene file's name, for errors of its keys
+  const particle_settings particles = particles_of(cli, cli.has(scene) ? cli[scene]->v.text : "");
+  if (particles.refused) throw usage_error{std::string(particles.refused->option), particles.why};
   if (cli.has(scene)) {
     const auto start = std::chrono::steady_clock::now();
-    auto read = read_scene(cli[scene]->v.text);
+    auto read = read_scene(cli[scene]->v.text, particles.options);
     j.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (auto* e = std::get_if<scene_file_error>(&read)) {
       const std::string& name = cli[scene]->v.text;

@@ -108,7 +108,11 @@ keyword_values parse_keywords(const std::map<std::string, std::string>& keywords
       continue;
     }
     if (auto e = raycast::check_range(*row, g)) value_error(g.source, *e);
-    set_option(out.run, *row, g);
+    using enum raycast::setting_id;
+    if (row->id == radius || row->id == color_by || row->id == colormap || row->id == color_range)
+      out.scene[row->id] = std::move(g);  // how a particle file is read: scene_with's
+    else
+      set_option(out.run, *row, g);
   }
   if (auto e = raycast::check_groups(raycast::scene_settings(), out.scene)) value_error(e->source, e->message);
   return out;
@@ -193,7 +197,7 @@ void find_image_module() {
 // The input table as Python values.
 py::list input_table() {
   static constexpr const char* types[] = {"integer", "real", "aspect", "triple", "name",
-                                          "region", "seed", "text", "flag"};
+                                          "region", "seed", "text", "flag", "interval"};
   py::list rows;
   for (const raycast::setting& r : raycast::input_table()) {
     py::dict row;

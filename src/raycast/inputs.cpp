@@ -8,6 +8,8 @@
 #include "render/backend.h"
 #include "render/render.h"
 #include "scene/builtin.h"
+#include "scene/colormap.h"
+#include "scene/ply.h"
 #include "scene/sampler.h"
 
 namespace raycast {
@@ -40,7 +42,7 @@ std::vector<setting> build() {
        "Output file; '-' writes binary PPM to standard output"});
   run({scene, "--scene", "", "", "", vt::text, {}, {}, "NAME|FILE", "sky",
        keep("Built-in scene (" + builtin_scene_list() +
-            ") or a .json scene file, whose settings the other options override")});
+            ") or a .json scene file, whose settings the other options override, or a .ply particle file")});
   run({format, "--format", "", "", "format", vt::name, {}, io::format_name_list(), "FMT", "",
        "overrides the extension", 0, true});
   run({setting_id::backend, "--backend", "", "", "backend", vt::name, {}, backends, "NAME",
@@ -57,6 +59,14 @@ std::vector<setting> build() {
   run({region, "--region", "", "", "region", vt::region, {}, {}, "X0,Y0,X1,Y1", "the whole image",
        "Render and write only the pixels x0 <= x < x1, y0 <= y < y1 of the image (y0 = 0 is the top row), the "
        "same bytes as those of the whole image"});
+  run({radius, "--radius", "", "", "radius", vt::real, {0.0, max_sphere_extent, true, false}, {}, "R",
+       "the file's radius property", "Every sphere's radius, for a .ply particle file (instead of its radius property)"});
+  run({color_by, "--color-by", "", "", "color_by", vt::text, {}, {}, "NAME", "the file's red green blue",
+       "Colour a .ply particle file's spheres by this vertex property, through --colormap"});
+  run({setting_id::colormap, "--colormap", "", "", "colormap", vt::name, {}, colormap_names, "NAME", "viridis",
+       "The colours of --color-by, low to high"});
+  run({color_range, "--color-range", "", "", "color_range", vt::interval, {}, {}, "LO,HI",
+       "the property's min and max", "The values --color-by maps to the colormap's ends (beyond them: the ends)"});
   run({quiet, "--quiet", "-q", "", "", vt::flag, {}, {}, "", "", "No progress on standard error"});
   run({stats, "--stats", "", "", "", vt::flag, {}, {}, "", "",
        "After the run, print on standard error the seconds to load, prepare, render and write, rays per "
@@ -66,6 +76,28 @@ std::vector<setting> build() {
 }
 
 }  // namespace
+
+particle_settings particles_of(const settings& s, std::string_view scene_name, bool keywords) {
+  particle_settings r;
+  for (setting_id id : {radius, color_by, setting_id::colormap, color_range}) {
+    if (!s.has(id)) continue;
+    r.refused = &input_row(id);
+    if (!is_ply_file_name(scene_name)) {
+      r.why = "applies to .ply particle files only (this scene gives its spheres' own radii and colours)";
+      return r;
+    }
+    if ((id == setting_id::colormap || id == color_range) && !s.has(color_by)) {
+      r.why = keywords ? "needs color_by (the property it colours by)" : "needs --color-by NAME (the property it colours by)";
+      return r;
+    }
+    r.refused = nullptr;
+  }
+  if (s.has(radius)) r.options.radius = s[radius]->v.real;
+  if (s.has(color_by)) r.options.color_by = s[color_by]->v.text;
+  if (s.has(setting_id::colormap)) r.options.map = raycast::colormap(s[setting_id::colormap]->v.name);
+  if (s.has(color_range)) r.options.color_range = {s[color_range]->v.triple[0], s[color_range]->v.triple[1]};
+  return r;
+}
 
 std::span<const setting> input_table() {
   static const std::vector<setting> table = build();

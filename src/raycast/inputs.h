@@ -10,11 +10,24 @@
 
 #include "raycast/raycast.h"
 #include "scene/invalid.h"
+#include "scene/ply.h"
 #include "scene/settings.h"
 
 namespace raycast {
 
 std::span<const setting> input_table();
+
+// The particle options given (--radius, --color-by, --colormap,
+// --color-range; ranges checked already), or the first refused and why: any
+// of them for a scene that is not a .ply file, a colormap or range without
+// --color-by. scene_name: --scene's value ("" for none); keywords: name the
+// library's keywords (color_by) rather than the options (--color-by).
+struct particle_settings {
+  particle_options options;
+  const setting* refused = nullptr;
+  std::string why;
+};
+particle_settings particles_of(const settings& s, std::string_view scene_name, bool keywords = false);
 const setting& input_row(setting_id id);
 
 // Who set the field a scene's check refused (scene/scene.h's validate): the

@@ -1,6 +1,7 @@
 #include "raycast/raycast.h"
 
 #include <algorithm>
+#include <charconv>
 #include <new>
 #include <string_view>
 #include <utility>
@@ -60,10 +61,18 @@ shading from_internal(raycast::shading s) {
 point3 to_internal(const vec3& v) { return point3(v[0], v[1], v[2]); }
 vec3 from_internal(const point3& v) { return {v.x, v.y, v.z}; }
 
+// The two element enumerations agree value for value.
 sphere_view::column to_internal(const sphere_arrays::column& c, ptrdiff_t packed) {
-  const ptrdiff_t size = c.type == sphere_arrays::element::f32 ? 4 : 8;
-  return {c.data, c.type == sphere_arrays::element::f32 ? sphere_view::element::f32 : sphere_view::element::f64,
-          c.stride ? c.stride : packed * size, c.component_stride ? c.component_stride : size};
+  const ptrdiff_t size = c.type == sphere_arrays::element::f32 ? 4 : c.type == sphere_arrays::element::u8 ? 1 : 8;
+  if (uint8_t(c.type) > uint8_t(sphere_arrays::element::u8)) invalid("arrays", "an element type it does not know");
+  const ptrdiff_t stride = c.stride == sphere_arrays::one_for_all ? 0 : c.stride ? c.stride : packed * size;
+  return {c.data, sphere_view::element(uint8_t(c.type)), stride,
+          c.component_stride ? c.component_stride : size, c.byte_swapped};
+}
+
+sphere_arrays::column from_internal(const sphere_view::column& c) {
+  return {c.data, sphere_arrays::element(uint8_t(c.type)), c.stride ? c.stride : sphere_arrays::one_for_all,
+          c.component_stride, c.swapped};
 }
 
 scene_params to_internal(const scene& s) {
@@ -103,6 +112,7 @@ scene_params to_internal(const scene& s) {
     v.radii = to_internal(a.radii, 1);
     if (a.colors.data) v.colors = to_internal(a.colors, 3);
     v.shade = to_internal(a.shade, "shade");
+    v.owner = a.owner;
     if (a.shades) {
       // Read in place: the two enumerations agree value for value.
       for (size_t k = 0; k < a.count; ++k) {
@@ -140,6 +150,17 @@ scene from_internal(const scene_params& p) {
   s.spheres.reserve(p.spheres.size());
   for (const raycast::sphere& b : p.spheres)
     s.spheres.push_back(sphere{from_internal(b.center), b.radius, from_internal(b.shade), from_internal(b.flat_color)});
+  if (p.arrays) {
+    const sphere_view& v = *p.arrays;
+    sphere_arrays a;
+    a.count = v.count;
+    a.centers = from_internal(v.centers);
+    a.radii = from_internal(v.radii);
+    if (v.colors.data) a.colors = from_internal(v.colors);
+    a.shade = from_internal(v.shade);
+    a.owner = v.owner;  // a view's per-sphere shades are a caller's: none come back this way
+    s.arrays = a;
+  }
   return s;
 }
 
@@ -212,6 +233,29 @@ void find_installed_module() {
 #endif
 }
 
+// The particle options as the command line's settings, each checked by its row.
+settings particle_layer(const particles& p) {
+  settings s;
+  const auto set = [&s](setting_id id, const std::string& text) {
+    const setting& row = input_row(id);
+    given g;
+    g.source = row.keyword;
+    if (auto e = parse_value(row, text, g)) invalid(std::string(row.keyword), *e);
+    if (auto e = check_range(row, g)) invalid(std::string(row.keyword), *e);
+    s[id] = std::move(g);
+  };
+  const auto number = [](double x) {
+    char buf[32];
+    const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, x);
+    return std::string(buf, end);
+  };
+  if (p.radius) set(setting_id::radius, number(*p.radius));
+  if (!p.color_by.empty()) set(setting_id::color_by, p.color_by);
+  if (p.colormap != "viridis") set(setting_id::colormap, p.colormap);
+  if (p.color_range) set(setting_id::color_range, number((*p.color_range)[0]) + "," + number((*p.color_range)[1]));
+  return s;
+}
+
 }  // namespace
 
 scene builtin_scene(const std::string& name) {
@@ -228,7 +272,15 @@ std::vector<std::string> builtin_scene_names() {
   return r;
 }
 
-scene load_scene(const std::string& path) {
+scene load_scene(const std::string& path, const particles& p) {
+  const particle_settings ps = particles_of(particle_layer(p), path, true);
+  if (ps.refused) invalid(std::string(ps.refused->keyword), ps.why);
+  if (is_ply_file_name(path)) {
+    auto read = read_ply_file(path, ps.options);
+    if (auto* e = std::get_if<scene_file_error>(&read))
+      throw error(e->io ? error::kind::io : error::kind::invalid_argument, e->path, path + ": " + e->message);
+    return from_internal(std::get<scene_file_contents>(read).scene);
+  }
   auto parsed = load_scene_file(path);
   if (auto* e = std::get_if<scene_file_error>(&parsed))
     throw error(e->io ? error::kind::io : error::kind::invalid_argument, e->path, path + ": " + e->message);
@@ -245,8 +297,10 @@ scene scene_with(const std::string& kind, const std::string& source, const setti
   scene_file_contents c;
   // A file's errors, and its values' refused below, name it first.
   const std::string file = kind == "name" && is_scene_file_name(source) ? source + ": " : "";
+  const particle_settings particles = particles_of(over, kind == "name" ? source : "", true);
+  if (particles.refused) invalid(std::string(particles.refused->keyword), particles.why);
   if (kind == "json" || kind == "name") {
-    auto read = kind == "name" ? read_scene(source) : read_scene_text(source);
+    auto read = kind == "name" ? read_scene(source, particles.options) : read_scene_text(source);
     if (auto* e = std::get_if<scene_file_error>(&read))
       throw error(e->io ? error::kind::io : error::kind::invalid_argument, e->path.empty() ? "scene" : e->path,
                   file + e->message);

@@ -77,12 +77,15 @@ struct sphere {
 // unchanged while render() / render_to_file() / a job's constructor runs.
 // Strides are in bytes; 0 means packed (3 elements a row, 1 for radii).
 struct sphere_arrays {
-  enum class element : uint8_t { f32, f64 };
+  static constexpr std::ptrdiff_t one_for_all = std::numeric_limits<std::ptrdiff_t>::min();
+  enum class element : uint8_t { f32, f64, u8 };  // u8: 0-255, read as value / 255 (colours)
   struct column {
     const void* data = nullptr;
     element type = element::f64;
-    std::ptrdiff_t stride = 0;            // from one sphere to the next
+    std::ptrdiff_t stride = 0;            // from one sphere to the next; 0: packed; one_for_all:
+                                          // every sphere reads the value at data (a radius for all)
     std::ptrdiff_t component_stride = 0;  // from x to y to z (r g b)
+    bool byte_swapped = false;            // numbers in the other byte order (big-endian data here)
   };
   size_t count = 0;
   column centers;  // count x 3
@@ -91,6 +94,9 @@ struct sphere_arrays {
                    // spheres show their colours and need them, as a scene file's)
   shading shade = shading::normal;  // all spheres', unless shades is set
   const shading* shades = nullptr;  // one per sphere
+  // Keeps the arrays alive where the scene owns them (load_scene's particle
+  // file); null for a caller's arrays.
+  std::shared_ptr<const void> owner;
 };
 
 struct scene {
@@ -105,9 +111,20 @@ struct scene {
 // are builtin_scene_names()'s.
 scene builtin_scene(const std::string& name);
 std::vector<std::string> builtin_scene_names();
-// A scene file (the command line's --scene FILE.json) or its text. Errors
-// name the JSON path ("spheres[3].radius") with where in the text it is.
-scene load_scene(const std::string& path);
+// How a particle file's vertices become spheres: the command line's
+// --radius, --color-by, --colormap and --color-range.
+struct particles {
+  std::optional<double> radius;  // every sphere's (instead of the file's radius property)
+  std::string color_by;          // a vertex property shown through the colormap; empty: none
+  std::string colormap = "viridis";                  // viridis, magma, gray
+  std::optional<std::array<double, 2>> color_range;  // lo < hi; default: the property's min and max
+};
+
+// A scene file (the command line's --scene FILE.json) or its text, or a
+// particle file (FILE.ply: its spheres are read in place, kept alive by
+// arrays->owner). Errors name the JSON path ("spheres[3].radius") with where
+// in the text it is, or the PLY file's part ("vertex[3].radius") and byte.
+scene load_scene(const std::string& path, const particles& p = {});
 scene parse_scene(const std::string& json_text);
 
 enum class pixel_type : uint8_t {

@@ -2,9 +2,11 @@
 // front of the sky (none: the lesson's picture). A job builds its
 // scene_params, validates them once here, and renders the scene they make.
 #pragma once
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -23,23 +25,29 @@ namespace raycast {
 // construction (the reference backend copies them then, the others prepare
 // their float scene from them).
 struct sphere_view {
-  enum class element : uint8_t { f32, f64 };
+  // f32, f64: numbers; u8: 0-255 read as value / 255 (8-bit colours).
+  enum class element : uint8_t { f32, f64, u8 };
   struct column {
     const void* data = nullptr;
     element type = element::f64;
-    ptrdiff_t stride = 0;            // bytes from one sphere to the next
+    ptrdiff_t stride = 0;            // bytes from one sphere to the next (0: one value for all)
     ptrdiff_t component_stride = 0;  // bytes from x to y to z (r g b); unused for radii
+    bool swapped = false;            // bytes in the other order (a big-endian file here)
 
     double get(size_t k, int c = 0) const {
       const auto* p = static_cast<const unsigned char*>(data) + ptrdiff_t(k) * stride + c * component_stride;
-      if (type == element::f32) {
-        float v;
-        std::memcpy(&v, p, sizeof v);
-        return v;
+      switch (type) {
+        case element::u8: return double(*p) / 255.0;
+        case element::f32: {
+          uint32_t b;
+          std::memcpy(&b, p, sizeof b);
+          return std::bit_cast<float>(swapped ? __builtin_bswap32(b) : b);
+        }
+        case element::f64: break;
       }
-      double v;
-      std::memcpy(&v, p, sizeof v);
-      return v;
+      uint64_t b;
+      std::memcpy(&b, p, sizeof b);
+      return std::bit_cast<double>(swapped ? __builtin_bswap64(b) : b);
     }
   };
   size_t count = 0;
@@ -48,6 +56,9 @@ struct sphere_view {
   column colors;              // N x 3; data null: none (normal shading only)
   shading shade = shading::normal;   // every sphere's, unless shades is set
   const shading* shades = nullptr;   // N, one per sphere
+  // Keeps the arrays' memory alive where the view owns it (a particle file
+  // read by scene/ply.h); null for a caller's arrays.
+  std::shared_ptr<const void> owner;
 
   sphere at(size_t k) const {
     sphere s;

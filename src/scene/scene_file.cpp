@@ -24,6 +24,8 @@
 #include "scene/builtin.h"
 #include "scene/huge_pages.h"
 #include "scene/names.h"
+#include "scene/ply.h"
+#include "scene/regular_file.h"
 
 namespace raycast {
 namespace {
@@ -986,21 +988,7 @@ std::optional<scene_file_contents> read_windowed(const text_source& source, size
   return std::nullopt;
 }
 
-std::string describe(mode_t mode) {
-  if (S_ISDIR(mode)) return "is a directory, not a scene file";
-  if (S_ISCHR(mode)) return "is a character device, not a regular file";
-  if (S_ISBLK(mode)) return "is a block device, not a regular file";
-  if (S_ISFIFO(mode)) return "is a FIFO (named pipe), not a regular file";
-  if (S_ISSOCK(mode)) return "is a socket, not a regular file";
-  return "is not a regular file";
-}
 
-struct fd_closer {
-  int fd;
-  ~fd_closer() {
-    if (fd >= 0) ::close(fd);
-  }
-};
 
 }  // namespace
 
@@ -1025,60 +1013,27 @@ std::variant<scene_file_contents, scene_file_error> read_scene_text(std::string_
 
 std::variant<scene_file_contents, scene_file_error> read_scene_file(const std::string& path) {
   const auto error = [](std::string why) { return scene_file_error{"", std::move(why), true}; };
-  // stat first: it neither blocks on a FIFO nor opens a device.
-  struct stat st {};
-  if (::stat(path.c_str(), &st) != 0) return error(std::strerror(errno));
-  if (!S_ISREG(st.st_mode)) return error(describe(st.st_mode));
-  // O_NONBLOCK: should the name have become a FIFO since, open returns at once
-  // and fstat refuses it.
-  fd_closer f{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY)};
-  if (f.fd < 0) return error(std::strerror(errno));
-  if (::fstat(f.fd, &st) != 0) return error(std::strerror(errno));
-  if (!S_ISREG(st.st_mode)) return error(describe(st.st_mode));
-  if (st.st_size < 0 || uint64_t(st.st_size) > max_scene_file_bytes) return too_large(uint64_t(st.st_size));
-  const size_t size = size_t(st.st_size);
+  auto opened = regular_file::open(path);
+  if (auto* why = std::get_if<std::string>(&opened)) return error(*why);
+  regular_file& f = *std::get<std::unique_ptr<regular_file>>(opened);
+  if (f.size() > max_scene_file_bytes) return too_large(f.size());
+  const size_t size = size_t(f.size());
   if (size >= windowed_from) {
     // Read at offsets, a window at a time; a file that changes length meanwhile
     // is left to the whole read below, which reports it.
-    const auto at = [&](size_t offset, size_t n, char* to) {
-      while (n > 0) {
-        const ssize_t got = ::pread(f.fd, to, n, off_t(offset));
-        if (got < 0 && errno == EINTR) continue;
-        if (got <= 0) return false;
-        to += got;
-        offset += size_t(got);
-        n -= size_t(got);
-      }
-      return true;
-    };
-    if (auto c = read_windowed(at, size, default_window)) {
-      // Unchanged meanwhile: no byte past the end, the same size and times.
-      struct stat after {};
-      char more;
-      if (::pread(f.fd, &more, 1, off_t(size)) == 0 && ::fstat(f.fd, &after) == 0 && after.st_size == st.st_size &&
-          after.st_mtim.tv_sec == st.st_mtim.tv_sec && after.st_mtim.tv_nsec == st.st_mtim.tv_nsec &&
-          after.st_ctim.tv_sec == st.st_ctim.tv_sec && after.st_ctim.tv_nsec == st.st_ctim.tv_nsec)
-        return std::move(*c);
-    }
+    const auto at = [&](size_t offset, size_t n, char* to) { return f.read_at(offset, n, to) == ptrdiff_t(n); };
+    if (auto c = read_windowed(at, size, default_window))
+      if (f.unchanged()) return std::move(*c);
   }
   // Room for the size fstat gave and one byte more: a file that grows while
   // read is refused at that byte, so memory never exceeds what was checked.
   auto t = padded_text::allocate(size);
   if (!t) return error("out of memory reading " + bytes_text(size));
-  size_t got = 0;
-  while (got <= size) {
-    const ssize_t n = ::pread(f.fd, t->data() + got, size + 1 - got, off_t(got));
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      return error(std::strerror(errno));
-    }
-    if (n == 0) break;
-    got += size_t(n);
-  }
-  if (got > size) return error("grew while being read (was " + bytes_text(size) + ")");
-  ::close(f.fd);
-  f.fd = -1;
-  t->finish(got);
+  const ptrdiff_t got = f.read_at(0, size + 1, t->data());
+  if (got < 0) return error(std::strerror(errno));
+  if (size_t(got) > size) return error("grew while being read (was " + bytes_text(size) + ")");
+  f.close();
+  t->finish(size_t(got));
   return parse_padded(*t);
 }
 
@@ -1105,18 +1060,24 @@ std::variant<scene_params, scene_file_error> load_scene_file(const std::string& 
 bool is_scene_file_name(std::string_view name) {
   std::string ext(name.substr(name.size() > 5 ? name.size() - 5 : 0));
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return ext == ".json" && name.size() > 5;
+  return (ext == ".json" && name.size() > 5) || is_ply_file_name(name);
 }
 
 std::variant<scene_file_contents, scene_file_error> read_scene(const std::string& name_or_path) {
+  return read_scene(name_or_path, particle_options{});
+}
+
+std::variant<scene_file_contents, scene_file_error> read_scene(const std::string& name_or_path,
+                                                               const particle_options& particles) {
   if (auto spheres = builtin_spheres(name_or_path)) {
     scene_file_contents c;
     c.scene.spheres = std::move(*spheres);
     return c;
   }
+  if (is_ply_file_name(name_or_path)) return read_ply_file(name_or_path, particles);
   if (!is_scene_file_name(name_or_path))
-    return scene_file_error{
-        "", not_one_of(name_or_path, quote_token(name_or_path), builtin_scene_names(), ", or a .json scene file")};
+    return scene_file_error{"", not_one_of(name_or_path, quote_token(name_or_path), builtin_scene_names(),
+                                           ", a .json scene file or a .ply particle file")};
   return read_scene_file(name_or_path);
 }
 

@@ -82,12 +82,17 @@ std::variant<scene_file_contents, scene_file_error> read_scene_file(const std::s
 // The same, resolved as parse_scene_file does.
 std::variant<scene_params, scene_file_error> load_scene_file(const std::string& path);
 
-// The command line's --scene: a built-in scene's name (its spheres), or a
-// .json scene file read by read_scene_file; another name is an error listing
-// the built-in ones (and the nearest, when it looks like a slip). A file's
-// error is read_scene_file's: the caller names the file.
+// The command line's --scene: a built-in scene's name (its spheres), a
+// .json scene file read by read_scene_file, or a .ply particle file read by
+// read_ply_file (scene/ply.h) with the particle options given (the others
+// have no use for them: the caller refuses them); another name is an error
+// listing the built-in ones (and the nearest, when it looks like a slip). A
+// file's error is its reader's: the caller names the file.
+struct particle_options;
 std::variant<scene_file_contents, scene_file_error> read_scene(const std::string& name_or_path);
-// Whether read_scene reads name as a file: it ends in .json (any case).
+std::variant<scene_file_contents, scene_file_error> read_scene(const std::string& name_or_path,
+                                                               const particle_options& particles);
+// Whether read_scene reads name as a file: it ends in .json or .ply (any case).
 bool is_scene_file_name(std::string_view name);
 
 }  // namespace raycast

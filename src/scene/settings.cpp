@@ -209,6 +209,15 @@ std::optional<std::string> parse_value(const setting& row, std::string_view text
     case vt::region: return parse_region(text, g.v.region);
     case vt::seed: return parse_seed(text, g.v.seed);
     case vt::text: g.v.text = std::string(text); return std::nullopt;
+    case vt::interval: {
+      std::array<std::string_view, 4> parts;
+      if (auto e = split(text, 2, "number", "lo,hi", parts)) return e;
+      for (int k = 0; k < 2; ++k) {
+        if (auto e = parse_real(parts[size_t(k)], g.v.triple[k])) return "number " + std::to_string(k + 1) + ": " + *e;
+        g.tokens[size_t(k)] = parts[size_t(k)].substr(0, 64);
+      }
+      return std::nullopt;
+    }
     case vt::flag:  // the command line's bare option, or a keyword's true / false
       if (!text.empty() && text != "true" && text != "false") return quote_token(text) + " is not true or false";
       g.v.flag = text != "false";
@@ -226,6 +235,10 @@ std::optional<std::string> check_range(const setting& row, const given& g) {
       for (int k = 0; k < 3; ++k)
         if (auto e = range_error(g.v.triple[k], row.range, quote_token(g.tokens[size_t(k)])))
           return "component " + std::to_string(k + 1) + ": " + *e;
+      return std::nullopt;
+    case vt::interval:
+      if (!(g.v.triple[0] < g.v.triple[1]))
+        return quote_token(g.tokens[0]) + " is not below " + quote_token(g.tokens[1]) + " (want lo,hi with lo < hi)";
       return std::nullopt;
     default: return std::nullopt;
   }

@@ -37,6 +37,7 @@ enum class value_type : uint8_t {
   seed,     // 0 to 2^64 - 1
   text,     // any text: a file name
   flag,     // present or not; no value
+  interval, // lo,hi: two finite numbers, lo below hi (value::triple's first two)
 };
 
 // Every setting, scene keys first. A layer holds at most one value of each.
@@ -69,6 +70,10 @@ enum class setting_id : uint8_t {
   sampler,
   seed,
   region,
+  radius,       // a particle file's: every sphere's radius
+  color_by,     // a particle file's vertex property shown in colour
+  colormap,
+  color_range,
   quiet,
   stats,
   version,

@@ -92,13 +92,14 @@ def _names(keyword):
 def render(scene=None, *, centers=None, radii=None, colors=None, shade="normal",
            width=None, height=None, aspect=None, lookfrom=None, lookat=None, vup=None,
            vfov=None, viewport_height=None, focal_length=None, projection=None, sky_bottom=None, sky_top=None,
-           light=None, shadows=None, ao=None, ao_distance=None, backend="auto", precision="exact", threads=0, samples=1, sampler="sobol", seed=0,
+           light=None, shadows=None, ao=None, ao_distance=None, radius=None, color_by=None, colormap=None,
+           color_range=None, backend="auto", precision="exact", threads=0, samples=1, sampler="sobol", seed=0,
            region=None, dtype="uint8"):
     """Render a scene; returns a numpy.ndarray of shape (H, W, 3), rows top first.
 
     scene: None (the sky alone), a built-in name (<scenes>), a .json scene
-        file's path (str or os.PathLike), as the command line's --scene takes
-        them, or a dict with a scene file's keys ({"camera": {...}, "sky": {...},
+        file's or a .ply particle file's path (str or os.PathLike), as the
+        command line's --scene takes them, or a dict with a scene file's keys ({"camera": {...}, "sky": {...},
         "spheres": [{"center": [x, y, z], "radius": r}, ...]}; NumPy numbers
         and arrays in it are read as JSON's).
     centers (N, 3), radii (N,), colors (N, 3): spheres as arrays, for a scene
@@ -117,6 +118,9 @@ def render(scene=None, *, centers=None, radii=None, colors=None, shade="normal",
         from it), ao (ambient occlusion rays per hit, 0 to 4096), ao_distance
         (how far they look; unbounded by default): how "lit" spheres are lit,
         over the scene's "light" and "ambient_occlusion" keys.
+    radius (every sphere's), color_by (a vertex property shown in colour),
+        colormap (<colormaps>), color_range ((lo, hi); default the property's
+        min and max): how a .ply particle file's vertices become spheres.
     backend: <backends>.
     precision: <precisions>. threads: 0 for all cores.
     samples, sampler (<samplers>), seed: antialiasing.
@@ -138,7 +142,7 @@ def render(scene=None, *, centers=None, radii=None, colors=None, shade="normal",
     elif isinstance(scene, dict):
         kind, source = "json", _json.dumps(scene, default=_json_value)
     elif isinstance(scene, (str, _os.PathLike)):
-        kind, source = "name", _os.fspath(scene)  # a built-in name or a .json file, as --scene
+        kind, source = "name", _os.fspath(scene)  # a built-in name, a .json or .ply file, as --scene
     else:
         raise _type_error("scene", f"want a name, a path or a dict, got {type(scene).__name__}")
     for name, v in (("shade", shade), ("dtype", dtype)):
@@ -147,7 +151,8 @@ def render(scene=None, *, centers=None, radii=None, colors=None, shade="normal",
     given = dict(width=width, height=height, aspect=aspect, lookfrom=lookfrom, lookat=lookat, vup=vup,
                  vfov=vfov, viewport_height=viewport_height, focal_length=focal_length,
                  projection=projection, sky_bottom=sky_bottom, sky_top=sky_top, light=light, shadows=shadows,
-                 ao=ao, ao_distance=ao_distance, backend=backend, precision=precision, threads=threads,
+                 ao=ao, ao_distance=ao_distance, radius=radius, color_by=color_by, colormap=colormap,
+                 color_range=color_range, backend=backend, precision=precision, threads=threads,
                  samples=samples, sampler=sampler, seed=seed, region=region)
     keywords = {k: _token(_FIELD[k], given[k]) for k in _RENDER_KEYWORDS if given[k] is not None}
     return _raycast.render(
@@ -180,4 +185,5 @@ def write(path, image, format=""):
 if render.__doc__:  # (python -OO drops docstrings)
     render.__doc__ = (render.__doc__.replace("<scenes>", ", ".join(f'"{n}"' for n in builtin_scenes()))
                       .replace("<projections>", _names("projection")).replace("<backends>", _names("backend"))
-                      .replace("<precisions>", _names("precision")).replace("<samplers>", _names("sampler")))
+                      .replace("<precisions>", _names("precision")).replace("<samplers>", _names("sampler"))
+                      .replace("<colormaps>", _names("colormap")))

@@ -1,0 +1,33 @@
+#include "scene/colormap.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace raycast {
+namespace {
+
+#include "scene/colormap_data.inc"
+
+// gray: entry k is k / 255 in every channel.
+std::array<float, 3> gray_entry(int k) {
+  const float g = float(k) / 255.0f;
+  return {g, g, g};
+}
+
+}  // namespace
+
+std::array<float, 3> colormap_color(colormap m, double v, double lo, double hi) {
+  int k = 128;
+  if (lo < hi) {
+    const double t = std::clamp((v - lo) / (hi - lo), 0.0, 1.0);
+    k = std::min(255, int(std::floor(t * 256.0)));
+  }
+  switch (m) {
+    case colormap::viridis: return {viridis_table[k][0], viridis_table[k][1], viridis_table[k][2]};
+    case colormap::magma: return {magma_table[k][0], magma_table[k][1], magma_table[k][2]};
+    case colormap::gray: break;
+  }
+  return gray_entry(k);
+}
+
+}  // namespace raycast
