@@ -25,6 +25,7 @@
 #include "gbench_flags.h"
 #include "rows.h"
 #include "light_rows.h"
+#include "ply_rows.h"
 #include "scale_rows.h"
 #include "spheres.h"
 #include "sphere_numerics.h"
@@ -60,6 +61,7 @@ std::string report_script() { return in_build_tree() ? RAYCAST_BENCH_REPORT : RA
 
 struct options {
   bool quick = false;
+  bool big = false;  // the 10^8-sphere rows
   std::string plot, summary_size;
   int summary_threads = 1;
   std::string aa_reference_dir = default_cache_dir();
@@ -258,6 +260,8 @@ void print_help() {
   std::printf(
       "raycast-bench: time every sky renderer and compare it with the double reference\n"
       "  --quick                 seconds-long pass over 400x225 and 1920x1080\n"
+      "  --big                   add the 10^8-sphere rows (big/: a 1.5 GB PLY file in\n"
+      "                          $TMPDIR, about 16 GB of memory, minutes)\n"
       "  --plot FILE.svg         write the error-vs-time scatter (and FILE-aa.svg,\n"
       "                          FILE-scale.svg) with matplotlib; .png works too\n"
       "  --summary-size WxH      size of the summary table (default 3840x2160;\n"
@@ -306,6 +310,8 @@ options parse_own_flags(int& argc, char** argv) {
     };
     if (arg == "--quick") {
       o.quick = true;
+    } else if (arg == "--big") {
+      o.big = true;
     } else if (auto v = value("--plot")) {
       o.plot = *v;
     } else if (auto d = value("--aa-reference-dir")) {
@@ -455,6 +461,7 @@ int run(int argc, char** argv) {
   register_aa_rows(aa_config_for(opt.quick, opt.aa_reference_dir));
   register_embree_rows(scene_sizes);
   register_scale_rows(opt.quick);
+  register_ply_rows(opt.quick, opt.big);
   register_light_rows(opt.quick);
   register_stiff_rows();
   add_context(opt);

@@ -534,6 +534,32 @@ def print_scale_family(cells, load, family, what, ctx):
           "  same text (no checks), our preparation")
 
 
+def print_particle_files(rows):
+    """load-ply/N against the JSON load/N rows (the cloud's text) and the bare bandwidths; big/ rows."""
+    ply = {int(r.spheres): r for r in of_kind(rows, "load-ply") if not r.error}
+    json_rows = {int(r.spheres): r for r in of_kind(rows, "load") if not r.error}
+    if ply:
+        print("\nParticle files (load-ply/): a PLY file of the packed box (19 bytes a sphere) from the page cache;\n"
+              "ns a sphere (medians)\n"
+              "         N    PLY load    GB/s   pread  memcpy   prepare   JSON parse (load/, the cloud's text)")
+        for n in sorted(ply):
+            r, j = ply[n], json_rows.get(n)
+            print(f"  {n:8d}" + "".join(f"{r.get(k, 0):10.1f}" if k != "load_GBps" else f"{r.get(k, 0):8.2f}"
+                                          for k in ("load_ns_per_sphere", "load_GBps")) +
+                  "".join(f"{r.get(k, 0):8.2f}" for k in ("pread_ns_per_sphere", "memcpy_ns_per_sphere")) +
+                  f"{r.get('prepare_ns_per_sphere', 0):10.1f}" +
+                  (f"{j.get('parse_ns_per_sphere'):13.1f}" if j and "parse_ns_per_sphere" in j else "            -"))
+        print("  pread: the same file read into memory; memcpy: its bytes copied; the load reads, checks every\n"
+              "  value and fills the scene's columns (first touch of fresh memory included)")
+    for r in of_kind(rows, "big"):
+        if r.error:
+            print(f"\n{r.name}: {r.error}")
+            continue
+        print(f"\n{r.name} (3840x2160, all cores, raycast end to end): load {r.get('load_s', 0):.2f} s, prepare "
+              f"{r.get('prepare_s', 0):.2f} s, render {r.get('render_s', 0):.2f} s, total {r.get('total_s', 0):.2f} s, "
+              f"peak RSS {r.get('peak_rss_mb', 0) / 1e3:.2f} GB")
+
+
 def plot_scale(rows, ctx, file):
     families = [(f, what, scale_cells(rows, f)) for f, what in SCALE_FAMILIES.items()]
     families = [x for x in families if x[2]]
@@ -646,6 +672,7 @@ def main(argv=None):
     print_scale(rows, ctx)
     if a.plot and plot_scale(rows, ctx, plot_file(a.plot, "-scale")):
         print("Scale plot written to", plot_file(a.plot, "-scale"))
+    print_particle_files(rows)
     print_stiff(rows)
     print_sphere_stiff(rows)
 

@@ -518,7 +518,21 @@ TEST_F(Cli, RangeErrorsSayTooSmallOrTooLargeWithTheTokenAsTyped) {
       {{"--samples", "0"}, "raycast: error: --samples: '0' is too small (at least 1)\n"},
       {{"--sky-top", "1,1e31,1"}, "raycast: error: --sky-top: component 2: '1e31' is too large (at most 1e+30)\n"},
       {{"--width", std::string(100, '9')},
-       "raycast: error: --width: '" + std::string(32, '9') + "\u2026' is out of range\n"},
+       "raycast: error: --width: '" + std::string(32, '9') + "\u2026' is too large (at most 16777216)\n"},
+      {{"--seed", "-1"}, "raycast: error: --seed: '-1' is not a whole number from 0 to 18446744073709551615\n"},
+      // Beyond a double both ways, in the row's terms: a tiny field of view is not an overflow.
+      {{"--vfov", "1e-400"}, "raycast: error: --vfov: '1e-400' is too small (above 0)\n"},
+      {{"--width", "-99999999999999999999"},
+       "raycast: error: --width: '-99999999999999999999' is too small (at least 1)\n"},
+      {{"--viewport-height", "1e400"},
+       "raycast: error: --viewport-height: '1e400' is too large (beyond the largest double, 1.8e308)\n"},
+      {{"--lookfrom", "1e400,0,0"},
+       "raycast: error: --lookfrom: component 1: '1e400' is too large (beyond the largest double, 1.8e308)\n"},
+      {{"--lookfrom", "1e-400,0,0"},
+       "raycast: error: --lookfrom: component 1: '1e-400' is too near 0 (nearer than the smallest double, 4.9e-324)\n"},
+      {{"--viewport-height", "1e-300", "--aspect", "1e-300"},
+       "raycast: error: --viewport-height: viewport height is too small for this aspect ratio: the viewport width "
+       "(aspect x viewport height) is below the smallest double\n"},
   };
   for (const auto& [args, want] : cases) {
     std::vector<std::string> a = args;
@@ -700,6 +714,23 @@ TEST_F(Cli, UnknownExtensionListsTheSupportedOnes) {
   EXPECT_EQ(r.exit_code, 2);
   for (const char* ext : {".png", ".ppm", ".jpg", ".tif", ".exr"})
     EXPECT_TRUE(contains(r.err, ext)) << ext << " missing from: " << r.err;
+}
+
+// A name as long as the file system takes (255 bytes here) is written: the
+// temporary's own name, longer by its prefix and suffix, is cut to fit.
+TEST_F(Cli, TheLongestFileNameIsWritten) {
+  const long name_max = pathconf(box.work().c_str(), _PC_NAME_MAX);
+  ASSERT_GT(name_max, 8);
+  for (const char* ext : {".ppm", ".png"}) {
+    if (std::string(ext) == ".png" && !have_image_module()) continue;
+    const std::string name = std::string(size_t(name_max) - 4, 'n') + ext;
+    for (int twice = 0; twice < 2; ++twice) {  // created, then replaced
+      const run_result r = box.run({"-w", "16", "-o", box.path(name)});
+      EXPECT_EQ(r.exit_code, 0) << r.err;
+      EXPECT_EQ(box.entries(), std::vector<std::string>{name});
+    }
+    fs::remove(box.work() / name);
+  }
 }
 
 TEST_F(Cli, UsageErrorLeavesAnExistingFileIntact) {

@@ -6,6 +6,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -121,6 +122,13 @@ atomic_file::atomic_file(const std::string& dest, std::optional<uint64_t> known_
   base_ = target_.substr(dir_.size());
   if (base_.empty()) throw io_error(dest + ": " + errno_text(EISDIR));
   const std::string dir_or_dot = dir_.empty() ? "." : dir_;
+  // The temporary's name, "." + base + ".XXXXXX", must fit where the name
+  // itself does: a longest name's is cut (255 bytes on most file systems).
+  const long name_max = pathconf(dir_or_dot.c_str(), _PC_NAME_MAX);
+  // A whole path near PATH_MAX (4096 with its NUL) is cut to fit it too.
+  const size_t path_room = dir_.size() + 16 < 4096 ? 4095 - 8 - dir_.size() : 1;
+  const size_t keep = std::max<size_t>(1, std::min(size_t(name_max > 8 ? name_max : 255) - 8, path_room));
+  temp_base_ = base_.substr(0, std::min(base_.size(), keep));
 
   // A file its owner made read-only is not replaced, as `cp` and `>` refuse it
   // (root may write anything, as there). Renaming over it would succeed, since
@@ -143,7 +151,7 @@ void atomic_file::open_temporary(const std::string& dir_or_dot) {
   if (fd_ < 0) {
     // Not on this file system (or no /proc): a named temporary, registered for
     // the signal handlers.
-    const std::string pattern = dir_ + "." + base_ + ".XXXXXX";
+    const std::string pattern = dir_ + "." + temp_base_ + ".XXXXXX";
     std::vector<char> tmpl(pattern.begin(), pattern.end());
     tmpl.push_back('\0');
     if (tmpl.size() > pending_path_capacity) throw io_error(dest_ + ": path too long");
@@ -206,7 +214,7 @@ void atomic_file::commit() {
     // a name a SIGKILL could leave behind.
     const std::string proc = "/proc/self/fd/" + std::to_string(fd_);
     for (unsigned attempt = 0; e == 0 && temp_.empty(); ++attempt) {
-      const std::string name = temporary_name(dir_, base_, attempt);
+      const std::string name = temporary_name(dir_, temp_base_, attempt);
       if (name.size() + 1 > pending_path_capacity) {
         e = ENAMETOOLONG;
         break;

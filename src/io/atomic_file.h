@@ -52,6 +52,7 @@ class atomic_file {
   void keep_owner_and_mode(const struct stat* existing);
   void discard() noexcept;
   std::string dest_, target_, dir_, base_;
+  std::string temp_base_;  // base_, cut so that the temporary's name fits the file system's limit
   std::string temp_;       // the named temporary, while one exists
   bool anonymous_ = false;  // O_TMPFILE: no name until commit()
   bool in_place_ = false;

@@ -26,8 +26,13 @@ std::optional<invalid_field> validate(const camera_params& p) {
     return bad(viewport_height, "viewport height must be a positive finite number");
   if (!positive_finite(p.focal_length))
     return bad(focal_length, "focal length must be a positive finite number");
-  if (!positive_finite(p.aspect_ratio * p.viewport_height))
-    return bad(viewport_height, "viewport width (aspect x viewport height) overflows a double");
+  // Out of a double's range both ways, said as too small or too large in
+  // the user's terms (a product that rounds to 0 is not an overflow).
+  const auto beyond = [](double x) { return x == 0.0 ? "too small" : "too large"; };
+  if (const double w = p.aspect_ratio * p.viewport_height; !positive_finite(w))
+    return bad(viewport_height, std::string("viewport height is ") + beyond(w) +
+                                    " for this aspect ratio: the viewport width (aspect x viewport height) is " +
+                                    (w == 0.0 ? "below the smallest double" : "beyond the largest double"));
   for (double c : {p.origin.x, p.origin.y, p.origin.z})
     if (!std::isfinite(c)) return bad(origin, "origin must be finite");
   if (p.vfov_degrees && p.proj == projection::orthographic)
@@ -36,8 +41,11 @@ std::optional<invalid_field> validate(const camera_params& p) {
     const double f = *p.vfov_degrees;
     if (!(f > 0.0 && f < 180.0))
       return bad(vfov, "vertical field of view must be between 0 and 180 degrees (exclusive)");
-    if (!positive_finite(2.0 * std::tan(f * std::numbers::pi / 360.0) * p.focal_length * p.aspect_ratio))
-      return bad(vfov, "vertical field of view gives a viewport that overflows a double");
+    if (const double w = 2.0 * std::tan(f * std::numbers::pi / 360.0) * p.focal_length * p.aspect_ratio;
+        !positive_finite(w))
+      return bad(vfov, std::string("vertical field of view is ") + beyond(w) +
+                           " for this focal length and aspect ratio: the viewport (2 tan(vfov/2) x focal length x "
+                           "aspect) is " + (w == 0.0 ? "below the smallest double" : "beyond the largest double"));
   }
   if (p.lookat) {
     for (double c : {p.lookat->x, p.lookat->y, p.lookat->z})
@@ -46,7 +54,7 @@ std::optional<invalid_field> validate(const camera_params& p) {
       if (!std::isfinite(c)) return bad(vup, "vup must be finite");
     const vec3 back = p.origin - *p.lookat;
     if (!std::isfinite(back.x) || !std::isfinite(back.y) || !std::isfinite(back.z))
-      return bad(lookat, "lookfrom - lookat overflows a double");
+      return bad(lookat, "lookat is too far from lookfrom: their difference is beyond the largest double");
     if (back == vec3(0.0)) return bad(lookat, "lookfrom and lookat are the same point");
     if (p.vup == vec3(0.0)) return bad(vup, "vup must not be the zero vector");
     // Parallel when the sine of the angle between them is below 1e-9.

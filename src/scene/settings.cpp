@@ -6,6 +6,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 
 namespace raycast {
 namespace {
@@ -116,22 +117,37 @@ std::string quote_token(std::string_view token) {
   return r;
 }
 
-std::optional<std::string> parse_int(std::string_view text, int64_t& value) {
+std::optional<std::string> parse_int(std::string_view text, int64_t& value, bool* beyond) {
   if (text.empty()) return "empty value";
   const char* end = text.data() + text.size();
   auto [p, ec] = std::from_chars(text.data(), end, value);
-  if (ec == std::errc::result_out_of_range) return quote_token(text) + " is out of range";
+  if (ec == std::errc::result_out_of_range) {
+    if (beyond) *beyond = true;
+    const bool negative = text.front() == '-';
+    value = negative ? std::numeric_limits<int64_t>::min() : std::numeric_limits<int64_t>::max();
+    return quote_token(text) + (negative ? " is too small (at least " : " is too large (at most ") +
+           std::to_string(value) + ")";
+  }
   if (ec != std::errc() || p != end) return quote_token(text) + " is not an integer";
   return std::nullopt;
 }
 
-std::optional<std::string> parse_real(std::string_view text, double& value) {
+std::optional<std::string> parse_real(std::string_view text, double& value, bool* beyond) {
   if (text.empty()) return "empty value";
   const char* begin = text.data();
   const char* end = begin + text.size();
   if (*begin == '+') ++begin;  // from_chars takes no plus sign
   auto [p, ec] = std::from_chars(begin, end, value);
-  if (ec == std::errc::result_out_of_range) return quote_token(text) + " is out of range for a double";
+  if (ec == std::errc::result_out_of_range) {
+    // Beyond a double one way or the other: strtod says which (infinity or
+    // zero), and so does the message -- a tiny number is not an overflow.
+    if (beyond) *beyond = true;
+    value = std::strtod(std::string(begin, end).c_str(), nullptr);
+    if (std::isinf(value))
+      return quote_token(text) + (value < 0 ? " is too small (below the lowest double, -1.8e308)"
+                                            : " is too large (beyond the largest double, 1.8e308)");
+    return quote_token(text) + " is too near 0 (nearer than the smallest double, 4.9e-324)";
+  }
   if (ec != std::errc() || p != end || begin == end) return quote_token(text) + " is not a number";
   if (!std::isfinite(value)) return quote_token(text) + " is not a finite number";
   return std::nullopt;
@@ -201,8 +217,17 @@ std::optional<std::string> parse_name(std::string_view text, std::span<const std
 std::optional<std::string> parse_value(const setting& row, std::string_view text, given& g) {
   g.tokens[0] = text.substr(0, 64);
   switch (row.type) {
-    case vt::integer: return parse_int(text, g.v.integer);
-    case vt::real: return parse_real(text, g.v.real);
+    case vt::integer:
+    case vt::real: {
+      // A number beyond a double (or an int64) is refused in the row's own
+      // terms where it has a range ("too large (at most 16777216)").
+      bool beyond = false;
+      auto e = row.type == vt::integer ? parse_int(text, g.v.integer, &beyond) : parse_real(text, g.v.real, &beyond);
+      const double x = row.type == vt::integer ? double(g.v.integer) : g.v.real;
+      const double bound = x > 0 ? row.range.hi : row.range.lo;  // the bound it lies toward (either, for a zero)
+      if (!beyond || (!std::isfinite(bound) && x != 0.0)) return e;
+      return range_error(x, row.range, quote_token(text));
+    }
     case vt::aspect: return parse_aspect(text, g.v.real);
     case vt::triple: return parse_triple(text, g.v.triple, &g.tokens);
     case vt::name: return parse_name(text, row.names, g.v.name, row.any_case);

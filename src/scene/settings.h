@@ -154,8 +154,11 @@ struct setting_error {
 std::string quote_token(std::string_view token);
 
 // The parsers, one per type; each returns why the text is not a value.
-std::optional<std::string> parse_int(std::string_view text, int64_t& value);
-std::optional<std::string> parse_real(std::string_view text, double& value);
+// A number beyond the type's range sets *beyond (where given) and value to
+// the nearest the type has (the int64 bound, an infinity, a zero); the message
+// says too small, too large or too near 0.
+std::optional<std::string> parse_int(std::string_view text, int64_t& value, bool* beyond = nullptr);
+std::optional<std::string> parse_real(std::string_view text, double& value, bool* beyond = nullptr);
 std::optional<std::string> parse_aspect(std::string_view text, double& value);
 std::optional<std::string> parse_triple(std::string_view text, vec3& value, std::array<std::string, 3>* tokens = nullptr);
 std::optional<std::string> parse_seed(std::string_view text, uint64_t& value);
