@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <bit>
+#include <cstdio>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -12,6 +13,7 @@
 #include <variant>
 #include <vector>
 
+#include "raycast/raycast.h"
 #include "render/backend.h"
 #include "render_support.h"
 #include "scene/ply.h"
@@ -290,6 +292,59 @@ TEST(Ply, OnlyNamesEndingInPlyAreParticleFiles) {
   EXPECT_FALSE(is_ply_file_name(".ply"));
   EXPECT_FALSE(is_ply_file_name("a.ply.json"));
   EXPECT_TRUE(is_scene_file_name("a.ply"));
+}
+
+// The library's load_scene reads a particle file with the command line's
+// options, keeps its memory alive in the scene, and refuses the options for
+// a scene file that is not PLY, naming the keyword.
+TEST(Ply, TheLibraryLoadsAParticleFile) {
+  namespace rc = raycast::api;
+  const std::vector<particle> ps = random_particles(400, 31);
+  const std::string dir = ::testing::TempDir();
+  const std::string ply = dir + "/api_particles.ply", json = dir + "/api_particles.json";
+  {
+    std::FILE* f = std::fopen(ply.c_str(), "wb");
+    const std::string bytes = ply_of(ps, enc::big, false, false);
+    ASSERT_EQ(std::fwrite(bytes.data(), 1, bytes.size(), f), bytes.size());
+    std::fclose(f);
+    f = std::fopen(json.c_str(), "wb");
+    std::fputs(json_of(ps).c_str(), f);
+    std::fclose(f);
+  }
+  rc::particles shape;
+  shape.radius = 0.2;
+  shape.color_by = "id";
+  shape.colormap = "gray";
+  rc::scene s = rc::load_scene(ply, shape);
+  ASSERT_TRUE(s.arrays);
+  EXPECT_TRUE(s.arrays->owner);
+  EXPECT_EQ(s.arrays->count, ps.size());
+  EXPECT_EQ(s.arrays->shade, rc::shading::lit);
+  s.cam.width = 64;
+  s.cam.lookfrom = {0.5, 1.0, 3.0};
+  s.cam.lookat = rc::vec3{0.0, 0.0, -5.0};
+  const rc::scene copy = s;  // shares the file's memory
+  s = rc::scene{};
+  const rc::image img = rc::render(copy, {});
+  EXPECT_EQ(img.width, 64);
+  try {
+    rc::particles radius;
+    radius.radius = 1.0;
+    rc::load_scene(json, radius);
+    ADD_FAILURE() << "no error";
+  } catch (const rc::error& e) {
+    EXPECT_EQ(e.field(), "radius");
+    EXPECT_NE(e.message().find("applies to .ply particle files only"), std::string::npos) << e.what();
+  }
+  try {
+    shape.colormap = "jet";
+    rc::load_scene(ply, shape);
+    ADD_FAILURE() << "no error";
+  } catch (const rc::error& e) {
+    EXPECT_EQ(e.field(), "colormap");
+  }
+  std::remove(ply.c_str());
+  std::remove(json.c_str());
 }
 
 }  // namespace

@@ -70,8 +70,14 @@ std::string at_byte(uint64_t offset) { return " (at byte " + std::to_string(offs
 struct ply_error {
   std::string path, message;
 };
+// A file's names in a message, cut short: a header may hold a name of a megabyte.
+std::string shown(std::string_view text, size_t most = 128) {
+  if (text.size() <= most) return std::string(text);
+  while (most > 0 && (static_cast<unsigned char>(text[most]) & 0xc0) == 0x80) --most;  // not inside a UTF-8 sequence
+  return std::string(text.substr(0, most)) + "\u2026";
+}
 [[noreturn]] void fail(std::string path, std::string why, uint64_t offset) {
-  throw ply_error{std::move(path), std::move(why) + at_byte(offset)};
+  throw ply_error{shown(path), shown(why, 512) + at_byte(offset)};
 }
 
 std::vector<std::string_view> words_of(std::string_view line) {

@@ -38,7 +38,7 @@ void check_refusal(const scene_file_error& e, size_t size) {
   if (e.message.empty() || e.message.find('\n') != std::string::npos) fail("not one line: " + e.message);
   if (e.io) return;  // a read that failed: strerror's words
   const size_t at = e.message.rfind("(at byte ");
-  if (e.message.find("changed while being read") != std::string::npos) fail("a memory source cannot change");
+  if (e.path.empty() && e.message.starts_with("changed while being read")) fail("a memory source cannot change");
   if (at == std::string::npos || e.message.back() != ')') fail("no byte offset: " + e.message);
   if (std::strtoull(e.message.c_str() + at + 9, nullptr, 10) > size) fail("a byte past the end: " + e.message);
 }
