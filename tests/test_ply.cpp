@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "raycast/raycast.h"
+#include "kernels/float_scene.h"
 #include "render/backend.h"
 #include "render_support.h"
 #include "scene/ply.h"
@@ -67,12 +68,16 @@ camera_params test_camera() {
   return c;
 }
 
-image rendered(scene_params p, backend b) {
+image rendered(scene_params p, backend b, sphere_order order = sphere_order::automatic) {
   p.camera = test_camera();
   EXPECT_FALSE(validate(p));
   render_options o;
   o.which = b;
   o.threads = 2;
+  if (order != sphere_order::automatic) {
+    o.sort_from = 0;  // reordered however small
+    o.order = order;
+  }
   return render_with(renderer(make_scene(p), o), pixel_format::rgb8);
 }
 
@@ -97,6 +102,24 @@ TEST(Ply, EveryEncodingRendersTheJsonScenesBytesOnEveryBackend) {
 
 // A binary file is read in place: the view's columns point into the body
 // with the file's row stride, byte-swapped for big-endian.
+// A particle file's spheres lie in huge pages, and the float scene is
+// prepared from them in its own order (read out of order, written front to
+// back): the same bytes as the JSON scene's, prepared the other way, in the
+// scene's order, row order and depth order.
+TEST(Ply, EveryOrderOfPreparationGivesTheSameBytes) {
+  const std::vector<particle> ps = random_particles(5000, 9);
+  const scene_params from_json = std::get<scene_params>(parse_scene_file(json_of(ps)));
+  for (enc e : {enc::little, enc::ascii}) {
+    const scene_params p = read_ok(ply_of(ps, e));
+    ASSERT_TRUE(p.arrays && p.arrays->huge_pages);
+    for (sphere_order order : {sphere_order::scene, sphere_order::rows, sphere_order::depth}) {
+      const difference d = compare(rendered(p, backend::automatic, order), rendered(from_json, backend::automatic, order));
+      EXPECT_EQ(d.max, 0) << format_names[int(e)] << " order " << int(order) << ": " << d.where();
+      EXPECT_EQ(compare(rendered(p, backend::automatic, order), rendered(from_json, backend::automatic)).max, 0);
+    }
+  }
+}
+
 TEST(Ply, BinaryBodiesAreReadInPlace) {
   const std::vector<particle> ps = random_particles(10, 3);
   for (enc e : {enc::little, enc::big}) {

@@ -377,15 +377,37 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from, s
   const bool indexed = order == sphere_order::depth;
   allocate(sp, n, indexed, colored);
   const bool depth = order == sphere_order::depth;
+  // Where the caller's spheres lie in huge pages (a particle file's), each
+  // place first gets its sphere's index (4 bytes written out of order), then
+  // the places are filled front to back from spheres read out of order: one
+  // cache miss a sphere instead of one for each of the arrays a record spans.
+  const bool gather = reorder && s.arrays && s.arrays->huge_pages;
+  std::vector<uint32_t, huge_page_allocator<uint32_t>> placed(gather && !indexed ? n : 0);
+  uint32_t* perm = indexed ? sp.order.data() : placed.data();
   bool any_inside = false;
 #pragma omp parallel for schedule(static, 1) num_threads(int(team)) reduction(|| : any_inside)
   for (size_t t = 0; t < team; ++t) {
     const auto [begin, end] = chunk(n, t, team);
     for (size_t k = begin; k < end; ++k) {
       const size_t i = reorder ? next[t * keys + key[k]]++ : k;
+      if (gather) {
+        perm[i] = uint32_t(k);
+        continue;
+      }
       write_sphere(sp, i, s.sphere_at(k), f, c, colored, depth ? uint16_t(key[k]) : uint16_t(0));
       any_inside = any_inside || sp.rec[i].inside;
       if (indexed) sp.order[i] = uint32_t(k);
+    }
+  }
+  if (gather) {
+#pragma omp parallel for schedule(static, 1) num_threads(int(team)) reduction(|| : any_inside)
+    for (size_t t = 0; t < team; ++t) {
+      const auto [begin, end] = chunk(n, t, team);
+      for (size_t i = begin; i < end; ++i) {
+        const size_t k = perm[i];
+        write_sphere(sp, i, s.sphere_at(k), f, c, colored, depth ? uint16_t(key[k]) : uint16_t(0));
+        any_inside = any_inside || sp.rec[i].inside;
+      }
     }
   }
   sp.any_inside = any_inside;

@@ -599,6 +599,7 @@ std::variant<scene_file_contents, scene_file_error> read_ply(const byte_source& 
   if (l.color_by) color_by(o, shown, *st, view);
   view.shade = view.colors.data ? shading::lit : shading::normal;
   view.owner = st;
+  view.huge_pages = true;  // the body, the decoded table and the colours: map_huge, huge_page_allocator
   scene_file_contents c;
   c.scene.arrays = view;
   return c;
