@@ -158,9 +158,16 @@ std::string run_raycast(const std::vector<std::string>& args) {
   char self[4096];
   const ssize_t k = readlink("/proc/self/exe", self, sizeof self - 1);
   const std::string exe = std::string(self, size_t(std::max<ssize_t>(k, 0)));
-  std::string cmd = "'" + exe.substr(0, exe.find_last_of('/')) + "/raycast'";
-  for (const std::string& a : args) cmd += " '" + a + "'";
-  cmd += " 2>&1";
+  // Each word in single quotes for the shell (a quote in it as '\'').
+  const auto quoted = [](const std::string& w) {
+    std::string q(1, '\'');
+    for (char c : w) q.append(c == '\'' ? std::string("'\\''") : std::string(1, c));
+    q.push_back('\'');
+    return q;
+  };
+  std::string cmd = quoted(exe.substr(0, exe.find_last_of('/')) + "/raycast");
+  for (const std::string& a : args) cmd.append(" ").append(quoted(a));
+  cmd.append(" 2>&1");
   std::unique_ptr<FILE, int (*)(FILE*)> p(popen(cmd.c_str(), "r"), pclose);
   std::string text;
   char buf[4096];

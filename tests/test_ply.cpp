@@ -31,13 +31,7 @@ using raycast_test::render_with;
 using namespace raycast_test;
 
 byte_source memory(const std::string& bytes, bool unchanged = true) {
-  byte_source src;
-  src.size = bytes.size();
-  src.read = [&bytes](uint64_t offset, size_t n, char* to) {
-    const size_t got = offset >= bytes.size() ? 0 : std::min(n, bytes.size() - size_t(offset));
-    std::memcpy(to, bytes.data() + offset, got);
-    return ptrdiff_t(got);
-  };
+  byte_source src = memory_source(bytes);
   src.unchanged = [unchanged] { return unchanged; };
   return src;
 }

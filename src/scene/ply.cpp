@@ -579,6 +579,18 @@ std::shared_ptr<ply_storage> read_body(const byte_source& src, const header& h) 
 
 }  // namespace
 
+byte_source memory_source(std::string_view bytes) {
+  byte_source src;
+  src.size = bytes.size();
+  src.read = [bytes](uint64_t offset, size_t n, char* to) {
+    const size_t got = offset >= bytes.size() ? 0 : std::min(n, bytes.size() - size_t(offset));
+    std::memcpy(to, bytes.data() + offset, got);
+    return ptrdiff_t(got);
+  };
+  src.unchanged = [] { return true; };
+  return src;
+}
+
 std::variant<scene_file_contents, scene_file_error> read_ply(const byte_source& src, const particle_options& o) try {
   std::string head(size_t(std::min<uint64_t>(src.size, max_ply_header_bytes)), '\0');
   const ptrdiff_t got = src.read(0, head.size(), head.data());

@@ -66,6 +66,10 @@ struct byte_source {
   std::function<bool()> unchanged;
 };
 
+// Bytes in memory as a source (the tests', the fuzzer's, a caller's
+// buffer): they must outlive the read; unchanged is true.
+byte_source memory_source(std::string_view bytes);
+
 std::variant<scene_file_contents, scene_file_error> read_ply(const byte_source& source, const particle_options& o);
 // The file at path, opened as a JSON scene file is (regular files only); its
 // read errors have io set.

@@ -61,14 +61,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   particle_options o;
   if (data[0] & 1) o.radius = 0.25;
   if (data[0] & 2) o.color_by = "z";
-  byte_source src;
-  src.size = bytes.size();
-  src.read = [&bytes](uint64_t offset, size_t n, char* to) {
-    const size_t got = offset >= bytes.size() ? 0 : std::min(n, bytes.size() - size_t(offset));
-    std::memcpy(to, bytes.data() + offset, got);
-    return ptrdiff_t(got);
-  };
-  src.unchanged = [] { return true; };
+  const byte_source src = memory_source(bytes);
   auto read = read_ply(src, o);
   if (auto* e = std::get_if<scene_file_error>(&read)) {
     check_refusal(*e, bytes.size());
