@@ -321,6 +321,57 @@ void write_sphere(float_spheres& sp, size_t i, const sphere& b, const float_scen
   sp.kind[i] = flat ? shading_kind::flat : lit ? shading_kind::lit : shading_kind::normal;
 }
 
+// How the spheres are placed: their keys and the counting sort's places
+// (places()), or the scene's order.
+struct placement {
+  const uint32_t* key;
+  std::vector<uint32_t>& next;
+  size_t keys, team;
+  bool reorder, indexed, colored;
+};
+
+// Writes every sphere's record (and colour, and index) in its place; whether
+// some record's camera is inside its sphere. Where the caller's spheres lie
+// in huge pages (a particle file's), each place first gets its sphere's
+// index (4 bytes written out of order), then the places are filled front to
+// back from spheres read out of order: one cache miss a sphere instead of
+// one for each of the arrays a record spans.
+bool fill_spheres(float_scene& f, const scene& s, const placement& p) {
+  float_spheres& sp = f.spheres;
+  const size_t n = s.sphere_count(), keys = p.keys;
+  const camera& c = s.cam;
+  const bool gather = p.reorder && s.arrays && s.arrays->huge_pages, depth = p.indexed;
+  std::vector<uint32_t, huge_page_allocator<uint32_t>> placed(gather && !p.indexed ? n : 0);
+  uint32_t* perm = p.indexed ? sp.order.data() : placed.data();
+  const auto depth_of = [&](size_t k) { return depth ? uint16_t(p.key[k]) : uint16_t(0); };
+  bool any_inside = false;
+#pragma omp parallel for schedule(static, 1) num_threads(int(p.team)) reduction(|| : any_inside)
+  for (size_t t = 0; t < p.team; ++t) {
+    const auto [begin, end] = chunk(n, t, p.team);
+    for (size_t k = begin; k < end; ++k) {
+      const size_t i = p.reorder ? p.next[t * keys + p.key[k]]++ : k;
+      if (gather) {
+        perm[i] = uint32_t(k);
+        continue;
+      }
+      write_sphere(sp, i, s.sphere_at(k), f, c, p.colored, depth_of(k));
+      any_inside = any_inside || sp.rec[i].inside;
+      if (p.indexed) sp.order[i] = uint32_t(k);
+    }
+  }
+  if (!gather) return any_inside;
+#pragma omp parallel for schedule(static, 1) num_threads(int(p.team)) reduction(|| : any_inside)
+  for (size_t t = 0; t < p.team; ++t) {
+    const auto [begin, end] = chunk(n, t, p.team);
+    for (size_t i = begin; i < end; ++i) {
+      const size_t k = perm[i];
+      write_sphere(sp, i, s.sphere_at(k), f, c, p.colored, depth_of(k));
+      any_inside = any_inside || sp.rec[i].inside;
+    }
+  }
+  return any_inside;
+}
+
 }  // namespace
 
 float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from, sphere_order order) {
@@ -376,41 +427,7 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from, s
   // one bucket.
   const bool indexed = order == sphere_order::depth;
   allocate(sp, n, indexed, colored);
-  const bool depth = order == sphere_order::depth;
-  // Where the caller's spheres lie in huge pages (a particle file's), each
-  // place first gets its sphere's index (4 bytes written out of order), then
-  // the places are filled front to back from spheres read out of order: one
-  // cache miss a sphere instead of one for each of the arrays a record spans.
-  const bool gather = reorder && s.arrays && s.arrays->huge_pages;
-  std::vector<uint32_t, huge_page_allocator<uint32_t>> placed(gather && !indexed ? n : 0);
-  uint32_t* perm = indexed ? sp.order.data() : placed.data();
-  bool any_inside = false;
-#pragma omp parallel for schedule(static, 1) num_threads(int(team)) reduction(|| : any_inside)
-  for (size_t t = 0; t < team; ++t) {
-    const auto [begin, end] = chunk(n, t, team);
-    for (size_t k = begin; k < end; ++k) {
-      const size_t i = reorder ? next[t * keys + key[k]]++ : k;
-      if (gather) {
-        perm[i] = uint32_t(k);
-        continue;
-      }
-      write_sphere(sp, i, s.sphere_at(k), f, c, colored, depth ? uint16_t(key[k]) : uint16_t(0));
-      any_inside = any_inside || sp.rec[i].inside;
-      if (indexed) sp.order[i] = uint32_t(k);
-    }
-  }
-  if (gather) {
-#pragma omp parallel for schedule(static, 1) num_threads(int(team)) reduction(|| : any_inside)
-    for (size_t t = 0; t < team; ++t) {
-      const auto [begin, end] = chunk(n, t, team);
-      for (size_t i = begin; i < end; ++i) {
-        const size_t k = perm[i];
-        write_sphere(sp, i, s.sphere_at(k), f, c, colored, depth ? uint16_t(key[k]) : uint16_t(0));
-        any_inside = any_inside || sp.rec[i].inside;
-      }
-    }
-  }
-  sp.any_inside = any_inside;
+  sp.any_inside = fill_spheres(f, s, {key.data(), next, keys, team, reorder, indexed, colored});
   sp.any_flat = v.any_flat;
   sp.any_normal = v.any_normal;
   sp.any_lit = v.any_lit;
