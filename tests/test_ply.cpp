@@ -101,7 +101,7 @@ TEST(Ply, EveryEncodingRendersTheJsonScenesBytesOnEveryBackend) {
 // back): the same bytes as the JSON scene's, prepared the other way, in the
 // scene's order, row order and depth order.
 TEST(Ply, EveryOrderOfPreparationGivesTheSameBytes) {
-  const std::vector<particle> ps = random_particles(5000, 9);
+  const std::vector<particle> ps = random_particles(40000, 9);  // two threads' chunks from 2^15 spheres
   const scene_params from_json = std::get<scene_params>(parse_scene_file(json_of(ps)));
   for (enc e : {enc::little, enc::ascii}) {
     const scene_params p = read_ok(ply_of(ps, e));
@@ -196,6 +196,10 @@ TEST(Ply, ColorByMapsAPropertyThroughTheColormap) {
   EXPECT_EQ(colormap_color(colormap::gray, -7.0, 0.0, 1.0)[1], 0.0f);
   EXPECT_EQ(colormap_color(colormap::viridis, 0.0, 0.0, 1.0)[0], 0.267004f);
   EXPECT_EQ(colormap_color(colormap::magma, 1.0, 0.0, 1.0)[2], 0.749504f);
+  // A range as wide as the doubles: no difference overflows.
+  EXPECT_EQ(colormap_color(colormap::viridis, 1.7e308, -1.7e308, 1.7e308)[0], 0.993248f);
+  EXPECT_EQ(colormap_color(colormap::viridis, -1.7e308, -1.7e308, 1.7e308)[0], 0.267004f);
+  EXPECT_EQ(colormap_color(colormap::viridis, 0.0, -1.7e308, 1.7e308)[1], colormap_color(colormap::viridis, 0.5, 0.0, 1.0)[1]);
   particle_options o;
   o.color_by = "ids";
   const scene_file_error e = refused(ply_of(ps, enc::little), o);
@@ -226,6 +230,8 @@ std::vector<hostile> hostile_files() {
   const std::string two = floats({0, 0, -1, 0.5f, 1, 0, -1, 0.5f});
   const auto at = [](size_t b) { return "(at byte " + std::to_string(b) + ")"; };
   const std::string unended = "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n";
+  const std::string faces = "ply\nformat binary_little_endian 1.0\nelement face 1\nproperty list uchar int i\n"
+                            "element vertex 1\n" + xyzr + "end_header\n";
   return {
       {"not PLY", "{\"spheres\": []}\n", "", "is not a PLY file: it does not begin with a line 'ply' (at byte 0)"},
       {"no end_header", unended, "header", "ends without end_header " + at(unended.size())},
@@ -271,7 +277,24 @@ std::vector<hostile> hostile_files() {
       {"a bad format", "ply\nformat binary_middle_endian 1.0\nend_header\n", "header",
        "format: 'binary_middle_endian' is not one of ascii, binary_little_endian, binary_big_endian"},
       {"a property declared twice", head(le, "1", xyzr + "property float x\n"), "vertex.x", "is declared twice"},
+      {"faces cut short before the vertices", faces + "\x05" + floats({1, 2}), "face",
+       "the file ends inside row 0 " + at(faces.size() + 9)},
+      {"a uchar list count of 200 in an ASCII face", "ply\nformat ascii 1.0\nelement face 1\nproperty list uchar int i\n"
+                                                     "element vertex 1\n" + xyzr + "end_header\n200 1 2\n",
+       "face", "the file ends inside row 0"},
   };
+}
+
+// A count the file cannot hold is refused before --color-by's values are
+// allocated for it (4294967295 doubles: 34 GB).
+TEST(Ply, ACountIsCheckedBeforeAnythingIsAllocatedForIt) {
+  particle_options o;
+  o.color_by = "x";
+  for (const char* format : {"binary_little_endian", "ascii"}) {
+    const scene_file_error e = refused(head(format, "4294967295", xyzr) + "0 0 -1 1\n", o);
+    EXPECT_EQ(e.path, "vertex") << e.message;
+    EXPECT_NE(e.message.find("the header promises 4294967295 vertices"), std::string::npos) << e.message;
+  }
 }
 
 TEST(Ply, HostileFilesAreRefusedWithThePartAndTheByte) {

@@ -128,7 +128,9 @@ atomic_file::atomic_file(const std::string& dest, std::optional<uint64_t> known_
   // A whole path near PATH_MAX (4096 with its NUL) is cut to fit it too.
   const size_t path_room = dir_.size() + 16 < 4096 ? 4095 - 8 - dir_.size() : 1;
   const size_t keep = std::max<size_t>(1, std::min(size_t(name_max > 8 ? name_max : 255) - 8, path_room));
-  temp_base_ = base_.substr(0, std::min(base_.size(), keep));
+  size_t cut = std::min(base_.size(), keep);
+  while (cut < base_.size() && cut > 1 && (static_cast<unsigned char>(base_[cut]) & 0xc0) == 0x80) --cut;  // whole characters
+  temp_base_ = base_.substr(0, cut);
 
   // A file its owner made read-only is not replaced, as `cp` and `>` refuse it
   // (root may write anything, as there). Renaming over it would succeed, since

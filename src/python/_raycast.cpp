@@ -126,7 +126,7 @@ void set_arrays(rc::scene& s, std::optional<py::array> centers, std::optional<py
     return;
   }
   if (!centers || !radii) value_error(centers ? "radii" : "centers", "is required with centers/radii/colors");
-  if (!s.spheres.empty()) value_error("centers", "the scene has spheres already; give a scene without");
+  if (!s.spheres.empty() || s.arrays) value_error("centers", "the scene has spheres already; give a scene without");
   rc::sphere_arrays a;
   size_t n = size_t(-1);
   a.centers = column_of(*centers, "centers", n);

@@ -97,6 +97,9 @@ struct sphere_arrays {
   // Keeps the arrays alive where the scene owns them (load_scene's particle
   // file); null for a caller's arrays.
   std::shared_ptr<const void> owner;
+  // The arrays lie in huge pages (load_scene's): preparation reads them out
+  // of order, cheaply. A hint; any value gives the same image.
+  bool huge_pages = false;
 };
 
 struct scene {
@@ -116,7 +119,7 @@ std::vector<std::string> builtin_scene_names();
 struct particles {
   std::optional<double> radius;  // every sphere's (instead of the file's radius property)
   std::string color_by;          // a vertex property shown through the colormap; empty: none
-  std::string colormap = "viridis";                  // viridis, magma, gray
+  std::string colormap;                              // viridis (empty: the default), magma, gray
   std::optional<std::array<double, 2>> color_range;  // lo < hi; default: the property's min and max
 };
 

@@ -19,8 +19,10 @@ std::array<float, 3> gray_entry(int k) {
 std::array<float, 3> colormap_color(colormap m, double v, double lo, double hi) {
   int k = 128;
   if (lo < hi) {
-    const double t = std::clamp((v - lo) / (hi - lo), 0.0, 1.0);
-    k = std::min(255, int(std::floor(t * 256.0)));
+    // Halved, so that neither difference overflows (lo, hi and v may span
+    // the doubles); NaN (none reaches here) would take the low end.
+    const double t = (v / 2 - lo / 2) / (hi / 2 - lo / 2);
+    k = t > 0.0 ? int(std::min(255.0, std::floor(std::min(t, 1.0) * 256.0))) : 0;
   }
   switch (m) {
     case colormap::viridis: return {viridis_table[k][0], viridis_table[k][1], viridis_table[k][2]};

@@ -5,8 +5,10 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
+#include <unordered_set>
 #include <vector>
 
 #include "scene/huge_pages.h"
@@ -51,6 +53,7 @@ struct element {
   bool has_lists() const {
     return std::any_of(props.begin(), props.end(), [](const property& p) { return p.list; });
   }
+  std::unordered_set<std::string> names;  // the properties', for the duplicate check
   const property* find(std::string_view n) const {
     for (const property& p : props)
       if (p.name == n) return &p;
@@ -117,7 +120,7 @@ void add_property(header& h, const std::vector<std::string_view>& w, uint64_t at
   p.list = list;
   p.at = at;
   const std::string path = e.name + "." + p.name;
-  if (e.find(p.name)) fail(path, "is declared twice", at);
+  if (!e.names.insert(p.name).second) fail(path, "is declared twice", at);
   if (list) p.count_type = type_named(w[2], path, at);
   p.type = type_named(w[list ? 3 : 1], path, at);
   if (list && is_real(p.count_type)) fail(path, "a list's count must be an integer type", at);
@@ -248,25 +251,28 @@ layout layout_of(const header& h, const particle_options& o) {
 }
 
 // The byte after element e's rows in a binary body, from `at` (the element's
-// first byte); rows with lists are walked, bounded by the body's end.
-uint64_t skip_binary(const element& e, const char* body, uint64_t size, uint64_t at, bool swap) {
+// first byte); rows with lists are walked, bounded by the body's end. base:
+// the body's first byte in the file, for messages. (List counts are read as
+// a little-endian machine does, then swapped where the file's order differs.)
+uint64_t skip_binary(const element& e, const char* body, uint64_t size, uint64_t at, bool swap, uint64_t base) {
   if (!e.has_lists()) {
     if (e.row_bytes > 0 && e.count > (size - std::min(size, at)) / e.row_bytes)
-      fail(e.name, "the header promises " + std::to_string(e.count) + " rows; the file ends first", size);
+      fail(e.name, "the header promises " + std::to_string(e.count) + " rows; the file ends first", base + size);
     return at + e.count * e.row_bytes;
   }
   for (uint64_t k = 0; k < e.count; ++k)
     for (const property& p : e.props) {
       uint64_t n = 1;
       if (p.list) {
-        if (at + bytes_of(p.count_type) > size) fail(e.name, "the file ends inside row " + std::to_string(k), size);
+        if (at + bytes_of(p.count_type) > size) fail(e.name, "the file ends inside row " + std::to_string(k), base + size);
         uint32_t c = 0;
-        std::memcpy(&c, body + at, bytes_of(p.count_type));  // little-endian host
+        static_assert(std::endian::native == std::endian::little, "list counts are read as little-endian first");
+        std::memcpy(&c, body + at, bytes_of(p.count_type));
         if (swap) c = __builtin_bswap32(c) >> (32 - 8 * bytes_of(p.count_type));
         at += bytes_of(p.count_type);
         n = c;
       }
-      if (n * bytes_of(p.type) > size - std::min(size, at)) fail(e.name, "the file ends inside row " + std::to_string(k), size);
+      if (n * bytes_of(p.type) > size - std::min(size, at)) fail(e.name, "the file ends inside row " + std::to_string(k), base + size);
       at += n * bytes_of(p.type);
     }
   return at;
@@ -321,10 +327,25 @@ void check_value(role r, const property& p, uint64_t k, double v, uint64_t at) {
   }
 }
 
+// Under AddressSanitizer the body is allocated to its exact size, so that a
+// read past it is caught (huge pages round it up to 2 MiB of zeros).
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool exact_body = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool exact_body = true;
+#else
+constexpr bool exact_body = false;
+#endif
+#else
+constexpr bool exact_body = false;
+#endif
+
 // The memory a scene's spheres are read from, owned by its sphere_view.
 struct ply_storage {
   char* body = nullptr;  // the file's bytes after the header
   size_t body_bytes = 0;
+  size_t mapped = 0;  // what map_huge was asked for (at least a byte)
   std::vector<double, huge_page_allocator<double>> table;  // decoded rows (ASCII): x y z [radius] [r g b]
   std::vector<float, huge_page_allocator<float>> colors;   // --color-by's, 3 a sphere
   double radius = 0.0;                                     // --radius's
@@ -332,7 +353,9 @@ struct ply_storage {
   ply_storage(const ply_storage&) = delete;
   ply_storage& operator=(const ply_storage&) = delete;
   ~ply_storage() {
-    if (body) unmap_huge(body, body_bytes);
+    if (!body) return;
+    if (exact_body) std::free(body);
+    else unmap_huge(body, mapped);
   }
 };
 
@@ -417,7 +440,7 @@ void read_binary(const header& h, const layout& l, ply_storage& st, sphere_view&
   uint64_t at = 0;
   for (const element& e : h.elements) {
     if (&e == l.vertex) break;
-    at = skip_binary(e, st.body, st.body_bytes, at, swap);
+    at = skip_binary(e, st.body, st.body_bytes, at, swap, h.bytes);
   }
   const element& v = *l.vertex;
   const uint64_t room = st.body_bytes - std::min<uint64_t>(st.body_bytes, at);
@@ -427,6 +450,7 @@ void read_binary(const header& h, const layout& l, ply_storage& st, sphere_view&
                        std::to_string(room / v.row_bytes) + " of them",
          h.bytes + st.body_bytes);
   const char* rows = st.body + at;
+  if (shown) shown->resize(v.count);
   check_binary(l, rows, h.bytes + at, swap, shown);
   if (!evenly_spaced(l.xyz) || !evenly_spaced(l.rgb)) {
     decode_binary(l, rows, swap, st);
@@ -463,7 +487,9 @@ double ascii_number(std::string_view w, ply_type t, const std::string& path, uin
     const auto r = t == ply_type::f32 ? std::from_chars(w.data(), end, f) : std::from_chars(w.data(), end, d);
     if (r.ec == std::errc() && r.ptr == end) return t == ply_type::f32 ? double(f) : d;
     if (r.ec == std::errc::result_out_of_range)
-      fail(path, quote_token(w) + (w.starts_with('-') ? " is too far below zero" : " is too large") + " for a " +
+      fail(path, quote_token(w) + (std::isinf(std::strtod(std::string(w).c_str(), nullptr))
+                                       ? (w.starts_with('-') ? " is too far below zero" : " is too large")
+                                       : " is too near 0") + " for a " +
                      std::string(types[size_t(t)].name),
            at);
     fail(path, quote_token(w) + " is not a number", at);
@@ -533,6 +559,7 @@ void read_ascii(const header& h, const layout& l, ply_storage& st, sphere_view& 
   const std::vector<slot> slots = slots_of(l);
   const size_t width = columns_of(l).width;
   st.table.resize(v.count * width);
+  if (shown) shown->resize(v.count);
   for (uint64_t k = 0; k < v.count; ++k) {
     double* row = st.table.data() + k * width;
     for (size_t i = 0; i < slots.size(); ++i) {
@@ -543,7 +570,8 @@ void read_ascii(const header& h, const layout& l, ply_storage& st, sphere_view& 
       if (s.column < 0 && !s.shown) continue;
       const std::string path = "vertex[" + std::to_string(k) + "]." + p.name;
       const double x = ascii_number(t, p.type, path, w.offset(t));
-      check_value(s.shown ? role::shown : s.what, p, k, x, w.offset(t));
+      check_value(s.what, p, k, x, w.offset(t));
+      if (s.shown) check_value(role::shown, p, k, x, w.offset(t));
       if (s.shown) (*shown)[k] = x;
       if (s.column >= 0) row[s.column] = s.byte_color ? x / 255.0 : x;
     }
@@ -568,7 +596,8 @@ void color_by(const particle_options& o, const std::vector<double>& shown, ply_s
 std::shared_ptr<ply_storage> read_body(const byte_source& src, const header& h) {
   auto st = std::make_shared<ply_storage>();
   st->body_bytes = size_t(src.size - h.bytes);
-  st->body = static_cast<char*>(map_huge(std::max<size_t>(st->body_bytes, 1)));
+  st->mapped = std::max<size_t>(st->body_bytes, 1);
+  st->body = static_cast<char*>(exact_body ? std::malloc(st->mapped) : map_huge(st->mapped));
   if (!st->body) throw scene_file_error{"", "out of memory reading " + std::to_string(st->body_bytes) + " bytes", true};
   const ptrdiff_t got = src.read(h.bytes, st->body_bytes, st->body);
   if (got < 0) throw scene_file_error{"", std::strerror(errno), true};
@@ -601,7 +630,7 @@ std::variant<scene_file_contents, scene_file_error> read_ply(const byte_source& 
   const std::shared_ptr<ply_storage> st = read_body(src, h);
   sphere_view view;
   view.count = size_t(l.vertex->count);
-  std::vector<double> shown(l.color_by ? view.count : 0);
+  std::vector<double> shown;  // sized by the readers, once they know the file holds the count
   if (h.format == encoding::ascii) read_ascii(h, l, *st, view, l.color_by ? &shown : nullptr);
   else read_binary(h, l, *st, view, l.color_by ? &shown : nullptr);
   if (o.radius) {

@@ -11,7 +11,8 @@
 //   - a small render of it (16 x 9, the scalar and best backends) gives the
 //     same bytes in exact mode.
 // AddressSanitizer and UndefinedBehaviorSanitizer catch the rest: reads past
-// the body, counts that overflow, allocations a header's count asks for.
+// the body (allocated to its exact size in a sanitized build), counts that
+// overflow, allocations a header's count asks for (-rss_limit_mb).
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
