@@ -261,7 +261,7 @@ void print_help() {
       "raycast-bench: time every sky renderer and compare it with the double reference\n"
       "  --quick                 seconds-long pass over 400x225 and 1920x1080\n"
       "  --big                   add the 10^8-sphere rows (big/: a 1.5 GB PLY file in\n"
-      "                          $TMPDIR; 7.5 GB of memory, 20 GB with shadows; minutes)\n"
+      "                          $TMPDIR; 7.5 GB of memory, 15 GB with shadows; minutes)\n"
       "  --plot FILE.svg         write the error-vs-time scatter (and FILE-aa.svg,\n"
       "                          FILE-scale.svg) with matplotlib; .png works too\n"
       "  --summary-size WxH      size of the summary table (default 3840x2160;\n"

@@ -187,8 +187,8 @@ double memory_available() {
 
 void bench_big(benchmark::State& state, int64_t n, bool shadows) {
   // What a sphere costs (src/scene/README.md): the file's 15 bytes, the
-  // primary rays' 85, shadows' 130; refused up front where it cannot fit.
-  const double need = double(n) * (15 + 85 + (shadows ? 130 : 0)) * 1.1, have = memory_available();
+  // primary rays' 85, shadows' 75; refused up front where it cannot fit.
+  const double need = double(n) * (15 + 85 + (shadows ? 75 : 0)) * 1.1, have = memory_available();
   if (have > 0 && need > have) {
     state.SkipWithError(strf("needs about %.0f GB of memory; %.0f GB are available", need * 1e-9, have * 1e-9).c_str());
     return;

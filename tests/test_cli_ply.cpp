@@ -143,7 +143,7 @@ TEST_F(CliPly, ASphereCostsWhatTheSceneRoomSays) {
   };
   const run_result sky = box.run({"-w", "320", "--stats", "-o", box.path("sky.ppm")});
   const double base = peak_mb(sky.err), per_mb = double(n) / 1e6;
-  const double row = 12, colors = 12 + 8, primary = 100, shadows = 125, ao = 45;
+  const double row = 12, colors = 12 + 8, primary = 100, shadows = 80, ao = 45;
   EXPECT_LT(peak({}), base + per_mb * (row + primary));
   EXPECT_LT(peak({"--color-by", "x"}), base + per_mb * (row + colors + primary));
   const std::vector<std::string> lit = {"--color-by", "x", "--light", "1,2,3"};

@@ -17,15 +17,10 @@ float dot(const float a[3], const float* b) { return (a[0] * b[0] + a[1] * b[1])
 
 // The spheres' positions in the order of their reach, ties by position: a
 // stable radix sort on the floats' bits, two 16-bit digits.
-std::vector<uint32_t> by_reach(const std::vector<shadow_bins::entry>& disc) {
-  const size_t n = disc.size();
-  std::vector<uint32_t> key(n), order(n), next(n);
-  for (size_t k = 0; k < n; ++k) {
-    uint32_t b;
-    std::memcpy(&b, &disc[k].reach, sizeof b);
-    key[k] = (b >> 31) ? ~b : b | 0x80000000u;  // the floats' order as unsigned integers
-    order[k] = uint32_t(k);
-  }
+std::vector<uint32_t> by_reach(const std::vector<uint32_t>& key) {
+  const size_t n = key.size();
+  std::vector<uint32_t> order(n), next(n);
+  for (size_t k = 0; k < n; ++k) order[k] = uint32_t(k);
   for (int shift : {0, 16}) {
     std::vector<size_t> count((1 << 16) + 1, 0);
     for (uint32_t k : order) ++count[((key[k] >> shift) & 0xffffu) + 1];
@@ -43,25 +38,31 @@ shadow_bins::shadow_bins(const sphere_grid& grid, const float light[3]) : grid_(
   frame_about(l_, u_, v_);  // the plane's axes
   const size_t n = grid.size();
   if (n == 0) return;
-  // Each sphere's entry, once: its disc across L and its reach along L.
-  std::vector<entry> disc(n);
+  // The discs' bounds across L.
   float hi[2];
   lo_[0] = lo_[1] = std::numeric_limits<float>::infinity();
   hi[0] = hi[1] = -lo_[0];
   for (size_t k = 0; k < n; ++k) {
-    const float* s = grid.at(uint32_t(k));  // by position
-    disc[k] = {dot(l_, s) + s[3] + margin, uint32_t(k), dot(u_, s), dot(v_, s), s[3] + margin};
-    lo_[0] = std::min(lo_[0], disc[k].u - disc[k].r - margin);
-    lo_[1] = std::min(lo_[1], disc[k].v - disc[k].r - margin);
-    hi[0] = std::max(hi[0], disc[k].u + disc[k].r + margin);
-    hi[1] = std::max(hi[1], disc[k].v + disc[k].r + margin);
+    const entry e = entry_of(uint32_t(k));
+    lo_[0] = std::min(lo_[0], e.u - e.r - margin);
+    lo_[1] = std::min(lo_[1], e.v - e.r - margin);
+    hi[0] = std::max(hi[0], e.u + e.r + margin);
+    hi[1] = std::max(hi[1], e.v + e.r + margin);
   }
-  bin(disc, hi);
+  bin(hi);
 }
 
-void shadow_bins::bin(const std::vector<entry>& disc, const float hi[2]) {
-  const size_t n = disc.size();
-  double g = std::max(std::sqrt(double(hi[0] - lo_[0]) * double(hi[1] - lo_[1]) / double(n)), 2 * grid_->typical_radius());
+shadow_bins::entry shadow_bins::entry_of(uint32_t p) const {
+  const float* s = grid_->at(p);  // by position
+  return {dot(l_, s) + s[3] + margin, p, dot(u_, s), dot(v_, s), s[3] + margin};
+}
+
+void shadow_bins::bin(const float hi[2]) {
+  const size_t n = grid_->size();
+  // Cells twice a typical sphere's diameter: a disc lies in about 2.25 of
+  // them (4 at one diameter, for a tenth more time and 35 bytes a sphere
+  // more); the entries are each cell's candidates, whose test is the same.
+  double g = std::max(std::sqrt(double(hi[0] - lo_[0]) * double(hi[1] - lo_[1]) / double(n)), 4 * grid_->typical_radius());
   const auto range_of = [&](const entry& e, int r[4]) {  // the cells of a disc: x0, x1, y0, y1
     const float p[2] = {e.u, e.v};
     for (int a = 0; a < 2; ++a) {
@@ -74,7 +75,7 @@ void shadow_bins::bin(const std::vector<entry>& disc, const float hi[2]) {
     size_t total = 0;
     for (size_t k = 0; k < n && total <= max_entries; ++k) {
       int r[4];
-      range_of(disc[k], r);
+      range_of(entry_of(uint32_t(k)), r);
       total += size_t(r[1] - r[0] + 1) * size_t(r[3] - r[2] + 1);
     }
     if (total <= max_entries && total <= 64 * n + 4096) break;
@@ -89,13 +90,26 @@ void shadow_bins::bin(const std::vector<entry>& disc, const float hi[2]) {
     for (int y = r[2]; y <= r[3]; ++y)
       for (int x = r[0]; x <= r[1]; ++x) f(size_t(x) + size_t(dims_[0]) * size_t(y));
   };
-  for (const entry& e : disc) each_cell(e, [&](size_t c) { ++first_[c + 1]; });
+  std::vector<uint32_t> key(n);  // the reaches' order as unsigned integers
+  for (size_t k = 0; k < n; ++k) {
+    const entry e = entry_of(uint32_t(k));
+    each_cell(e, [&](size_t c) { ++first_[c + 1]; });
+    uint32_t b;
+    std::memcpy(&b, &e.reach, sizeof b);
+    key[k] = (b >> 31) ? ~b : b | 0x80000000u;
+  }
   for (size_t c = 0; c < cells; ++c) first_[c + 1] += first_[c];
   entries_.resize(first_[cells]);
   // Filled in the order of reach (ties by position), so that each cell's
-  // list comes out sorted.
+  // list comes out sorted. Each entry is computed again from its sphere
+  // (the same floats): no array of them outlives a step.
+  const std::vector<uint32_t> order = by_reach(key);
+  key = {};
   std::vector<uint32_t> fill(first_.begin(), first_.end() - 1);
-  for (uint32_t k : by_reach(disc)) each_cell(disc[k], [&](size_t c) { entries_[fill[c]++] = disc[k]; });
+  for (uint32_t k : order) {
+    const entry e = entry_of(k);
+    each_cell(e, [&](size_t c) { entries_[fill[c]++] = e; });
+  }
 }
 
 bool shadow_bins::occluded(const float p[3], uint32_t skip_index) const {
