@@ -143,7 +143,7 @@ void bench_load(benchmark::State& state, int64_t n) {
     const steady::time_point t0 = steady::now();
     auto parsed = parse_scene_file(text);
     const double p = seconds_since(t0);
-    const auto* params = std::get_if<scene_params>(&parsed);
+    auto* params = std::get_if<scene_params>(&parsed);
     if (!params || params->spheres.size() != size_t(n) || params->spheres.back().center != last.center ||
         params->spheres.back().radius != last.radius) {
       state.SkipWithError(params ? "the parsed cloud is not the generated one"
@@ -151,7 +151,7 @@ void bench_load(benchmark::State& state, int64_t n) {
       return;
     }
     const steady::time_point t1 = steady::now();
-    std::optional<scene> s = make_scene(*params);
+    std::optional<scene> s = make_scene(std::move(*params));  // the spheres moved, as raycast does
     parsed = scene_file_error{};  // the parsed spheres are not needed any more
     auto r = std::make_unique<renderer>(*s, render_options{});
     prep += seconds_since(t1);

@@ -75,6 +75,29 @@ TEST(SceneFile, EveryKey) {
   EXPECT_FALSE(validate(p));
 }
 
+// The shade names are read in place where written plainly, and by
+// unescaping otherwise: both give the same shading, and a name that only
+// starts like one is refused.
+TEST(SceneFile, ShadeNamesPlainOrEscaped) {
+  const scene_params p = parsed(R"({"spheres": [
+      {"center": [0, 0, -1], "radius": 0.5, "shade": "lit", "color": [1, 0, 0]},
+      {"center": [0, 0, -1], "radius": 0.5, "shade": "\u006cit", "color": [1, 0, 0]},
+      {"center": [0, 0, -1], "radius": 0.5, "shade": "fl\u0061t", "color": [1, 0, 0]},
+      {"center": [0, 0, -1], "radius": 0.5, "shade": "flat" , "color": [1, 0, 0]},
+      {"center": [0, 0, -1], "radius": 0.5, "shade": "norma\u006c"}]})");
+  ASSERT_EQ(p.spheres.size(), 5u);
+  EXPECT_EQ(p.spheres[0].shade, shading::lit);
+  EXPECT_EQ(p.spheres[1].shade, shading::lit);
+  EXPECT_EQ(p.spheres[2].shade, shading::flat);
+  EXPECT_EQ(p.spheres[3].shade, shading::flat);
+  EXPECT_EQ(p.spheres[4].shade, shading::normal);
+  for (const char* bad : {"\"normalx\"", "\"Lit\"", "\"lit \"", "\"flat\\\"\"", "\"\"", "1"})
+    EXPECT_EQ(error_path(std::string(R"({"spheres": [{"center": [0,0,-1], "radius": 1, "color": [1,0,0], "shade": )") +
+                         bad + "}]}"),
+              "spheres[0].shade")
+        << bad;
+}
+
 // The aspect is read by the command line's parser: a number, or a string
 // holding W:H or a number.
 TEST(SceneFile, AnAspectIsANumberOrAStringTheCommandLineTakes) {

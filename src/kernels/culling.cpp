@@ -25,20 +25,31 @@ void cross(const double* x, const double* y, double* out) {
   out[2] = x[0] * y[1] - x[1] * y[0];
 }
 
-// Where alpha x^2 + 2 beta x + gamma <= 0, as an interval [s0, s1]: left
-// unbounded (as given) where that set is not one bounded interval (alpha <= 0,
-// or NaN), false where it is empty.
-bool below_zero(double alpha, double beta, double gamma, double& s0, double& s1) {
-  if (!(alpha > 0.0)) return true;
+// Where alpha x^2 + 2 beta x + gamma <= 0: empty, one bounded interval
+// [s0, s1], or not one bounded interval (alpha <= 0, or NaN: unbounded).
+// Without branches, so that many spheres' square roots and divisions overlap
+// (boxes_of).
+struct solved {
+  enum : uint8_t { empty, bounded, unbounded };
+  double s0, s1;
+  uint8_t kind;
+};
+inline solved solve_below_zero(double alpha, double beta, double gamma) {
   const double disc = beta * beta - alpha * gamma;
-  if (disc < 0.0) return false;
-  if (!(disc >= 0.0)) return true;
   // The roots, without cancellation.
   const double q = -(beta + std::copysign(std::sqrt(disc), beta));
-  s0 = q / alpha;
-  s1 = q != 0.0 ? gamma / q : s0;
-  if (s0 > s1) std::swap(s0, s1);
-  return true;
+  const double r0 = q / alpha, r1 = q != 0.0 ? gamma / q : r0;
+  const bool open = !(alpha > 0.0) || std::isnan(disc);
+  return {r0 > r1 ? r1 : r0, r0 > r1 ? r0 : r1,
+          uint8_t(open ? solved::unbounded : disc < 0.0 ? solved::empty : solved::bounded)};
+}
+
+// solve_below_zero's as an interval [s0, s1]: left as given where unbounded,
+// false where empty.
+bool below_zero(double alpha, double beta, double gamma, double& s0, double& s1) {
+  const solved r = solve_below_zero(alpha, beta, gamma);
+  if (r.kind == solved::bounded) s0 = r.s0, s1 = r.s1;
+  return r.kind != solved::empty;
 }
 
 // The indices i in [0, count) with (i - mid) / last in [s0, s1] (a column
@@ -152,14 +163,19 @@ struct plane_family {
   // (within w): where (fk.n)^2 <= w^2 |n|^2, a quadratic in s, in double; the
   // indices rounded outwards (the radius's margin covers the float rounding
   // of s). False when none is near.
-  bool range(const double* fk, double w, int64_t& lo, int64_t& hi) const {
+  bool range(const double* fk, double w, int64_t& lo, int64_t& hi) const { return indices(near(fk, w), lo, hi); }
+  // range() in two steps: the quadratic's solution, then its indices.
+  solved near(const double* fk, double w) const {
+    const double w2 = w * w, p0 = dot(fk, N0), p1 = dot(fk, N1);
+    return solve_below_zero(p1 * p1 - w2 * n11, p0 * p1 - w2 * n01, p0 * p0 - w2 * n00);
+  }
+  bool indices(const solved& s, int64_t& lo, int64_t& hi) const {
     lo = 0;
     hi = count - 1;
-    const double w2 = w * w, p0 = dot(fk, N0), p1 = dot(fk, N1);
-    double s0 = -INFINITY, s1 = INFINITY;
-    if (!below_zero(p1 * p1 - w2 * n11, p0 * p1 - w2 * n01, p0 * p0 - w2 * n00, s0, s1)) return false;
+    if (s.kind == solved::empty) return false;
     if (count == 1) return true;  // one index: the plane test decides
-    return index_range(s0, s1, last, mid, 0.0, count, lo, hi);
+    return s.kind == solved::unbounded ? index_range(-INFINITY, INFINITY, last, mid, 0.0, count, lo, hi)
+                                       : index_range(s.s0, s.s1, last, mid, 0.0, count, lo, hi);
   }
 };
 
@@ -251,32 +267,50 @@ frame_box box_of_ortho(const float_scene& f, uint32_t k, double spread) {
   return box;
 }
 
+// The boxes of spheres [k0, k0 + n) of a perspective camera's frame, into
+// out: a block of spheres at a time, their quadratics solved together (no
+// branch between one sphere's square roots and divisions and the next's).
+void boxes_of(const float_scene& f, const frame_vectors& fv, uint32_t k0, uint32_t n, double spread, frame_box* out) {
+  constexpr uint32_t block = 32;
+  const float_spheres& sp = f.spheres;
+  for (uint32_t b0 = 0; b0 < n; b0 += block) {
+    const uint32_t m = std::min(block, n - b0);
+    double wide[block];
+    solved rows[block], cols[block];
+    for (uint32_t i = 0; i < m; ++i) {
+      const sphere_record& e = sp.rec[k0 + b0 + i];
+      const double fk[3] = {e.fx, e.fy, e.fz};
+      wide[i] = widened(sp, k0 + b0 + i, spread);
+      rows[i] = fv.rows.near(fk, wide[i]);
+      cols[i] = fv.cols.near(fk, wide[i]);
+    }
+    for (uint32_t i = 0; i < m; ++i) {
+      const uint32_t k = k0 + b0 + i;
+      frame_box& box = out[b0 + i];
+      box = {1, 0, -1, -1};  // in no row
+      const sphere_record& e = sp.rec[k];
+      const double fk[3] = {e.fx, e.fy, e.fz}, r = std::sqrt(double(e.r2));
+      int64_t j_lo = 0, j_hi = 0, c_lo = 0, c_hi = 0;
+      if (!fv.rows.indices(rows[i], j_lo, j_hi)) continue;
+      // A sphere the camera is outside of is hit only ahead, f.d < 0; f.d is
+      // linear over the viewport, so its least value is at a corner (rays that
+      // stray a pixel are covered by the slack, as in columns_near).
+      if (dot(fk, fk) > sp.cull_radius[k] * sp.cull_radius[k]) {
+        const double least = dot(fk, fv.c) - 0.5 * std::abs(dot(fk, fv.h)) - 0.5 * std::abs(dot(fk, fv.v));
+        if (least > (wide[i] - r) * fv.d_len) continue;  // behind every ray: NaN kept
+      }
+      if (j_hi - j_lo < boxed_rows && !fv.cols.indices(cols[i], c_lo, c_hi)) continue;  // no column's plane comes near
+      box.r_lo = int32_t(f.height - 1 - j_hi);
+      box.r_hi = int32_t(f.height - 1 - j_lo);
+      if (j_hi - j_lo < boxed_rows) box.c_lo = int32_t(c_lo), box.c_hi = int32_t(c_hi);
+    }
+  }
+}
+
 frame_box box_of(const float_scene& f, const frame_vectors& fv, uint32_t k, double spread) {
   if (f.orthographic) return box_of_ortho(f, k, spread);
-  frame_box box{1, 0, -1, -1};  // in no row
-  const float_spheres& sp = f.spheres;
-  const double fk[3] = {sp.rec[k].fx, sp.rec[k].fy, sp.rec[k].fz};
-  const double wide = widened(sp, k, spread), r = std::sqrt(double(sp.rec[k].r2));
-  int64_t j_lo = 0, j_hi = 0;
-  if (!fv.rows.range(fk, wide, j_lo, j_hi)) return box;
-  // A sphere the camera is outside of is hit only ahead, f.d < 0; f.d is
-  // linear over the viewport, so its least value is at a corner (rays that
-  // stray a pixel are covered by the slack, as in columns_near).
-  if (dot(fk, fk) > sp.cull_radius[k] * sp.cull_radius[k]) {
-    const double least = dot(fk, fv.c) - 0.5 * std::abs(dot(fk, fv.h)) - 0.5 * std::abs(dot(fk, fv.v));
-    if (least > (wide - r) * fv.d_len) return box;  // behind every ray: NaN kept
-  }
-  box.r_lo = int32_t(f.height - 1 - j_hi);
-  box.r_hi = int32_t(f.height - 1 - j_lo);
-  int64_t c_lo = 0, c_hi = 0;
-  if (j_hi - j_lo < boxed_rows) {
-    if (!fv.cols.range(fk, wide, c_lo, c_hi)) {
-      box.r_lo = 1, box.r_hi = 0;  // no column's plane comes near
-      return box;
-    }
-    box.c_lo = int32_t(c_lo);
-    box.c_hi = int32_t(c_hi);
-  }
+  frame_box box;
+  boxes_of(f, fv, k, 1, spread, &box);
   return box;
 }
 
@@ -443,8 +477,17 @@ void append_boxes(const float_scene& f, const frame_vectors& fv, double spread, 
                   placed_boxes& out) {
   const size_t at = out.size();
   out.resize(at + (k1 - k0));
+  constexpr size_t chunk = 1024;
 #pragma omp parallel for schedule(static) num_threads(team)
-  for (size_t k = k0; k < k1; ++k) out[at + (k - k0)] = {uint32_t(k), box_of(f, fv, uint32_t(k), spread)};
+  for (size_t c0 = k0; c0 < k1; c0 += chunk) {
+    const size_t c1 = std::min(k1, c0 + chunk);
+    frame_box box[chunk];
+    if (f.orthographic)
+      for (size_t k = c0; k < c1; ++k) box[k - c0] = box_of_ortho(f, uint32_t(k), spread);
+    else
+      boxes_of(f, fv, uint32_t(c0), uint32_t(c1 - c0), spread, box);
+    for (size_t k = c0; k < c1; ++k) out[at + (k - k0)] = {uint32_t(k), box[k - c0]};
+  }
   // The spheres in no row out, the others kept in their order.
   out.erase(std::remove_if(out.begin() + ptrdiff_t(at), out.end(),
                            [](const placed_box& p) { return p.box.r_lo > p.box.r_hi; }),

@@ -501,7 +501,7 @@ class reader {
       }
       if (seen & (1u << index)) fail(child(path(), key), "duplicate key", key_at);
       seen |= 1u << index;
-      od::value value = fld.value();
+      od::value& value = fld.value();
       f(index, value);
     }
   }
@@ -703,6 +703,13 @@ sphere reader::read_sphere(od::value& item, size_t k) {
         break;
       case 2: {
         const char* shade_at = at(value);
+        // The names as usually written, compared in place (a closing quote
+        // cannot come early: it would be escaped); others are unescaped first.
+        const std::string_view raw = value.raw_json_token();
+        if (raw.rfind("\"normal\"", 0) == 0 || raw.rfind("\"flat\"", 0) == 0 || raw.rfind("\"lit\"", 0) == 0) {
+          ball.shade = raw[1] == 'f' ? shading::flat : raw[1] == 'l' ? shading::lit : shading::normal;
+          break;
+        }
         std::string_view s;
         const error_code e = value.get_string().get(s);
         if (e != simdjson::SUCCESS && e != simdjson::INCORRECT_TYPE) fail_json(e, shade_at);
