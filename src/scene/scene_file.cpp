@@ -480,8 +480,9 @@ class reader {
   void fields(od::object obj, const Path& path, keys known, F&& f) {
     uint32_t seen = 0;
     for (auto result : obj) {
-      od::field fld;
-      if (error_code e = std::move(result).get(fld)) fail_json(e, here());
+      // The field in place (a copy of it stalls on store forwarding).
+      if (error_code e = result.error()) fail_json(e, here());
+      od::field& fld = result.value_unsafe();
       const char* key_at = fld.key().raw() - 1;  // the opening quote
       // A key without escapes is its raw text (stage one checked that a
       // closing quote exists); only others are unescaped.
