@@ -1,6 +1,5 @@
 // raycast: parse, render in bands of rows, hand each band to the sink.
 #include <sys/resource.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -122,36 +121,9 @@ bool standard_output_flushed() {
   return false;
 }
 
-// A large scene file (more than 16 MiB: about 200,000 spheres) costs more
-// in first-touch page faults than in parsing on some virtual machines: the
-// loaded spheres and the scene's arrays are a hundred megabytes and more. glibc's
-// malloc asks for transparent huge pages when GLIBC_TUNABLES holds
-// glibc.malloc.hugetlb=1, which it reads only at start, so for such a file
-// raycast starts itself again once with it (load and prepare of 10^6 spheres
-// 1.1 -> 0.55 s here). Where that fails, it goes on as it is.
-void restart_with_huge_pages(int argc, char** argv) {
-  constexpr const char* tunable = "glibc.malloc.hugetlb=1";
-  const char* now = std::getenv("GLIBC_TUNABLES");
-  if (now && std::strstr(now, "glibc.malloc.hugetlb")) return;  // set, by us or the user
-  const char* file = nullptr;
-  for (int i = 1; i < argc; ++i) {
-    const std::string_view a = argv[i];
-    if (a == "--scene" && i + 1 < argc) file = argv[i + 1];
-    else if (a.rfind("--scene=", 0) == 0) file = argv[i] + 8;
-  }
-  struct stat st {};
-  if (!file || ::stat(file, &st) != 0 || !S_ISREG(st.st_mode) || st.st_size < (off_t(16) << 20)) return;
-  const std::string value = now && *now ? std::string(now) + ":" + tunable : std::string(tunable);
-  if (::setenv("GLIBC_TUNABLES", value.c_str(), 1) != 0) return;
-  ::execv("/proc/self/exe", argv);
-  ::unsetenv("GLIBC_TUNABLES");  // not restarted: as it was
-  if (now) ::setenv("GLIBC_TUNABLES", now, 1);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  restart_with_huge_pages(argc, argv);
   const auto start = clock::now();
   io::reserve_standard_streams();
   io::install_signal_handlers();
