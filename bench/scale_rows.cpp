@@ -138,6 +138,8 @@ void bench_load(benchmark::State& state, int64_t n) {
   const sphere last = cloud->spheres.back();
   cloud.reset();
   const simdjson::padded_string padded(text);
+  render_options one_thread;  // as the parse: the preparation on one thread
+  one_thread.threads = 1;
   double parse = 0, prep = 0, bare = 0;
   for (auto _ : state) {
     const steady::time_point t0 = steady::now();
@@ -153,7 +155,7 @@ void bench_load(benchmark::State& state, int64_t n) {
     const steady::time_point t1 = steady::now();
     std::optional<scene> s = make_scene(std::move(*params));  // the spheres moved, as raycast does
     parsed = scene_file_error{};  // the parsed spheres are not needed any more
-    auto r = std::make_unique<renderer>(*s, render_options{});
+    auto r = std::make_unique<renderer>(*s, one_thread);
     prep += seconds_since(t1);
     parse += p;
     state.PauseTiming();

@@ -27,19 +27,52 @@ double first_touch(size_t bytes, int advice) {
 
 }  // namespace
 
-bool huge_pages_pay() {
+bool small_pages_dear() {
   // A huge page costs about 2 ms a MiB to fault in where the host has not
-  // backed it (most of a run's, on a host that hands memory back) and 0.07
-  // ms where it has; small pages cost what they cost everywhere. So small
-  // pages pay where their faults cost under half the cold huge page's
-  // (7.8 us a 4 KiB page): 4 us. One sample of 128 pages decides; timing
-  // huge pages instead would need many, as the first are often backed.
-  static const bool pay = [] {
+  // backed it, and small pages cost what they cost everywhere: they are dear
+  // where their faults cost over half the cold huge page's (7.8 us a 4 KiB
+  // page): 4 us.
+  static const bool dear = [] {
     constexpr size_t pages = 128;
     const double s = first_touch(pages << 12, MADV_NOHUGEPAGE);
     return !(s >= 0.0) || s / double(pages) > 4e-6;
   }();
-  return pay;
+  return dear;
+}
+
+namespace {
+
+// Faults in one huge page (its contents kept): whether within 1 ms, as
+// where the host backs the memory.
+bool fault_backed(unsigned char* page) {
+  volatile unsigned char* const byte = page;
+  const clock::time_point t0 = clock::now();
+  *byte = *byte;
+  return std::chrono::duration<double>(clock::now() - t0).count() < 1e-3;
+}
+
+}  // namespace
+
+void advise_huge_pages(void* p, size_t n, bool always, bool prefault) {
+  constexpr uintptr_t huge = huge_page_bytes;
+  const uintptr_t begin = (reinterpret_cast<uintptr_t>(p) + huge - 1) & ~(huge - 1);
+  const uintptr_t end = (reinterpret_cast<uintptr_t>(p) + n) & ~(huge - 1);
+  if (end <= begin) return;
+  auto* const first = reinterpret_cast<unsigned char*>(begin);
+  const size_t bytes = end - begin;
+  if (always || small_pages_dear()) {
+    ::madvise(first, bytes, MADV_HUGEPAGE);
+    return;
+  }
+  // Huge pages while the host backs them: the first only, or (prefault)
+  // each in turn until one is not.
+  ::madvise(first, bytes, MADV_HUGEPAGE);
+  size_t at = 0;
+  while (at < bytes && fault_backed(first + at)) {
+    at += huge;
+    if (!prefault) break;
+  }
+  if (at < bytes) ::madvise(first + at, bytes - at, MADV_NOHUGEPAGE);
 }
 
 }  // namespace raycast

@@ -2,15 +2,16 @@
 // in transparent huge pages where they fault in faster than small pages.
 // On the virtual machines this project is measured on, a first touch of
 // memory costs more than the work that fills it, and which page size costs
-// less differs between hosts: on some a 4 KiB fault takes about 15 us and a
-// huge page about 2 ms a MiB where the host has not backed it yet (huge
-// pages twice as fast: N = 10^6 spheres prepared in 0.13 s, not 0.41 s);
-// on others a 4 KiB fault takes 1.6 us, 0.4 ms a MiB, and huge pages still
-// 2 ms (small pages five times as fast: 10^6 spheres loaded and prepared in
-// 0.26 s, not 0.5 s). So small pages' cost is measured once per process,
-// on the first array that asks (huge_pages_pay). Where the host has backed the memory (a
-// process that frees and maps again, as the bench's repetitions do), a huge
-// page costs 0.07 ms a MiB. Advice only: where the kernel does not take it,
+// less differs between hosts and between runs. A huge page costs about 2 ms
+// a MiB where the host has not backed it yet (a new process, seconds after
+// the last) and 0.07 ms where it has (memory a process freed and maps
+// again); a 4 KiB page costs about 15 us on some hosts (huge pages twice as
+// fast even cold: N = 10^6 spheres prepared in 0.13 s, not 0.41 s) and 1.6
+// us on others, 0.4 ms a MiB (small pages five times as fast as cold huge
+// pages: 10^6 spheres loaded and prepared in 0.26 s, not 0.5 s). So small
+// pages' cost is measured once per process, and where they are cheap a
+// mapping gets huge pages only where its first one shows the host backs it
+// (advise_huge_pages). Advice only: where the kernel does not take it,
 // nothing changes but the faults.
 #pragma once
 #include <sys/mman.h>
@@ -24,26 +25,28 @@ namespace raycast {
 
 inline constexpr size_t huge_page_bytes = size_t(2) << 20;
 
-// Whether fresh memory faults in faster in huge pages than in small ones
-// here: the first touch of 128 freshly mapped small pages, timed once per
-// process (0.2-2 ms) and remembered (huge_pages.cpp).
-bool huge_pages_pay();
+// Whether small pages' faults cost more here than a huge page's where the
+// host has not backed it: the first touch of 128 freshly mapped small pages,
+// timed once per process (0.2-2 ms) and remembered (huge_pages.cpp).
+bool small_pages_dear();
 
-// Asks for huge pages over the 2 MiB pages inside [p, p + n), where they pay.
-inline void advise_huge_pages(void* p, size_t n) {
-  if (!huge_pages_pay()) return;
-  constexpr uintptr_t huge = huge_page_bytes;
-  const uintptr_t begin = (reinterpret_cast<uintptr_t>(p) + huge - 1) & ~(huge - 1);
-  const uintptr_t end = (reinterpret_cast<uintptr_t>(p) + n) & ~(huge - 1);
-  if (end > begin) ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
-}
+// Asks for huge pages over the 2 MiB pages inside [p, p + n) where they
+// fault in faster: always where small pages are dear, or with `always`
+// (memory read out of order, whose TLB misses cost more than its faults);
+// elsewhere while the host still backs the memory, as each huge page's
+// fault shows (0.15 ms where it does, 4 ms where not: a process that frees
+// and maps again, as the bench's repetitions do, gets its memory back
+// backed; a new process seconds after the last mostly does not). The
+// first page is faulted in here, and with `prefault` each next one until
+// one is not backed (memory the caller fills whole); the rest is left to
+// small pages. Contents are kept.
+void advise_huge_pages(void* p, size_t n, bool always = false, bool prefault = false);
 
 // n bytes rounded up to whole huge pages.
 inline size_t huge_mapping_bytes(size_t n) { return (n + huge_page_bytes - 1) & ~(huge_page_bytes - 1); }
 
 // Fresh zeroed memory for n bytes (n > 0), mapped at a 2 MiB boundary in whole
-// huge pages and advised (where they pay, or always with `always`: memory
-// read out of order, whose TLB misses cost more than its faults), or nullptr. Both ends aligned matter: a mapping
+// huge pages and advised (advise_huge_pages), or nullptr. Both ends aligned matter: a mapping
 // that starts or ends inside a huge page is faulted in 4 KiB pages there,
 // and 4 MiB arrays (a million floats) would take half their pages that way.
 // Free with unmap_huge(p, n).
@@ -56,7 +59,7 @@ inline void* map_huge(size_t n, bool always = false) {
   const uintptr_t aligned = (start + huge_page_bytes - 1) & ~uintptr_t(huge_page_bytes - 1);
   if (aligned > start) ::munmap(raw, aligned - start);
   if (const size_t tail = start + huge_page_bytes - aligned) ::munmap(reinterpret_cast<void*>(aligned + bytes), tail);
-  if (always || huge_pages_pay()) ::madvise(reinterpret_cast<void*>(aligned), bytes, MADV_HUGEPAGE);
+  advise_huge_pages(reinterpret_cast<void*>(aligned), bytes, always, true);
   return reinterpret_cast<void*>(aligned);
 }
 inline void unmap_huge(void* p, size_t n) { ::munmap(p, huge_mapping_bytes(n)); }

@@ -642,9 +642,9 @@ std::variant<scene_file_contents, scene_file_error> read_ply(const byte_source& 
   if (l.color_by) color_by(o, shown, *st, view);
   view.shade = view.colors.data ? shading::lit : shading::normal;
   view.owner = st;
-  // The body is in huge pages; the decoded table and colours where they pay
-  // (huge_page_allocator).
-  view.huge_pages = h.format != encoding::ascii && !l.color_by ? true : huge_pages_pay();
+  // The body is in huge pages always; a decoded table or colours only where
+  // they paid (huge_page_allocator), so those are not read out of order.
+  view.huge_pages = h.format != encoding::ascii && !l.color_by;
   scene_file_contents c;
   c.scene.arrays = view;
   return c;
