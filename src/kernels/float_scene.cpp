@@ -341,7 +341,7 @@ bool fill_spheres(float_scene& f, const scene& s, const placement& p) {
   const size_t n = s.sphere_count(), keys = p.keys;
   const camera& c = s.cam;
   const bool gather = p.reorder && s.arrays && s.arrays->huge_pages, depth = p.indexed;
-  std::vector<uint32_t, huge_page_allocator<uint32_t>> placed(gather && !p.indexed ? n : 0);
+  out_of_order_array<uint32_t> placed(gather && !p.indexed ? n : 0);  // written out of order
   uint32_t* perm = p.indexed ? sp.order.data() : placed.data();
   const auto depth_of = [&](size_t k) { return depth ? uint16_t(p.key[k]) : uint16_t(0); };
   bool any_inside = false;
@@ -410,7 +410,7 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from, s
   if (order == sphere_order::automatic)
     order = images_covered(s) > (n < small_scene ? deep_from_small : deep_from) ? sphere_order::depth
                                                                                : sphere_order::rows;
-  std::vector<uint32_t, huge_page_allocator<uint32_t>> key(reorder ? n : 0);
+  out_of_order_array<uint32_t> key(reorder ? n : 0);  // read out of order where gathered
   const survey v = survey_spheres(s, order, team, key.data());
   // Orthographic depths are measured from the plane as deep as the nearest
   // sphere's front (if in front of the image plane): hits compare depths of a

@@ -135,7 +135,7 @@ struct float_spheres {
   // the order they are tested in). Empty: ties go to the later in the float
   // scene's order, which is the scene's for a scene in its own order, and
   // keeps it among coincident spheres (the same key) in row order.
-  array<uint32_t> order;
+  out_of_order_array<uint32_t> order;  // written out of order (scene/huge_pages.h)
   // A depth-ordered scene's (float_scene.h): the spheres sorted by their
   // nearest distance from the camera, |O - C| - r, in depth_buckets buckets;
   // depth_key[b] is at most every distance in bucket b times (1 - 2^-15), in

@@ -100,7 +100,7 @@ void sphere_grid::build_cells(const double lo[3], const double hi[3]) {
   occupied_.assign((cells + 63) / 64, 0);
   for (size_t c = 0; c < cells; ++c)
     if (first_[c + 1] != first_[c]) occupied_[c >> 6] |= uint64_t(1) << (c & 63);
-  std::vector<uint32_t> fill(first_.begin(), first_.end() - 1);
+  out_of_order_array<uint32_t> fill(first_.begin(), first_.end() - 1);
   for (size_t k = 0; k < n; ++k) each_cell(range_of(k), [&](size_t c) { refs_[fill[c]++] = uint32_t(k); });
 }
 
@@ -108,7 +108,7 @@ void sphere_grid::build_cells(const double lo[3], const double hi[3]) {
 // stable counting sort), rank_ mapping scene indices to positions.
 void sphere_grid::sort_by_home_cell(double h) {
   const size_t n = size(), cells = size_t(dims_[0]) * size_t(dims_[1]) * size_t(dims_[2]);
-  std::vector<uint32_t> home(n), count(cells + 1, 0);
+  out_of_order_array<uint32_t> home(n), count(cells + 1, 0);
   const double inv = 1.0 / h;
   for (size_t k = 0; k < n; ++k) {
     const float* s = &spheres_[k * 4];
@@ -122,7 +122,7 @@ void sphere_grid::sort_by_home_cell(double h) {
   }
   for (size_t c = 0; c < cells; ++c) count[c + 1] += count[c];
   rank_.resize(n);
-  std::vector<float> sorted(n * 4);
+  out_of_order_array<float> sorted(n * 4);
   for (size_t k = 0; k < n; ++k) {
     rank_[k] = count[home[k]]++;
     for (int a = 0; a < 4; ++a) sorted[size_t(rank_[k]) * 4 + a] = spheres_[k * 4 + a];

@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "scene/huge_pages.h"
 #include "scene/scene.h"
 
 namespace raycast {
@@ -85,11 +86,11 @@ class sphere_grid {
   float lo_[3] = {0, 0, 0}, hi_[3] = {0, 0, 0};
   float h_ = 1, inv_h_ = 1;  // the cell's side, and 1 / it
   int dims_[3] = {0, 0, 0};
-  std::vector<float> spheres_;   // 4 per sphere, by position
-  std::vector<uint32_t> rank_;   // with cells: each sphere's position (empty: the scene's order)
-  std::vector<uint32_t> first_;  // cells + 1: cell c's references are refs_[first_[c] .. first_[c + 1])
-  std::vector<uint32_t> refs_;   // sphere positions, each cell's in ascending order
-  std::vector<uint64_t> occupied_;  // bit c: cell c lists a sphere (a sparse scene's walk reads 1 bit an empty cell)
+  out_of_order_array<float> spheres_;   // 4 per sphere, by position
+  out_of_order_array<uint32_t> rank_;   // with cells: each sphere's position (empty: the scene's order)
+  out_of_order_array<uint32_t> first_;  // cells + 1: cell c's references are refs_[first_[c] .. first_[c + 1])
+  out_of_order_array<uint32_t> refs_;   // sphere positions, each cell's in ascending order
+  out_of_order_array<uint64_t> occupied_;  // bit c: cell c lists a sphere (a sparse scene's walk reads 1 bit an empty cell)
 };
 
 }  // namespace raycast

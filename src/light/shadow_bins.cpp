@@ -17,9 +17,9 @@ float dot(const float a[3], const float* b) { return (a[0] * b[0] + a[1] * b[1])
 
 // The spheres' positions in the order of their reach, ties by position: a
 // stable radix sort on the floats' bits, two 16-bit digits.
-std::vector<uint32_t> by_reach(const std::vector<uint32_t>& key) {
+out_of_order_array<uint32_t> by_reach(const out_of_order_array<uint32_t>& key) {
   const size_t n = key.size();
-  std::vector<uint32_t> order(n), next(n);
+  out_of_order_array<uint32_t> order(n), next(n);
   for (size_t k = 0; k < n; ++k) order[k] = uint32_t(k);
   for (int shift : {0, 16}) {
     std::vector<size_t> count((1 << 16) + 1, 0);
@@ -90,7 +90,7 @@ void shadow_bins::bin(const float hi[2]) {
     for (int y = r[2]; y <= r[3]; ++y)
       for (int x = r[0]; x <= r[1]; ++x) f(size_t(x) + size_t(dims_[0]) * size_t(y));
   };
-  std::vector<uint32_t> key(n);  // the reaches' order as unsigned integers
+  out_of_order_array<uint32_t> key(n);  // the reaches' order as unsigned integers
   for (size_t k = 0; k < n; ++k) {
     const entry e = entry_of(uint32_t(k));
     each_cell(e, [&](size_t c) { ++first_[c + 1]; });
@@ -103,9 +103,9 @@ void shadow_bins::bin(const float hi[2]) {
   // Filled in the order of reach (ties by position), so that each cell's
   // list comes out sorted. Each entry is computed again from its sphere
   // (the same floats): no array of them outlives a step.
-  const std::vector<uint32_t> order = by_reach(key);
+  const out_of_order_array<uint32_t> order = by_reach(key);
   key = {};
-  std::vector<uint32_t> fill(first_.begin(), first_.end() - 1);
+  out_of_order_array<uint32_t> fill(first_.begin(), first_.end() - 1);
   for (uint32_t k : order) {
     const entry e = entry_of(k);
     each_cell(e, [&](size_t c) { entries_[fill[c]++] = e; });

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "light/grid.h"
+#include "scene/huge_pages.h"
 
 namespace raycast {
 
@@ -51,8 +52,8 @@ class shadow_bins {
   float l_[3] = {0, 0, 0}, u_[3] = {0, 0, 0}, v_[3] = {0, 0, 0};  // L and the plane's axes
   float lo_[2] = {0, 0}, inv_g_ = 1;
   int dims_[2] = {0, 0};
-  std::vector<uint32_t> first_;  // cells + 1
-  std::vector<entry> entries_;
+  out_of_order_array<uint32_t> first_;  // cells + 1
+  out_of_order_array<entry> entries_;
 };
 
 }  // namespace raycast

@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <new>
 #include <utility>
+#include <vector>
 
 namespace raycast {
 
@@ -64,20 +65,25 @@ inline void* map_huge(size_t n, bool always = false) {
 }
 inline void unmap_huge(void* p, size_t n) { ::munmap(p, huge_mapping_bytes(n)); }
 
-template <class T>
+// Always: huge pages whatever the faults cost (map_huge's `always`).
+template <class T, bool Always = false>
 struct huge_page_allocator {
   using value_type = T;
   static constexpr size_t mapped_from = size_t(1) << 20;
+  template <class U>
+  struct rebind {
+    using other = huge_page_allocator<U, Always>;
+  };
 
   huge_page_allocator() = default;
   template <class U>
-  huge_page_allocator(const huge_page_allocator<U>&) noexcept {}
+  huge_page_allocator(const huge_page_allocator<U, Always>&) noexcept {}
 
   T* allocate(size_t n) {
     const size_t bytes = n * sizeof(T);
     if (n > size_t(-1) / sizeof(T)) throw std::bad_alloc();
     if (bytes < mapped_from) return static_cast<T*>(::operator new(bytes, std::align_val_t(alignof(T))));
-    void* p = map_huge(bytes);
+    void* p = map_huge(bytes, Always);
     if (!p) throw std::bad_alloc();
     return static_cast<T*>(p);
   }
@@ -92,7 +98,14 @@ struct huge_page_allocator {
     else ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
   }
   template <class U>
-  bool operator==(const huge_page_allocator<U>&) const noexcept { return true; }
+  bool operator==(const huge_page_allocator<U, Always>&) const noexcept { return true; }
 };
+
+// An array read or written out of order (the light's grid and bins): in
+// huge pages always, as its TLB misses cost more than its faults (10^8
+// spheres with shadows: 59 s, not 76 s). Elements are not zeroed unless a
+// value is given.
+template <class T>
+using out_of_order_array = std::vector<T, huge_page_allocator<T, true>>;
 
 }  // namespace raycast
