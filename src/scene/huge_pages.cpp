@@ -64,14 +64,12 @@ void advise_huge_pages(void* p, size_t n, bool always, bool prefault) {
     ::madvise(first, bytes, MADV_HUGEPAGE);
     return;
   }
-  // Huge pages while the host backs them: the first only, or (prefault)
-  // each in turn until one is not.
+  if (!prefault) return;  // small pages: memory that may not all be used
+  // Huge pages while the host backs them, each faulted in turn until one is
+  // not; the rest small.
   ::madvise(first, bytes, MADV_HUGEPAGE);
   size_t at = 0;
-  while (at < bytes && fault_backed(first + at)) {
-    at += huge;
-    if (!prefault) break;
-  }
+  while (at < bytes && fault_backed(first + at)) at += huge;
   if (at < bytes) ::madvise(first + at, bytes - at, MADV_NOHUGEPAGE);
 }
 

@@ -1,5 +1,6 @@
 // Memory for arrays of megabytes -- a scene's spheres, the culling lists --
-// in transparent huge pages where they fault in faster than small pages.
+// in transparent huge pages where they fault in faster than small pages, or
+// where they are read or written out of order (out_of_order_array).
 // On the virtual machines this project is measured on, a first touch of
 // memory costs more than the work that fills it, and which page size costs
 // less differs between hosts and between runs. A huge page costs about 2 ms
@@ -9,8 +10,8 @@
 // fast even cold: N = 10^6 spheres prepared in 0.13 s, not 0.41 s) and 1.6
 // us on others, 0.4 ms a MiB (small pages five times as fast as cold huge
 // pages: 10^6 spheres loaded and prepared in 0.26 s, not 0.5 s). So small
-// pages' cost is measured once per process, and where they are cheap a
-// mapping gets huge pages only where its first one shows the host backs it
+// pages' cost is measured once per process, and where they are cheap an
+// array of map_huge gets huge pages only while each faults in as backed
 // (advise_huge_pages). Advice only: where the kernel does not take it,
 // nothing changes but the faults.
 #pragma once
@@ -33,13 +34,13 @@ bool small_pages_dear();
 
 // Asks for huge pages over the 2 MiB pages inside [p, p + n) where they
 // fault in faster: always where small pages are dear, or with `always`
-// (memory read out of order, whose TLB misses cost more than its faults);
-// elsewhere while the host still backs the memory, as each huge page's
-// fault shows (0.15 ms where it does, 4 ms where not: a process that frees
-// and maps again, as the bench's repetitions do, gets its memory back
-// backed; a new process seconds after the last mostly does not). The
-// first page is faulted in here, and with `prefault` each next one until
-// one is not backed (memory the caller fills whole); the rest is left to
+// (memory read out of order, whose TLB misses cost more than its faults).
+// Elsewhere, with `prefault` (memory the caller fills whole), while the host
+// still backs the memory, as each huge page's fault shows (0.15 ms where it
+// does, 4 ms where not: a process that frees and maps again, as the bench's
+// repetitions do, gets its memory back backed; a new process seconds after
+// the last mostly does not): they are faulted in here one by one until one
+// is not backed, and the rest is left to small pages; without `prefault`,
 // small pages. Contents are kept.
 void advise_huge_pages(void* p, size_t n, bool always = false, bool prefault = false);
 
@@ -101,8 +102,9 @@ struct huge_page_allocator {
   bool operator==(const huge_page_allocator<U, Always>&) const noexcept { return true; }
 };
 
-// An array read or written out of order (the light's grid and bins): in
-// huge pages always, as its TLB misses cost more than its faults (10^8
+// An array read or written out of order (the light's grid and bins, the
+// depth order's indices and keys, a particle file's decoded table): in huge
+// pages always, as its TLB misses cost more than its faults (10^8
 // spheres with shadows: 59 s, not 76 s). Elements are not zeroed unless a
 // value is given.
 template <class T>

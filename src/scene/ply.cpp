@@ -346,9 +346,10 @@ struct ply_storage {
   char* body = nullptr;  // the file's bytes after the header
   size_t body_bytes = 0;
   size_t mapped = 0;  // what map_huge was asked for (at least a byte)
-  std::vector<double, huge_page_allocator<double>> table;  // decoded rows (ASCII): x y z [radius] [r g b]
-  std::vector<float, huge_page_allocator<float>> colors;   // --color-by's, 3 a sphere
-  double radius = 0.0;                                     // --radius's
+  // Read out of order by the preparation, as the body is: in huge pages always.
+  out_of_order_array<double> table;  // decoded rows (ASCII, uneven binary): x y z [radius] [r g b]
+  out_of_order_array<float> colors;  // --color-by's, 3 a sphere
+  double radius = 0.0;               // --radius's
   ply_storage() = default;
   ply_storage(const ply_storage&) = delete;
   ply_storage& operator=(const ply_storage&) = delete;
@@ -642,9 +643,7 @@ std::variant<scene_file_contents, scene_file_error> read_ply(const byte_source& 
   if (l.color_by) color_by(o, shown, *st, view);
   view.shade = view.colors.data ? shading::lit : shading::normal;
   view.owner = st;
-  // The body is in huge pages always; a decoded table or colours only where
-  // they paid (huge_page_allocator), so those are not read out of order.
-  view.huge_pages = h.format != encoding::ascii && !l.color_by;
+  view.huge_pages = true;  // the body, the decoded table and the colours: map_huge's and out_of_order_array's `always`
   scene_file_contents c;
   c.scene.arrays = view;
   return c;
