@@ -156,6 +156,43 @@ TEST(Light, GridVerdictsAgreeWithTheReferenceButForGrazingRays) {
   EXPECT_EQ(not_grazing, 0u) << "verdicts that differ though no sphere is within 1e-3 r of the ray";
 }
 
+// The grid's walk finds exactly what testing every sphere with the same
+// float test finds, on spheres of mixed sizes at random places (most
+// reaching over their cells' faces into others), for rays short and long,
+// from hit points and from outside the grid.
+TEST(Light, GridWalkFindsWhatTestingEverySphereFinds) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  scene_params p;
+  for (int k = 0; k < 3000; ++k)
+    p.spheres.push_back(sphere{point3(u(rng) * 4 - 2, u(rng) * 2 - 1, u(rng) * 3 - 8), 0.01 + 0.12 * u(rng) * u(rng)});
+  const scene s = make_scene(p);
+  const sphere_grid g(s);
+  ASSERT_GT(g.references(), 2 * g.size()) << "most spheres should reach into other cells";
+  size_t rays = 0, blocked_rays = 0, mismatches = 0;
+  for (uint32_t k = 0; k < g.size(); ++k) {
+    const vec3 n = unit_vector(vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5));
+    const vec3 d = cosine_direction(n, u(rng), u(rng));
+    const float* c = g.sphere(k);
+    const bool outside = k % 5 == 0;  // from beyond the grid's box, toward its middle
+    float o[3], df[3];
+    for (int a = 0; a < 3; ++a) {
+      o[a] = outside ? float(-3 * d[a]) : c[a] + c[3] * float(n[a]);
+      df[a] = float(d[a]);
+    }
+    const float tmax = k % 3 == 0 ? INFINITY : float(u(rng) * 0.5);
+    const uint32_t skip = outside ? uint32_t(-1) : k;
+    bool want = false;
+    for (uint32_t q = 0; q < g.size() && !want; ++q) want = q != skip && g.blocks(g.position(q), o, df, tmax);
+    ++rays;
+    blocked_rays += want;
+    mismatches += g.occluded(o, df, tmax, skip) != want;
+  }
+  EXPECT_GT(blocked_rays, rays / 10);
+  EXPECT_LT(blocked_rays, rays * 9 / 10);
+  EXPECT_EQ(mismatches, 0u) << "of " << rays << " rays";
+}
+
 // The same for shadow rays through the light-space bins (light/shadow_bins.h),
 // from points on every sphere's lit side.
 TEST(Light, ShadowBinVerdictsAgreeWithTheReferenceButForGrazingRays) {

@@ -8,14 +8,16 @@
 // that brings the box into [-1, 1]: exact, so a scene at 1e-20 or 1e20 gives
 // the same float bits as at 1), rounded to float once. Each sphere is listed
 // in every cell its bounding box (widened by 2^-20 of the grid's size, far
-// above the query's rounding) overlaps. About N cells for N spheres, at
-// most 2^31 references; a scene of a few huge spheres among small ones
+// above the query's rounding) overlaps: the spheres are stored in the order
+// of their centres' (home) cells, so a cell's own spheres are one run of
+// them, and only the spheres reaching in from other cells are referenced.
+// About N cells for N spheres, at most 2^31 listings; a scene of a few huge spheres among small ones
 // (whose boxes would list them in most cells) gets a coarser grid.
 //
 // Memory: 20 bytes a sphere (centre, radius and position), 4 bytes a
-// reference (about 6 a sphere in a packed box, fewer in a sparse cloud) and
-// 4 bytes a cell (about one a sphere): some 50 bytes a sphere in a packed
-// box.
+// reference from another cell (up to 7 a sphere in a packed box, none in
+// the bench's lattice-jittered box, about half a sphere in its clouds) and
+// 8 bytes a cell (about one a sphere): 30 to 60 bytes a sphere.
 #pragma once
 #include <cmath>
 #include <cstddef>
@@ -73,23 +75,32 @@ class sphere_grid {
   int scale_exp = 0;  // grid units = world units * 2^-scale_exp
 
   size_t cells() const { return first_.empty() ? 0 : first_.size() - 1; }
-  size_t references() const { return refs_.size(); }
+  // Listings: each sphere in its home cell, and in every other cell it overlaps.
+  size_t references() const { return size() + refs_.size(); }
   size_t bytes() const {
-    return spheres_.size() * 4 + rank_.size() * 4 + first_.size() * 4 + refs_.size() * 4 + occupied_.size() * 8;
+    return spheres_.size() * 4 + rank_.size() * 4 + home_.size() * 4 + first_.size() * 4 + refs_.size() * 4 +
+           occupied_.size() * 8;
   }
 
  private:
   void build_cells(const double lo[3], const double hi[3]);
   void sort_by_home_cell(double h);
-  bool cell_occluded(uint32_t e0, uint32_t e1, const float o[3], const float d[3], float tmax, uint32_t skip) const;
+  bool cell_occluded(size_t c, const float o[3], const float d[3], float tmax, uint32_t skip) const;
+  struct walk;
+  bool far_occluded(walk& w, const float o[3], const float d[3], float tmax, uint32_t skip) const;
 
   float lo_[3] = {0, 0, 0}, hi_[3] = {0, 0, 0};
   float h_ = 1, inv_h_ = 1;  // the cell's side, and 1 / it
   int dims_[3] = {0, 0, 0};
   out_of_order_array<float> spheres_;   // 4 per sphere, by position
   out_of_order_array<uint32_t> rank_;   // with cells: each sphere's position (empty: the scene's order)
-  out_of_order_array<uint32_t> first_;  // cells + 1: cell c's references are refs_[first_[c] .. first_[c + 1])
-  out_of_order_array<uint32_t> refs_;   // sphere positions, each cell's in ascending order
+  // Cell c lists the spheres at positions home_[c] .. home_[c + 1] (those
+  // whose centres it holds: read in one run, no reference), and the
+  // positions refs_[first_[c] .. first_[c + 1]) (spheres from other cells
+  // that overlap it, in ascending order).
+  out_of_order_array<uint32_t> home_;   // cells + 1
+  out_of_order_array<uint32_t> first_;  // cells + 1
+  out_of_order_array<uint32_t> refs_;
   out_of_order_array<uint64_t> occupied_;  // bit c: cell c lists a sphere (a sparse scene's walk reads 1 bit an empty cell)
 };
 
