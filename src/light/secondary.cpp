@@ -1,18 +1,50 @@
 #include "light/secondary.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "light/frame.h"
 #include "scene/sphere.h"
 
 namespace raycast {
 
+namespace {
+
+// cos and sin of x in [0, pi/4]: their Taylor series to x^10 and x^9 (the
+// next terms below 2e-9).
+void eighth_turn(float x, float& c, float& s) {
+  const float x2 = x * x;
+  s = x * (1.0f + x2 * (-1.0f / 6 + x2 * (1.0f / 120 + x2 * (-1.0f / 5040 + x2 * (1.0f / 362880)))));
+  c = 1.0f + x2 * (-0.5f + x2 * (1.0f / 24 + x2 * (-1.0f / 720 + x2 * (1.0f / 40320 + x2 * (-1.0f / 3628800)))));
+}
+
+}  // namespace
+
+void unit_circle(float u, float& c, float& s) {
+  const float x = 4.0f * u;  // exact: the quarter turn and the fraction of it
+  const int q = int(x);
+  const float f = x - float(q);
+  const bool fold = f > 0.5f;  // cos(pi/2 f) = sin(pi/2 (1 - f))
+  float c0, s0;
+  eighth_turn((fold ? 1.0f - f : f) * 1.57079632679489661923f, c0, s0);
+  if (fold) std::swap(c0, s0);
+  switch (q & 3) {
+    case 0: c = c0, s = s0; break;
+    case 1: c = -s0, s = c0; break;
+    case 2: c = -c0, s = -s0; break;
+    default: c = s0, s = -c0; break;
+  }
+}
+
 void ao_direction(const float n[3], float u1, float u2, float dir[3]) {
   float t[3], bt[3];
   frame_about(n, t, bt);
-  const float phi = 6.28318530717958647692f * u1, rad = std::sqrt(u2);
-  const float x = rad * std::cos(phi), y = rad * std::sin(phi), z = std::sqrt(1.0f - u2);
+  float cos_phi, sin_phi;
+  unit_circle(u1, cos_phi, sin_phi);
+  const float rad = std::sqrt(u2);
+  const float x = rad * cos_phi, y = rad * sin_phi, z = std::sqrt(1.0f - u2);
   for (int k = 0; k < 3; ++k) dir[k] = (x * t[k] + y * bt[k]) + z * n[k];
 }
 

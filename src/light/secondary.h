@@ -54,4 +54,9 @@ void light_lanes(const secondary_rays& r, const lit_lanes& lanes, float light[li
 // sqrt(u2) sin phi, sqrt(1 - u2)) in (t, b, n).
 void ao_direction(const float n[3], float u1, float u2, float dir[3]);
 
+// c = cos 2 pi u, s = sin 2 pi u (u in [0, 1)), within 1.5e-7, in float
+// operations alone: the same bits on every machine, where the C library's
+// sincosf may round differently between its builds (with FMA or without).
+void unit_circle(float u, float& c, float& s);
+
 }  // namespace raycast
