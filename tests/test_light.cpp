@@ -156,47 +156,94 @@ TEST(Light, GridVerdictsAgreeWithTheReferenceButForGrazingRays) {
   EXPECT_EQ(not_grazing, 0u) << "verdicts that differ though no sphere is within 1e-3 r of the ray";
 }
 
-// The grid's walk finds exactly what testing every sphere with the same
-// float test finds, on spheres of mixed sizes at random places (most
-// reaching over their cells' faces into others), for rays short and long,
-// from hit points and from outside the grid.
+// Rays through sphere_grid g against testing every sphere with the same
+// float test: one ray a sphere, from a point on it (every fifth from beyond
+// the grid's box, toward its middle), in a cosine-weighted direction about
+// a random normal (every fourth along an axis, the other components +0 or
+// -0), a third unbounded, the rest short (or, from outside, just long
+// enough to reach the spheres).
+struct walk_count {
+  size_t rays = 0, blocked = 0, mismatches = 0;
+};
+walk_count walk_against_every_sphere(const sphere_grid& g, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  walk_count w;
+  for (uint32_t k = 0; k < g.size(); ++k) {
+    const vec3 n = unit_vector(vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5));
+    vec3 d = cosine_direction(n, u(rng), u(rng));
+    if (k % 4 == 1) {
+      const int a = int(k / 4 % 3);
+      d = vec3(k % 8 == 1 ? -0.0 : 0.0, -0.0, 0.0);
+      d[a] = n[a] < 0 ? -1.0 : 1.0;
+    }
+    const float* c = g.sphere(k);
+    const bool outside = k % 5 == 0;
+    float o[3], df[3];
+    for (int a = 0; a < 3; ++a) {
+      o[a] = outside ? float(-3 * d[a]) : c[a] + c[3] * float(n[a]);
+      df[a] = float(d[a]);
+    }
+    const float reach = outside ? 3.0f : 0.0f;
+    const float tmax = k % 3 == 0 ? INFINITY : reach + float(u(rng) * 0.5);
+    const uint32_t skip = outside ? uint32_t(-1) : k;
+    bool want = false;
+    for (uint32_t q = 0; q < g.size() && !want; ++q) want = q != skip && g.blocks(g.position(q), o, df, tmax);
+    ++w.rays;
+    w.blocked += want;
+    w.mismatches += g.occluded(o, df, tmax, skip) != want;
+  }
+  return w;
+}
+
+// The grid's walk finds exactly what testing every sphere finds: on spheres
+// of mixed sizes at random places (most reaching over their cells' faces
+// into others), ...
 TEST(Light, GridWalkFindsWhatTestingEverySphereFinds) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   scene_params p;
   for (int k = 0; k < 3000; ++k)
     p.spheres.push_back(sphere{point3(u(rng) * 4 - 2, u(rng) * 2 - 1, u(rng) * 3 - 8), 0.01 + 0.12 * u(rng) * u(rng)});
-  const scene s = make_scene(p);
-  const sphere_grid g(s);
+  const sphere_grid g(make_scene(p));
   ASSERT_GT(g.references(), 2 * g.size()) << "most spheres should reach into other cells";
-  size_t rays = 0, blocked_rays = 0, mismatches = 0;
-  for (uint32_t k = 0; k < g.size(); ++k) {
-    const vec3 n = unit_vector(vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5));
-    const vec3 d = cosine_direction(n, u(rng), u(rng));
-    const float* c = g.sphere(k);
-    const bool outside = k % 5 == 0;  // from beyond the grid's box, toward its middle
-    float o[3], df[3];
-    for (int a = 0; a < 3; ++a) {
-      o[a] = outside ? float(-3 * d[a]) : c[a] + c[3] * float(n[a]);
-      df[a] = float(d[a]);
-    }
-    const float tmax = k % 3 == 0 ? INFINITY : float(u(rng) * 0.5);
-    const uint32_t skip = outside ? uint32_t(-1) : k;
-    bool want = false;
-    for (uint32_t q = 0; q < g.size() && !want; ++q) want = q != skip && g.blocks(g.position(q), o, df, tmax);
-    ++rays;
-    blocked_rays += want;
-    mismatches += g.occluded(o, df, tmax, skip) != want;
-  }
-  EXPECT_GT(blocked_rays, rays / 10);
-  EXPECT_LT(blocked_rays, rays * 9 / 10);
-  EXPECT_EQ(mismatches, 0u) << "of " << rays << " rays";
+  const walk_count w = walk_against_every_sphere(g, 6);
+  EXPECT_GT(w.blocked, w.rays / 10);
+  EXPECT_LT(w.blocked, w.rays * 9 / 10);
+  EXPECT_EQ(w.mismatches, 0u) << "of " << w.rays << " rays";
+}
+
+// ... on a packed box jittered within lattice cells (its spheres hardly
+// reach into other cells) ...
+TEST(Light, GridWalkFindsWhatTestingEverySphereFindsInAPackedBox) {
+  const sphere_grid g(make_scene(particle_box(2000)));
+  const walk_count w = walk_against_every_sphere(g, 7);
+  EXPECT_GT(w.blocked, w.rays / 10);
+  EXPECT_EQ(w.mismatches, 0u) << "of " << w.rays << " rays";
+}
+
+// ... and on a grid made coarser for a hundred huge spheres among small ones.
+TEST(Light, GridWalkFindsWhatTestingEverySphereFindsInACoarseGrid) {
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  scene_params p;
+  for (int k = 0; k < 1000; ++k)  // small ones over a box, big ones' centres near its middle
+    p.spheres.push_back(k % 5 ? sphere{point3(u(rng) * 4 - 2, u(rng) * 3 - 1.5, u(rng) * 3 - 9.5), 0.05}
+                              : sphere{point3(u(rng) * 0.5 - 0.25, u(rng) * 0.5 - 0.25, u(rng) * 0.5 - 8.25),
+                                       1.2 + 0.1 * u(rng)});
+  const sphere_grid g(make_scene(p));
+  ASSERT_LT(g.cells() * 4, g.size()) << "the grid should have been made coarser";
+  const walk_count w = walk_against_every_sphere(g, 9);
+  EXPECT_GT(w.blocked, w.rays / 10);
+  EXPECT_LT(w.blocked, w.rays * 19 / 20);
+  EXPECT_EQ(w.mismatches, 0u) << "of " << w.rays << " rays";
 }
 
 // The AO directions' turn about the normal, computed without the C
 // library (whose sincosf rounds differently with FMA and without): within
-// 1.5e-7 (a float ulp at 1) of the double cos and sin of 2 pi u, over the
-// whole turn and at its quarter and eighth points (measured: 9.4e-8).
+// 1.5e-7 (about a float ulp at 1, 1.19e-7) of the double cos and sin of
+// 2 pi u, over the whole turn and at its quarter and eighth points
+// (measured: 9.4e-8).
 TEST(Light, TheTurnOfAnAoDirectionIsCosAndSinWithinAFloatUlp) {
   std::vector<float> us = {0.0f, 0.125f, 0.25f, 0.375f, 0.5f, 0.625f, 0.75f, 0.875f, std::nextafter(1.0f, 0.0f),
                            1e-30f, 0x1p-24f};

@@ -15,8 +15,9 @@
 // (whose boxes would list them in most cells) gets a coarser grid.
 //
 // Memory: 20 bytes a sphere (centre, radius and position), 4 bytes a
-// reference from another cell (up to 7 a sphere in a packed box, none in
-// the bench's lattice-jittered box, about half a sphere in its clouds) and
+// reference from another cell (up to 7 a sphere in a packed box, almost
+// none in the bench's lattice-jittered box, about half a sphere in its
+// clouds) and
 // 8 bytes a cell (about one a sphere): 30 to 60 bytes a sphere.
 #pragma once
 #include <cmath>
