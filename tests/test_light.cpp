@@ -57,6 +57,24 @@ TEST_P(LightBackends, EveryBackendAndThreadCountGivesTheScalarBytes) {
   EXPECT_EQ(render(s, GetParam(), 2, 4).bytes, render(s, backend::scalar, 1, 4).bytes);
 }
 
+// A lit cloud (long shadow rays: the renderer asks the light-space bins,
+// where the packed box's walk the cells) gives the same bytes too.
+TEST_P(LightBackends, ACloudsShadowsThroughTheBinsAreTheScalarBytes) {
+  scene_params p = particle_cloud(3000);
+  p.camera.image_width = 192;
+  p.camera.image_height = 108;
+  for (sphere& sp : p.spheres) sp.shade = shading::lit;
+  p.light.direction = vec3(-0.5, 1.0, 0.3);
+  p.light.shadows = true;
+  scene s = make_scene(p);
+  ASSERT_GT(sphere_grid(s, false).free_path(), sphere_grid::short_free_path);
+  const image want = render(s, backend::scalar);
+  EXPECT_EQ(render(s, GetParam()).bytes, want.bytes);
+  EXPECT_EQ(render(s, GetParam(), 2).bytes, want.bytes);
+  s.light.shadows = false;
+  EXPECT_NE(render(s, GetParam()).bytes, want.bytes) << "some hits should be in shadow";
+}
+
 TEST_P(LightBackends, ARegionIsTheWholeFramesWindow) {
   const scene s = lit_box(3000, 4);
   const image whole = render(s, GetParam());
@@ -237,6 +255,40 @@ TEST(Light, GridWalkFindsWhatTestingEverySphereFindsInACoarseGrid) {
   EXPECT_GT(w.blocked, w.rays / 10);
   EXPECT_LT(w.blocked, w.rays * 19 / 20);
   EXPECT_EQ(w.mismatches, 0u) << "of " << w.rays << " rays";
+}
+
+// Shadow rays ask the bins (light/shadow_bins.h) where rays are long and
+// walk the grid's cells where they are short; both give every ray the same
+// verdict, so the choice changes no byte: from points on the lit sides of
+// a packed box's spheres and of a cloud's.
+TEST(Light, ShadowRaysGetTheSameVerdictsFromTheBinsAndTheCells) {
+  const scene box = lit_box(3000, 0);
+  scene_params cp = particle_cloud(3000);
+  for (sphere& sp : cp.spheres) sp.shade = shading::lit;
+  const scene cloud = make_scene(cp);
+  const vec3 l = unit_vector(vec3(0.3, 1.0, 0.6));
+  const float lf[3] = {float(l.x), float(l.y), float(l.z)};
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (const scene* s : {&box, &cloud}) {
+    const sphere_grid grid(*s);
+    const shadow_bins bins(grid, lf);
+    EXPECT_EQ(grid.free_path() <= sphere_grid::short_free_path, s == &box) << grid.free_path();
+    size_t rays = 0, shadowed = 0, differ = 0;
+    for (uint32_t k = 0; k < s->spheres.size(); ++k)
+      for (int q = 0; q < 8; ++q) {
+        const vec3 n = cosine_direction(l, u(rng), u(rng));
+        const float* c = grid.sphere(k);
+        float pf[3];
+        for (int a = 0; a < 3; ++a) pf[a] = c[a] + c[3] * float(n[a]);
+        const bool by_bins = bins.occluded(pf, k);
+        ++rays;
+        shadowed += by_bins;
+        differ += by_bins != grid.occluded(pf, lf, INFINITY, k);
+      }
+    EXPECT_GT(shadowed, rays / 20);
+    EXPECT_EQ(differ, 0u) << "of " << rays << " rays";
+  }
 }
 
 // The AO directions' turn about the normal, computed without the C

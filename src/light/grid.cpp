@@ -38,12 +38,24 @@ sphere_grid::sphere_grid(const scene& s, bool cells) {
   std::frexp(half, &scale_exp);  // half < 2^scale_exp
   const double unit = std::ldexp(1.0, -scale_exp);  // a power of two: the products are exact
   spheres_.resize(n * 4);
+  double cross_section = 0, volume = 1;  // grid units
   for (size_t k = 0; k < n; ++k) {
     const raycast::sphere sp = s.sphere_at(k);
     for (int a = 0; a < 3; ++a) spheres_[k * 4 + a] = float((sp.center[a] - origin[a]) * unit);
     spheres_[k * 4 + 3] = float(sp.radius * unit);
+    cross_section += double(spheres_[k * 4 + 3]) * double(spheres_[k * 4 + 3]);
   }
-  if (cells) build_cells(lo, hi);
+  for (int a = 0; a < 3; ++a) {
+    box_lo_[a] = lo[a], box_hi_[a] = hi[a];
+    volume *= std::ldexp(hi[a] - lo[a], -scale_exp);
+  }
+  cross_section *= 3.14159265358979323846;
+  free_path_ = cross_section > 0 ? volume / cross_section / std::cbrt(volume / double(n)) : std::numeric_limits<double>::infinity();
+  if (cells) build_cells(box_lo_, box_hi_);
+}
+
+void sphere_grid::build_cells() {
+  if (!has_cells() && size() > 0) build_cells(box_lo_, box_hi_);
 }
 
 double sphere_grid::typical_radius() const {

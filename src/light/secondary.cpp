@@ -62,7 +62,9 @@ float light_lane(const secondary_rays& r, const lit_lanes& ls, int l) {
   for (int c = 0; c < 3; ++c) p[c] = s[c] + s[3] * (inside ? -n[c] : n[c]);
   const uint32_t skip = inside ? uint32_t(-1) : k;
   float shadow = 1.0f;
-  if (r.shadows && ls.diffuse[l] > 0.0f && r.bins->occluded(p, skip)) shadow = 0.0f;
+  if (r.shadows && ls.diffuse[l] > 0.0f &&
+      (r.bins ? r.bins->occluded(p, skip) : g.occluded(p, r.light, std::numeric_limits<float>::infinity(), skip)))
+    shadow = 0.0f;
   float ambient = 1.0f;
   if (r.ao.count > 0) {
     uint32_t open = 0;

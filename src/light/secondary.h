@@ -26,7 +26,7 @@ namespace raycast {
 // What a render's lit spheres need beyond the kernel's N . L (built once per render).
 struct secondary_rays {
   const sphere_grid* grid = nullptr;
-  const shadow_bins* bins = nullptr;  // the shadow rays' structure (shadows only)
+  const shadow_bins* bins = nullptr;  // the shadow rays' structure, or none: they walk the grid's cells
   float light[3] = {0, 0, 0};  // unit, toward the light (shadows)
   bool shadows = false;
   sampling::ao_plan ao;        // ao.count rays a hit; 0: none

@@ -17,9 +17,9 @@ float dot(const float a[3], const float* b) { return (a[0] * b[0] + a[1] * b[1])
 
 // The spheres' positions in the order of their reach, ties by position: a
 // stable radix sort on the floats' bits, two 16-bit digits.
-out_of_order_array<uint32_t> by_reach(const out_of_order_array<uint32_t>& key) {
+std::vector<uint32_t> by_reach(const std::vector<uint32_t>& key) {
   const size_t n = key.size();
-  out_of_order_array<uint32_t> order(n), next(n);
+  std::vector<uint32_t> order(n), next(n);
   for (size_t k = 0; k < n; ++k) order[k] = uint32_t(k);
   for (int shift : {0, 16}) {
     std::vector<size_t> count((1 << 16) + 1, 0);
@@ -63,51 +63,48 @@ void shadow_bins::bin(const float hi[2]) {
   // them (4 at one diameter, for a tenth more time and 35 bytes a sphere
   // more); the entries are each cell's candidates, whose test is the same.
   double g = std::max(std::sqrt(double(hi[0] - lo_[0]) * double(hi[1] - lo_[1]) / double(n)), 4 * grid_->typical_radius());
+  double inv = 1.0 / g;
   const auto range_of = [&](const entry& e, int r[4]) {  // the cells of a disc: x0, x1, y0, y1
     const float p[2] = {e.u, e.v};
     for (int a = 0; a < 2; ++a) {
-      r[2 * a] = std::clamp(int((double(p[a]) - e.r - lo_[a]) / g), 0, dims_[a] - 1);
-      r[2 * a + 1] = std::clamp(int((double(p[a]) + e.r - lo_[a]) / g), 0, dims_[a] - 1);
+      r[2 * a] = std::clamp(int((double(p[a]) - e.r - lo_[a]) * inv), 0, dims_[a] - 1);
+      r[2 * a + 1] = std::clamp(int((double(p[a]) + e.r - lo_[a]) * inv), 0, dims_[a] - 1);
     }
   };
-  for (;;) {  // coarser until the entries fit
-    for (int a = 0; a < 2; ++a) dims_[a] = int(std::clamp(std::ceil((hi[a] - lo_[a]) / g), 1.0, double(1 << 15)));
-    size_t total = 0;
-    for (size_t k = 0; k < n && total <= max_entries; ++k) {
-      int r[4];
-      range_of(entry_of(uint32_t(k)), r);
-      total += size_t(r[1] - r[0] + 1) * size_t(r[3] - r[2] + 1);
-    }
-    if (total <= max_entries && total <= 64 * n + 4096) break;
-    g *= 2;
-  }
-  inv_g_ = float(1.0 / g);
-  const size_t cells = size_t(dims_[0]) * size_t(dims_[1]);
-  first_.assign(cells + 1, 0);
   const auto each_cell = [&](const entry& e, auto&& f) {
     int r[4];
     range_of(e, r);
     for (int y = r[2]; y <= r[3]; ++y)
       for (int x = r[0]; x <= r[1]; ++x) f(size_t(x) + size_t(dims_[0]) * size_t(y));
   };
-  out_of_order_array<uint32_t> key(n);  // the reaches' order as unsigned integers
-  for (size_t k = 0; k < n; ++k) {
-    const entry e = entry_of(uint32_t(k));
-    each_cell(e, [&](size_t c) { ++first_[c + 1]; });
-    uint32_t b;
-    std::memcpy(&b, &e.reach, sizeof b);
-    key[k] = (b >> 31) ? ~b : b | 0x80000000u;
+  std::vector<uint32_t> key(n);  // the reaches' order as unsigned integers
+  for (;;) {  // each cell's count; coarser until the entries fit
+    for (int a = 0; a < 2; ++a) dims_[a] = int(std::clamp(std::ceil((hi[a] - lo_[a]) * inv), 1.0, double(1 << 15)));
+    first_.assign(size_t(dims_[0]) * size_t(dims_[1]) + 1, 0);
+    size_t total = 0;
+    for (size_t k = 0; k < n && total <= max_entries; ++k) {
+      const entry e = entry_of(uint32_t(k));
+      each_cell(e, [&](size_t c) { ++first_[c + 1], ++total; });
+      uint32_t b;
+      std::memcpy(&b, &e.reach, sizeof b);
+      key[k] = (b >> 31) ? ~b : b | 0x80000000u;
+    }
+    if (total <= max_entries && total <= 64 * n + 4096) break;
+    g *= 2, inv = 1.0 / g;
   }
+  inv_g_ = float(inv);
+  const size_t cells = first_.size() - 1;
   for (size_t c = 0; c < cells; ++c) first_[c + 1] += first_[c];
   entries_.resize(first_[cells]);
   // Filled in the order of reach (ties by position), so that each cell's
   // list comes out sorted. Each entry is computed again from its sphere
   // (the same floats): no array of them outlives a step.
-  const out_of_order_array<uint32_t> order = by_reach(key);
+  const std::vector<uint32_t> order = by_reach(key);
   key = {};
-  out_of_order_array<uint32_t> fill(first_.begin(), first_.end() - 1);
-  for (uint32_t k : order) {
-    const entry e = entry_of(k);
+  std::vector<uint32_t> fill(first_.begin(), first_.end() - 1);
+  for (size_t i = 0; i < n; ++i) {
+    if (i + 16 < n) __builtin_prefetch(grid_->at(order[i + 16]));
+    const entry e = entry_of(order[i]);
     each_cell(e, [&](size_t c) { entries_[fill[c]++] = e; });
   }
 }

@@ -53,7 +53,7 @@ class shadow_bins {
   float lo_[2] = {0, 0}, inv_g_ = 1;
   int dims_[2] = {0, 0};
   out_of_order_array<uint32_t> first_;  // cells + 1
-  out_of_order_array<entry> entries_;
+  std::vector<entry> entries_;
 };
 
 }  // namespace raycast

@@ -138,11 +138,15 @@ void renderer::set_light(const scene& s) {
     for (int k = 0; k < 3; ++k) light_[k] = float(l[k]);
   }
   if (s.light.secondary()) {
-    grid_.emplace(s, s.light.ao_samples > 0);  // the cells for AO rays; shadows ask the bins
+    grid_.emplace(s, s.light.ao_samples > 0);  // the cells for AO rays
     secondary_.grid = &*grid_;
     for (int k = 0; k < 3; ++k) secondary_.light[k] = light_[k];
     secondary_.shadows = s.light.shadows;
-    if (s.light.shadows) secondary_.bins = &bins_.emplace(*grid_, light_);
+    // Shadow rays walk the cells where a ray meets a sphere within a few of
+    // them (a packed box: as fast as the bins, without their build), and ask
+    // light-space bins where rays are long (clouds).
+    if (s.light.shadows && grid_->free_path() <= sphere_grid::short_free_path) grid_->build_cells();
+    else if (s.light.shadows) secondary_.bins = &bins_.emplace(*grid_, light_);
     secondary_.ao = ao_;
     secondary_.ao_distance = float(std::ldexp(s.light.ao_distance, -grid_->scale_exp));
   }
