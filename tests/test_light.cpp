@@ -58,7 +58,8 @@ TEST_P(LightBackends, EveryBackendAndThreadCountGivesTheScalarBytes) {
 }
 
 // A lit cloud (long shadow rays: the renderer asks the light-space bins,
-// where the packed box's walk the cells) gives the same bytes too.
+// where the packed box's, its AO cells built, walk those) gives the same
+// bytes too.
 TEST_P(LightBackends, ACloudsShadowsThroughTheBinsAreTheScalarBytes) {
   scene_params p = particle_cloud(3000);
   p.camera.image_width = 192;

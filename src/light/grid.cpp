@@ -45,17 +45,11 @@ sphere_grid::sphere_grid(const scene& s, bool cells) {
     spheres_[k * 4 + 3] = float(sp.radius * unit);
     cross_section += double(spheres_[k * 4 + 3]) * double(spheres_[k * 4 + 3]);
   }
-  for (int a = 0; a < 3; ++a) {
-    box_lo_[a] = lo[a], box_hi_[a] = hi[a];
-    volume *= std::ldexp(hi[a] - lo[a], -scale_exp);
-  }
+  for (int a = 0; a < 3; ++a) volume *= std::ldexp(hi[a] - lo[a], -scale_exp);
   cross_section *= 3.14159265358979323846;
-  free_path_ = cross_section > 0 ? volume / cross_section / std::cbrt(volume / double(n)) : std::numeric_limits<double>::infinity();
-  if (cells) build_cells(box_lo_, box_hi_);
-}
-
-void sphere_grid::build_cells() {
-  if (!has_cells() && size() > 0) build_cells(box_lo_, box_hi_);
+  free_path_ = cross_section > 0 ? volume / cross_section / std::cbrt(volume / double(n))
+                                 : std::numeric_limits<double>::infinity();
+  if (cells) build_cells(lo, hi);
 }
 
 double sphere_grid::typical_radius() const {

@@ -36,9 +36,6 @@ class sphere_grid {
   // Over every sphere of s; without `cells`, the spheres alone (in the
   // grid's frame, for shadow_bins), and occluded() is never asked.
   explicit sphere_grid(const scene& s, bool cells = true);
-  // The cells, for a grid built without them (before any structure reads
-  // positions: building them moves the spheres).
-  void build_cells();
   bool has_cells() const { return !first_.empty(); }
 
   // A ray's mean free path among the spheres, in mean spacings: the box's
@@ -46,7 +43,8 @@ class sphere_grid {
   // cube root of the volume a sphere. About 1.8 in a box packed at 0.3,
   // 30 and more in the bench's clouds. Below short_free_path a ray meets a
   // sphere (or leaves) within a few cells, and the renderer's shadow rays
-  // walk the cells instead of asking light-space bins (light/README.md).
+  // walk the cells, where it built them, instead of asking light-space
+  // bins (light/README.md).
   double free_path() const { return free_path_; }
   static constexpr double short_free_path = 3;
 
@@ -98,7 +96,6 @@ class sphere_grid {
 
  private:
   void build_cells(const double lo[3], const double hi[3]);
-  double box_lo_[3] = {0, 0, 0}, box_hi_[3] = {0, 0, 0};  // the spheres' bounds (world)
   double free_path_ = 0;
   void sort_by_home_cell(double h);
   bool cell_occluded(size_t c, const float o[3], const float d[3], float tmax, uint32_t skip) const;

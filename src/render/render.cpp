@@ -142,11 +142,13 @@ void renderer::set_light(const scene& s) {
     secondary_.grid = &*grid_;
     for (int k = 0; k < 3; ++k) secondary_.light[k] = light_[k];
     secondary_.shadows = s.light.shadows;
-    // Shadow rays walk the cells where a ray meets a sphere within a few of
-    // them (a packed box: as fast as the bins, without their build), and ask
-    // light-space bins where rays are long (clouds).
-    if (s.light.shadows && grid_->free_path() <= sphere_grid::short_free_path) grid_->build_cells();
-    else if (s.light.shadows) secondary_.bins = &bins_.emplace(*grid_, light_);
+    // Where AO built the cells and a ray meets a sphere within a few of them
+    // (a packed box), shadow rays walk them: as fast as the bins there,
+    // without their build. Elsewhere they ask light-space bins: rays in
+    // clouds are long, and without AO the bins cost less to build than the
+    // cells of a packed box of 10^8 random spheres.
+    if (s.light.shadows && !(grid_->has_cells() && grid_->free_path() <= sphere_grid::short_free_path))
+      secondary_.bins = &bins_.emplace(*grid_, light_);
     secondary_.ao = ao_;
     secondary_.ao_distance = float(std::ldexp(s.light.ao_distance, -grid_->scale_exp));
   }
