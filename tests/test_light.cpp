@@ -258,6 +258,12 @@ TEST(Light, GridWalkFindsWhatTestingEverySphereFindsInACoarseGrid) {
   EXPECT_EQ(w.mismatches, 0u) << "of " << w.rays << " rays";
 }
 
+// The point C + r n of sphere k in the grid's frame (n a unit vector).
+void on_sphere(const sphere_grid& g, uint32_t k, const vec3& n, float p[3]) {
+  const float* c = g.sphere(k);
+  for (int a = 0; a < 3; ++a) p[a] = c[a] + c[3] * float(n[a]);
+}
+
 // Shadow rays ask the bins (light/shadow_bins.h) where rays are long and
 // walk the grid's cells where they are short; both give every ray the same
 // verdict, so the choice changes no byte: from points on the lit sides of
@@ -279,9 +285,8 @@ TEST(Light, ShadowRaysGetTheSameVerdictsFromTheBinsAndTheCells) {
     for (uint32_t k = 0; k < s->spheres.size(); ++k)
       for (int q = 0; q < 8; ++q) {
         const vec3 n = cosine_direction(l, u(rng), u(rng));
-        const float* c = grid.sphere(k);
         float pf[3];
-        for (int a = 0; a < 3; ++a) pf[a] = c[a] + c[3] * float(n[a]);
+        on_sphere(grid, k, n, pf);
         const bool by_bins = bins.occluded(pf, k);
         ++rays;
         shadowed += by_bins;
@@ -333,9 +338,8 @@ TEST(Light, ShadowBinVerdictsAgreeWithTheReferenceButForGrazingRays) {
       const vec3 n = cosine_direction(l, u(rng), u(rng));  // a point on the lit side
       const point3 p = sp.center + sp.radius * n;
       const bool want = blocked(s.spheres, p, l, INFINITY, &sp);
-      const float* c = grid.sphere(k);
       float pf[3];
-      for (int a = 0; a < 3; ++a) pf[a] = c[a] + c[3] * float(n[a]);
+      on_sphere(grid, k, n, pf);
       const bool got = bins.occluded(pf, k);
       ++rays;
       shadowed += want;
