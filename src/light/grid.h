@@ -96,7 +96,6 @@ class sphere_grid {
 
  private:
   void build_cells(const double lo[3], const double hi[3]);
-  double free_path_ = 0;
   void sort_by_home_cell(double h);
   bool cell_occluded(size_t c, const float o[3], const float d[3], float tmax, uint32_t skip) const;
   struct walk;
@@ -105,6 +104,7 @@ class sphere_grid {
   float lo_[3] = {0, 0, 0}, hi_[3] = {0, 0, 0};
   float h_ = 1, inv_h_ = 1;  // the cell's side, and 1 / it
   int dims_[3] = {0, 0, 0};
+  double free_path_ = 0;
   out_of_order_array<float> spheres_;   // 4 per sphere, by position
   out_of_order_array<uint32_t> rank_;   // with cells: each sphere's position (empty: the scene's order)
   // Cell c lists the spheres at positions home_[c] .. home_[c + 1] (those

@@ -78,18 +78,19 @@ void shadow_bins::bin(const float hi[2]) {
       for (int x = r[0]; x <= r[1]; ++x) f(size_t(x) + size_t(dims_[0]) * size_t(y));
   };
   std::vector<uint32_t> key(n);  // the reaches' order as unsigned integers
-  for (;;) {  // each cell's count; coarser until the entries fit
+  const size_t most = std::min(max_entries, 64 * n + 4096);
+  for (;;) {  // each cell's count; coarser until the entries fit (a try stops once they cannot)
     for (int a = 0; a < 2; ++a) dims_[a] = int(std::clamp(std::ceil((hi[a] - lo_[a]) * inv), 1.0, double(1 << 15)));
     first_.assign(size_t(dims_[0]) * size_t(dims_[1]) + 1, 0);
     size_t total = 0;
-    for (size_t k = 0; k < n && total <= max_entries; ++k) {
+    for (size_t k = 0; k < n && total <= most; ++k) {
       const entry e = entry_of(uint32_t(k));
       each_cell(e, [&](size_t c) { ++first_[c + 1], ++total; });
       uint32_t b;
       std::memcpy(&b, &e.reach, sizeof b);
       key[k] = (b >> 31) ? ~b : b | 0x80000000u;
     }
-    if (total <= max_entries && total <= 64 * n + 4096) break;
+    if (total <= most) break;
     g *= 2, inv = 1.0 / g;
   }
   inv_g_ = float(inv);
