@@ -286,7 +286,9 @@ TEST(Light, ShadowRaysGetTheSameVerdictsFromTheBinsAndTheCells) {
   for (const scene* s : {&box, &cloud, &huge}) {
     const sphere_grid grid(*s);
     const shadow_bins bins(grid, lf);
-    if (s != &huge) EXPECT_EQ(grid.free_path() <= sphere_grid::short_free_path, s == &box) << grid.free_path();
+    if (s != &huge) {
+      EXPECT_EQ(grid.free_path() <= sphere_grid::short_free_path, s == &box) << grid.free_path();
+    }
     size_t rays = 0, shadowed = 0, differ = 0;
     for (uint32_t k = 0; k < s->spheres.size(); ++k)
       for (int q = 0; q < 8; ++q) {

@@ -50,20 +50,48 @@ void ao_direction(const float n[3], float u1, float u2, float dir[3]) {
 
 namespace {
 
-// One lane: S and A, and the light they make.
-float light_lane(const secondary_rays& r, const lit_lanes& ls, int l) {
-  const sphere_grid& g = *r.grid;
-  const uint32_t k = ls.sphere[l];
-  const float* s = g.sphere(k);
+// Lane l's secondary rays' origin P = C + r n_out (n_out the outward
+// normal: the faced one, turned back inside).
+void origin_of(const secondary_rays& r, const lit_lanes& ls, int l, float p[3]) {
+  const float* s = r.grid->sphere(ls.sphere[l]);
   const bool inside = (ls.inside >> l) & 1u;
+  for (int c = 0; c < 3; ++c) p[c] = s[c] + s[3] * (inside ? -ls.n[c][l] : ls.n[c][l]);
+}
+
+// A batch's rays, their first reads done together (prefetched step by step
+// over the lanes), so that their cache misses overlap instead of following
+// one another: the hit spheres, then the shadow rays' cells and lists.
+struct batch_rays {
+  float p[lit_lanes::most][3];  // each lit lane's origin
+  uint32_t shadowed = 0;         // bit l: lane l casts a shadow ray (through the bins: q[l])
+  shadow_bins::query q[lit_lanes::most];
+
+  batch_rays(const secondary_rays& r, const lit_lanes& ls) {
+    for (uint32_t bits = ls.lit; bits != 0; bits &= bits - 1) {
+      const int l = __builtin_ctz(bits);
+      __builtin_prefetch(r.grid->sphere(ls.sphere[l]));
+      if (r.shadows && ls.diffuse[l] > 0.0f) shadowed |= bits & -bits;
+    }
+    for (uint32_t bits = ls.lit; bits != 0; bits &= bits - 1) origin_of(r, ls, __builtin_ctz(bits), p[__builtin_ctz(bits)]);
+    if (!r.bins) return;
+    for (uint32_t bits = shadowed; bits != 0; bits &= bits - 1) {
+      const int l = __builtin_ctz(bits);
+      q[l] = r.bins->locate(p[l]);
+      r.bins->prefetch(q[l], 0);
+    }
+    for (uint32_t bits = shadowed; bits != 0; bits &= bits - 1) r.bins->prefetch(q[__builtin_ctz(bits)], 1);
+  }
+};
+
+// One lane: S and A, and the light they make.
+float light_lane(const secondary_rays& r, const lit_lanes& ls, const batch_rays& b, int l) {
+  const sphere_grid& g = *r.grid;
   const float n[3] = {ls.n[0][l], ls.n[1][l], ls.n[2][l]};
-  // P = C + r n_out, n_out the outward normal (the faced one, turned back inside).
-  float p[3];
-  for (int c = 0; c < 3; ++c) p[c] = s[c] + s[3] * (inside ? -n[c] : n[c]);
-  const uint32_t skip = inside ? uint32_t(-1) : k;
+  const float* p = b.p[l];
+  const uint32_t skip = (ls.inside >> l) & 1u ? uint32_t(-1) : ls.sphere[l];
   float shadow = 1.0f;
-  if (r.shadows && ls.diffuse[l] > 0.0f &&
-      (r.bins ? r.bins->occluded(p, skip) : g.occluded(p, r.light, std::numeric_limits<float>::infinity(), skip)))
+  if ((b.shadowed >> l) & 1u &&
+      (r.bins ? r.bins->occluded(b.q[l], p, skip) : g.occluded(p, r.light, std::numeric_limits<float>::infinity(), skip)))
     shadow = 0.0f;
   float ambient = 1.0f;
   if (r.ao.count > 0) {
@@ -83,9 +111,10 @@ float light_lane(const secondary_rays& r, const lit_lanes& ls, int l) {
 }  // namespace
 
 void light_lanes(const secondary_rays& r, const lit_lanes& ls, float light[lit_lanes::most]) {
+  const batch_rays b(r, ls);
   for (uint32_t bits = ls.lit; bits != 0; bits &= bits - 1) {
     const int l = __builtin_ctz(bits);
-    light[l] = light_lane(r, ls, l);
+    light[l] = light_lane(r, ls, b, l);
   }
 }
 

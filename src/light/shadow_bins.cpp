@@ -110,22 +110,34 @@ void shadow_bins::bin(const float hi[2]) {
   }
 }
 
-bool shadow_bins::occluded(const float p[3], uint32_t skip_index) const {
-  if (entries_.empty()) return false;
-  const uint32_t skip = skip_index < grid_->size() ? grid_->position(skip_index) : skip_index;
-  const float u = dot(u_, p), v = dot(v_, p);
-  const float pu = (u - lo_[0]) * inv_g_, pv = (v - lo_[1]) * inv_g_;
-  if (!(pu >= 0.0f && pv >= 0.0f)) return false;  // outside every disc (or NaN)
+shadow_bins::query shadow_bins::locate(const float p[3]) const {
+  query q{none, dot(u_, p), dot(v_, p), dot(l_, p)};
+  const float pu = (q.u - lo_[0]) * inv_g_, pv = (q.v - lo_[1]) * inv_g_;
+  if (entries_.empty() || !(pu >= 0.0f && pv >= 0.0f)) return q;  // outside every disc (or NaN)
   const int x = int(pu), y = int(pv);
-  if (x >= dims_[0] || y >= dims_[1]) return false;
-  const size_t c = size_t(x) + size_t(dims_[0]) * size_t(y);
+  if (x < dims_[0] && y < dims_[1]) q.cell = size_t(x) + size_t(dims_[0]) * size_t(y);
+  return q;
+}
+
+void shadow_bins::prefetch(const query& q, int step) const {
+  if (q.cell == none) return;
+  if (step == 0) __builtin_prefetch(&first_[q.cell]);
+  else if (first_[q.cell + 1] > first_[q.cell]) __builtin_prefetch(entries_.data() + first_[q.cell + 1] - 1);
+}
+
+bool shadow_bins::occluded(const query& q, const float p[3], uint32_t skip_index) const {
+  if (q.cell == none) return false;
+  const size_t c = q.cell;
+  const float u = q.u, v = q.v, depth = q.depth;
+  const uint32_t skip = skip_index < grid_->size() ? grid_->position(skip_index) : skip_index;
   const entry* begin = entries_.data() + first_[c];
   const entry* end = entries_.data() + first_[c + 1];
-  // The spheres that reach past P along L (the rest lie wholly behind it).
-  const float depth = dot(l_, p);
-  const entry* e = std::lower_bound(begin, end, depth, [](const entry& a, float d) { return a.reach < d; });
+  // The spheres that reach past P along L, from the far end of the list
+  // down to the first that ends before P (it and the rest lie wholly
+  // behind it): no search, and each of them is tested anyway.
   const float inf = std::numeric_limits<float>::infinity();
-  for (; e != end; ++e) {
+  for (const entry* e = end; e != begin && e[-1].reach >= depth;) {
+    --e;
     const float du = u - e->u, dv = v - e->v;
     if (du * du + dv * dv > e->r * e->r) continue;  // the ray passes outside its disc
     if (e->k != skip && grid_->blocks(e->k, p, l_, inf)) return true;

@@ -4,10 +4,10 @@
 // a 2-D grid over the plane across L, each sphere listed in every cell its
 // disc (widened by 2^-20 of the grid) overlaps, each cell's list sorted by
 // how far along L the sphere reaches, C . L + r. A shadow ray from P looks
-// up the one cell that P's projection falls in, skips the spheres that end
-// before P (C . L + r < P . L: wholly behind it), and tests the rest in
-// order with the grid's own test (light/grid.h), stopping at the first that
-// blocks. Only the candidates differ from the 3-D walk's, never the test,
+// up the one cell that P's projection falls in and tests its spheres from
+// the far end of the list down with the grid's own test (light/grid.h),
+// stopping at the first that blocks or that ends before P
+// (C . L + r < P . L: it and the rest lie wholly behind it). Only the candidates differ from the 3-D walk's, never the test,
 // so the verdicts are the same.
 //
 // Built only for shadows, in the sphere grid's frame; about one cell a
@@ -32,9 +32,23 @@ class shadow_bins {
   // light: the unit direction toward the light, in the grid's frame (the world's axes).
   shadow_bins(const sphere_grid& grid, const float light[3]);
 
-  // Whether the ray from p (grid frame) along the light meets a sphere's
-  // ball but sphere skip's (its index in the scene).
-  bool occluded(const float p[3], uint32_t skip) const;
+  // Where a shadow ray from p (grid frame) looks: the cell p projects to
+  // (none: outside every disc), and p's coordinates across L and along it.
+  struct query {
+    size_t cell;
+    float u, v, depth;
+  };
+  static constexpr size_t none = ~size_t(0);
+  query locate(const float p[3]) const;
+  // Prefetches what occluded(q) reads, in two steps over a batch's rays
+  // (0: the cell's bounds, 1: the end of its list, where the scan starts),
+  // so that their cache misses overlap instead of following one another.
+  void prefetch(const query& q, int step) const;
+
+  // Whether the ray from p along the light meets a sphere's ball but
+  // sphere skip's (its index in the scene); q = locate(p).
+  bool occluded(const query& q, const float p[3], uint32_t skip) const;
+  bool occluded(const float p[3], uint32_t skip) const { return occluded(locate(p), p, skip); }
 
   size_t bytes() const { return first_.size() * 4 + entries_.size() * sizeof(entry); }
 
