@@ -687,6 +687,32 @@ TEST_F(Cli, StatsPrintsTimingsRaysAndMemory) {
   EXPECT_NE(r.err.find("(2304 rays)"), std::string::npos) << r.err;
 }
 
+// With shadows or AO, --stats adds what their structures took of prepare.
+TEST_F(Cli, StatsSayWhatTheLightsStructuresTook) {
+  write_file(box.work() / "s.json", R"({"camera": {"width": 32, "height": 18},
+      "spheres": [{"center": [0, 0, -1], "radius": 0.5, "shade": "lit", "color": [0.8, 0.3, 0.3]},
+                  {"center": [0, -100.5, -1], "radius": 100, "shade": "lit", "color": [0.8, 0.8, 0.0]}]})");
+  for (const bool lit : {false, true}) {
+    std::vector<std::string> args = {"--scene", "s.json", "-q", "--stats", "-o", "a.ppm"};
+    if (lit) args.insert(args.end(), {"--light", "1,1,1", "--shadows", "--ao", "4"});
+    const run_result r = box.run(args);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const size_t at = r.err.find("\n  light ");
+    EXPECT_EQ(at != std::string::npos, lit) << r.err;
+    if (at == std::string::npos) continue;
+    std::istringstream fields(r.err.substr(at + 1));
+    std::string label;
+    double light = -1, prepare = -1;
+    fields >> label >> light;
+    const size_t p = r.err.find("\n  prepare ");
+    ASSERT_NE(p, std::string::npos);
+    std::istringstream(r.err.substr(p + 11)) >> prepare;
+    EXPECT_GE(light, 0.0);
+    EXPECT_LE(light, prepare) << r.err;
+    EXPECT_NE(r.err.find(" MB for shadow and AO rays)"), std::string::npos) << r.err;
+  }
+}
+
 // Flags take no value: given twice they mean the same as once.
 TEST_F(Cli, FlagsMayBeRepeated) {
   const run_result r = box.run({"-q", "--quiet", "-o", "sky.ppm"});

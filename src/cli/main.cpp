@@ -59,6 +59,8 @@ double seconds_since(clock::time_point t) { return std::chrono::duration<double>
 // What --stats reports, besides the job's load time.
 struct run_stats {
   double prepare = 0, render = 0, write = 0;  // seconds
+  double light = 0;                           // of prepare: shadow and AO structures (0: none)
+  size_t light_bytes = 0;
   uint64_t rays = 0;                          // pixels x samples
   size_t spheres = 0;
 };
@@ -67,6 +69,8 @@ int run(cli::job& j, run_stats& st) {
   auto t = clock::now();
   const renderer r(j.sc, j.render);
   st.prepare = seconds_since(t);
+  st.light = r.light_seconds();
+  st.light_bytes = r.light_bytes();
   // The renderer keeps its own copy of the scene: the job's spheres (a scene
   // file's millions) are not needed any more.
   st.spheres = j.sc.arrays ? j.sc.arrays->count : j.sc.spheres.size();
@@ -91,18 +95,20 @@ void print_stats(const cli::job& j, const run_stats& st, double total) {
   rusage ru{};
   getrusage(RUSAGE_SELF, &ru);
   const double rays_per_second = st.render > 0 ? double(st.rays) / st.render : 0.0;
+  std::fprintf(stderr, "raycast stats:\n  load      %10.4f s\n  prepare   %10.4f s\n", j.load_seconds, st.prepare);
+  // Where shadow or AO rays are cast: what their structures took of prepare.
+  if (st.light_bytes > 0)
+    std::fprintf(stderr, "  light     %10.4f s  (of prepare: %.1f MB for shadow and AO rays)\n", st.light,
+                 double(st.light_bytes) / 1e6);
   std::fprintf(stderr,
-               "raycast stats:\n"
-               "  load      %10.4f s\n"
-               "  prepare   %10.4f s\n"
                "  render    %10.4f s\n"
                "  write     %10.4f s\n"
                "  total     %10.4f s\n"
                "  rays/s    %10.4g  (%llu rays)\n"
                "  spheres   %10zu\n"
                "  peak RSS  %10.1f MB\n",
-               j.load_seconds, st.prepare, st.render, st.write, total, rays_per_second,
-               static_cast<unsigned long long>(st.rays), st.spheres, double(ru.ru_maxrss) * 1024.0 / 1e6);
+               st.render, st.write, total, rays_per_second, static_cast<unsigned long long>(st.rays), st.spheres,
+               double(ru.ru_maxrss) * 1024.0 / 1e6);
 }
 
 

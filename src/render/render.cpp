@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <mutex>
@@ -138,6 +139,7 @@ void renderer::set_light(const scene& s) {
     for (int k = 0; k < 3; ++k) light_[k] = float(l[k]);
   }
   if (s.light.secondary()) {
+    const auto start = std::chrono::steady_clock::now();
     grid_.emplace(s, s.light.ao_samples > 0);  // the cells for AO rays
     secondary_.grid = &*grid_;
     for (int k = 0; k < 3; ++k) secondary_.light[k] = light_[k];
@@ -151,6 +153,7 @@ void renderer::set_light(const scene& s) {
       secondary_.bins = &bins_.emplace(*grid_, light_);
     secondary_.ao = ao_;
     secondary_.ao_distance = float(std::ldexp(s.light.ao_distance, -grid_->scale_exp));
+    light_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   plan_->set_light(s.light.direction ? light_ : nullptr, s.light.secondary() ? &secondary_ : nullptr);
 }

@@ -54,6 +54,11 @@ class renderer {
   int threads() const { return threads_; }
   uint32_t samples() const { return samples_ ? samples_->plan().count : 1; }
   const camera& cam() const { return scene_.cam; }
+  // Seconds the constructor spent on the structures of shadow and AO rays
+  // (light/: the grid, the light's bins; 0 where the scene casts none), and
+  // their bytes.
+  double light_seconds() const { return light_seconds_; }
+  size_t light_bytes() const { return (grid_ ? grid_->bytes() : 0) + (bins_ ? bins_->bytes() : 0); }
 
   // Fills the band's pixels (any rows of the image, and any column window:
   // image_band), the same bytes whatever the thread count, band or window.
@@ -82,6 +87,7 @@ class renderer {
   std::optional<sphere_grid> grid_;
   std::optional<shadow_bins> bins_;
   secondary_rays secondary_;
+  double light_seconds_ = 0;
 };
 
 // Number of threads "all cores" means here.
