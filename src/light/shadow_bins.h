@@ -7,8 +7,9 @@
 // up the one cell that P's projection falls in and tests its spheres from
 // the far end of the list down with the grid's own test (light/grid.h),
 // stopping at the first that blocks or that ends before P
-// (C . L + r < P . L: it and the rest lie wholly behind it). Only the candidates differ from the 3-D walk's, never the test,
-// so the verdicts are the same.
+// (C . L + r < P . L: it and the rest lie wholly behind it). Only the
+// candidates differ from the 3-D walk's, never the test, so the verdicts
+// are the same.
 //
 // Built only for shadows, in the sphere grid's frame; about one cell a
 // sphere, and no smaller than twice a typical sphere's diameter (light/grid.h).
