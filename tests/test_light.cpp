@@ -13,6 +13,7 @@
 #include "backend_test.h"
 #include "cloud.h"
 #include "light/grid.h"
+#include "light/key_sort.h"
 #include "light/secondary.h"
 #include "light/shadow_bins.h"
 #include "reference/hittable.h"
@@ -272,21 +273,37 @@ void on_sphere(const sphere_grid& g, uint32_t k, const vec3& n, float p[3]) {
 // Shadow rays ask the bins (light/shadow_bins.h) where rays are long and
 // walk the grid's cells where they are short; both give every ray the same
 // verdict, so the choice changes no byte: from points on the lit sides of
-// a packed box's spheres, a cloud's, and huge spheres' among small ones
-// (whose bins are made coarser).
+// a packed box's spheres, a cloud's, huge spheres' among small ones (whose
+// bins are made coarser), and a column of spheres along the light among
+// others (its cells list hundreds, each sorted by reach on its own).
+scene column_along(const vec3& l) {
+  std::mt19937 rng(15);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  scene_params p;
+  for (int k = 0; k < 1000; ++k) {
+    const point3 c = k % 5 < 2 ? point3(u(rng) * 4 - 2, u(rng) * 4 - 2, u(rng) * 4 - 2)
+                               : point3(0.02 * u(rng), 0.02 * u(rng), 0.02 * u(rng)) + (u(rng) * 8 - 4) * l;
+    p.spheres.push_back(sphere{c, 0.01 + 0.02 * u(rng)});
+  }
+  for (sphere& sp : p.spheres) sp.shade = shading::lit;
+  return make_scene(p);
+}
+
 TEST(Light, ShadowRaysGetTheSameVerdictsFromTheBinsAndTheCells) {
-  const scene box = lit_box(3000, 0), huge = huge_among_small();
+  const vec3 l = unit_vector(vec3(0.3, 1.0, 0.6));
+  const scene box = lit_box(3000, 0), huge = huge_among_small(), column = column_along(l);
   scene_params cp = particle_cloud(3000);
   for (sphere& sp : cp.spheres) sp.shade = shading::lit;
   const scene cloud = make_scene(cp);
-  const vec3 l = unit_vector(vec3(0.3, 1.0, 0.6));
   const float lf[3] = {float(l.x), float(l.y), float(l.z)};
   std::mt19937 rng(12);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  for (const scene* s : {&box, &cloud, &huge}) {
+  for (const scene* s : {&box, &cloud, &huge, &column}) {
     const sphere_grid grid(*s);
     const shadow_bins bins(grid, lf);
-    if (s != &huge) {
+    if (s == &column) {
+      EXPECT_GT(bins.longest_list(), 300u);
+    } else if (s != &huge) {
       EXPECT_EQ(grid.free_path() <= sphere_grid::short_free_path, s == &box) << grid.free_path();
     }
     size_t rays = 0, shadowed = 0, differ = 0;
@@ -303,6 +320,36 @@ TEST(Light, ShadowRaysGetTheSameVerdictsFromTheBinsAndTheCells) {
     EXPECT_GT(shadowed, rays / 20);
     EXPECT_EQ(differ, 0u) << "of " << rays << " rays";
   }
+}
+
+// The bins' and the grid's builds group records by cell with key_sort: the
+// same groups, in the same order within each, as a stable sort by key, over
+// one key, keys in few and in many bands, keys no record has, and records
+// all of one key.
+TEST(Light, KeySortIsAStableSortByKey) {
+  std::mt19937 rng(21);
+  for (size_t keys : {size_t(1), size_t(7), size_t(5000), size_t(300000)})
+    for (size_t n : {size_t(0), size_t(1), size_t(100), size_t(40000), size_t(200000)})
+      for (bool one_key : {false, true}) {
+        std::vector<std::pair<uint32_t, uint32_t>> rec(n);  // key, order given
+        for (size_t i = 0; i < n; ++i) rec[i] = {one_key ? uint32_t(keys / 2) : uint32_t(rng() % keys), uint32_t(i)};
+        key_sort<uint32_t> sort(keys, n);
+        for (const auto& r : rec) sort.count(r.first);
+        out_of_order_array<uint32_t> out, first;
+        sort.start(out);
+        for (const auto& r : rec) sort.put(r.first, r.second);
+        size_t seen = 0;
+        sort.finish(first, [&](uint32_t* b, uint32_t* e) { seen += size_t(e - b); });
+        std::stable_sort(rec.begin(), rec.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        ASSERT_EQ(first.size(), keys + 1);
+        EXPECT_EQ(first[0], 0u);
+        EXPECT_EQ(first[keys], n);
+        EXPECT_EQ(seen, n);
+        size_t bad = 0;
+        for (size_t k = 0; k < keys; ++k)
+          for (uint32_t j = first[k]; j < first[k + 1]; ++j) bad += rec[j].first != k || rec[j].second != out[j];
+        EXPECT_EQ(bad, 0u) << keys << " keys, " << n << " records";
+      }
 }
 
 // The AO directions' turn about the normal, computed without the C

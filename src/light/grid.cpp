@@ -1,5 +1,7 @@
 #include "light/grid.h"
 
+#include "light/key_sort.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -9,6 +11,11 @@ namespace {
 
 constexpr double margin = 0x1p-20;       // grid units: the widening of each sphere's box
 constexpr size_t max_references = size_t(1) << 31;
+
+struct placed {  // a sphere (x y z r) and its index in the scene
+  float s[4];
+  uint32_t k;
+};
 
 // The cells sphere (x, y, z, r) (grid units) overlaps, per axis [c0, c1].
 struct cell_range {
@@ -119,12 +126,12 @@ void sphere_grid::build_cells(const double lo[3], const double hi[3]) {
 }
 
 // The spheres stored in the order of the cells their centres lie in (a
-// stable counting sort), rank_ mapping scene indices to positions, home_
-// each cell's first.
+// stable counting sort, light/key_sort.h), rank_ mapping scene indices to
+// positions, home_ each cell's first.
 void sphere_grid::sort_by_home_cell(double h) {
   const size_t n = size(), cells = size_t(dims_[0]) * size_t(dims_[1]) * size_t(dims_[2]);
   out_of_order_array<uint32_t> home(n);
-  home_.assign(cells + 1, 0);
+  key_sort<placed> sort(cells, n);
   const double inv = 1.0 / h;
   for (size_t k = 0; k < n; ++k) {
     const float* s = &spheres_[k * 4];
@@ -134,17 +141,18 @@ void sphere_grid::sort_by_home_cell(double h) {
       stride *= size_t(dims_[a]);
     }
     home[k] = uint32_t(c);
-    ++home_[c + 1];
+    sort.count(c);
   }
-  for (size_t c = 0; c < cells; ++c) home_[c + 1] += home_[c];
-  out_of_order_array<uint32_t> count(home_.begin(), home_.end() - 1);
+  out_of_order_array<placed> sorted;
+  sort.start(sorted);
+  for (size_t k = 0; k < n; ++k) sort.put(home[k], {{spheres_[k * 4], spheres_[k * 4 + 1], spheres_[k * 4 + 2], spheres_[k * 4 + 3]}, uint32_t(k)});
+  home = {};
+  sort.finish(home_);
   rank_.resize(n);
-  out_of_order_array<float> sorted(n * 4);
-  for (size_t k = 0; k < n; ++k) {
-    rank_[k] = count[home[k]]++;
-    for (int a = 0; a < 4; ++a) sorted[size_t(rank_[k]) * 4 + a] = spheres_[k * 4 + a];
+  for (size_t p = 0; p < n; ++p) {
+    for (int a = 0; a < 4; ++a) spheres_[p * 4 + a] = sorted[p].s[a];
+    rank_[sorted[p].k] = uint32_t(p);
   }
-  spheres_.swap(sorted);
 }
 
 // Whether a sphere of cell c but skip blocks the segment: its own spheres

@@ -1,6 +1,7 @@
 #include "light/shadow_bins.h"
 
 #include "light/frame.h"
+#include "light/key_sort.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,20 +16,48 @@ constexpr size_t max_entries = size_t(1) << 31;
 
 float dot(const float a[3], const float* b) { return (a[0] * b[0] + a[1] * b[1]) + a[2] * b[2]; }
 
-// The spheres' positions in the order of their reach, ties by position: a
-// stable radix sort on the floats' bits, two 16-bit digits.
-std::vector<uint32_t> by_reach(const std::vector<uint32_t>& key) {
-  const size_t n = key.size();
-  std::vector<uint32_t> order(n), next(n);
-  for (size_t k = 0; k < n; ++k) order[k] = uint32_t(k);
-  for (int shift : {0, 16}) {
-    std::vector<size_t> count((1 << 16) + 1, 0);
-    for (uint32_t k : order) ++count[((key[k] >> shift) & 0xffffu) + 1];
-    for (size_t d = 0; d < (1 << 16); ++d) count[d + 1] += count[d];
-    for (uint32_t k : order) next[count[(key[k] >> shift) & 0xffffu]++] = k;
-    order.swap(next);
+// A reach as an unsigned integer of the same order (-0 before +0).
+uint32_t reach_key(float reach) {
+  uint32_t b;
+  std::memcpy(&b, &reach, sizeof b);
+  return (b >> 31) ? ~b : b | 0x80000000u;
+}
+
+// A cell's list in the order of reach, ties by position, sorted while its
+// band is in the cache (light/key_sort.h). Stable, as the list comes in the
+// order of position. A short list: an
+// insertion sort on the keys, the entries moved with them; a longer one:
+// each entry's key and place sorted as one integer (past 96 entries a radix
+// sort of the key's bytes, a byte every key shares skipped), then the
+// entries moved.
+void sort_by_reach(shadow_bins::entry* begin, shadow_bins::entry* end) {
+  const size_t m = size_t(end - begin);
+  if (m <= 16) {
+    uint32_t key[16];
+    for (size_t i = 0; i < m; ++i) {
+      const shadow_bins::entry e = begin[i];
+      const uint32_t k = reach_key(e.reach);
+      size_t j = i;
+      for (; j > 0 && k < key[j - 1]; --j) key[j] = key[j - 1], begin[j] = begin[j - 1];
+      key[j] = k, begin[j] = e;
+    }
+    return;
   }
-  return order;
+  thread_local std::vector<uint64_t> key, next;
+  thread_local std::vector<shadow_bins::entry> was;
+  key.resize(m), next.resize(m);
+  for (size_t i = 0; i < m; ++i) key[i] = uint64_t(reach_key(begin[i].reach)) << 32 | i;
+  if (m <= 96) std::sort(key.begin(), key.end());
+  for (int shift = 32; shift < 64 && m > 96; shift += 8) {
+    uint32_t count[257] = {};
+    for (uint64_t q : key) ++count[((q >> shift) & 0xffu) + 1];
+    if (std::find(count + 1, count + 257, uint32_t(m)) != count + 257) continue;
+    for (int d = 0; d < 256; ++d) count[d + 1] += count[d];
+    for (uint64_t q : key) next[count[(q >> shift) & 0xffu]++] = q;
+    key.swap(next);
+  }
+  was.assign(begin, end);
+  for (size_t i = 0; i < m; ++i) begin[i] = was[uint32_t(key[i])];
 }
 
 }  // namespace
@@ -77,37 +106,31 @@ void shadow_bins::bin(const float hi[2]) {
     for (int y = r[2]; y <= r[3]; ++y)
       for (int x = r[0]; x <= r[1]; ++x) f(size_t(x) + size_t(dims_[0]) * size_t(y));
   };
-  std::vector<uint32_t> key(n);  // the reaches' order as unsigned integers
   const size_t most = std::min(max_entries, 64 * n + 4096);
+  key_sort<entry> sort;
   for (;;) {  // each cell's count; coarser until the entries fit (a try stops once they cannot)
     for (int a = 0; a < 2; ++a) dims_[a] = int(std::clamp(std::ceil((hi[a] - lo_[a]) * inv), 1.0, double(1 << 15)));
-    first_.assign(size_t(dims_[0]) * size_t(dims_[1]) + 1, 0);
+    sort = key_sort<entry>(size_t(dims_[0]) * size_t(dims_[1]), n * 9 / 4);
     size_t total = 0;
-    for (size_t k = 0; k < n && total <= most; ++k) {
-      const entry e = entry_of(uint32_t(k));
-      each_cell(e, [&](size_t c) { ++first_[c + 1], ++total; });
-      uint32_t b;
-      std::memcpy(&b, &e.reach, sizeof b);
-      key[k] = (b >> 31) ? ~b : b | 0x80000000u;
-    }
+    for (size_t k = 0; k < n && total <= most; ++k) each_cell(entry_of(uint32_t(k)), [&](size_t c) { sort.count(c), ++total; });
     if (total <= most) break;
     g *= 2, inv = 1.0 / g;
   }
   inv_g_ = float(inv);
-  const size_t cells = first_.size() - 1;
-  for (size_t c = 0; c < cells; ++c) first_[c + 1] += first_[c];
-  entries_.resize(first_[cells]);
-  // Filled in the order of reach (ties by position), so that each cell's
-  // list comes out sorted. Each entry is computed again from its sphere
-  // (the same floats): no array of them outlives a step.
-  const std::vector<uint32_t> order = by_reach(key);
-  key = {};
-  std::vector<uint32_t> fill(first_.begin(), first_.end() - 1);
-  for (size_t i = 0; i < n; ++i) {
-    if (i + 16 < n) __builtin_prefetch(grid_->at(order[i + 16]));
-    const entry e = entry_of(order[i]);
-    each_cell(e, [&](size_t c) { entries_[fill[c]++] = e; });
+  // Each cell's list, in the order of position, then sorted by reach. Each
+  // entry is computed again from its sphere (the same floats).
+  sort.start(entries_);
+  for (size_t k = 0; k < n; ++k) {
+    const entry e = entry_of(uint32_t(k));
+    each_cell(e, [&](size_t c) { sort.put(c, e); });
   }
+  sort.finish(first_, sort_by_reach);
+}
+
+size_t shadow_bins::longest_list() const {
+  size_t most = 0;
+  for (size_t c = 0; c + 1 < first_.size(); ++c) most = std::max<size_t>(most, first_[c + 1] - first_[c]);
+  return most;
 }
 
 shadow_bins::query shadow_bins::locate(const float p[3]) const {

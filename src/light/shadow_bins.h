@@ -17,7 +17,7 @@
 // more than the margin: the test could not have said otherwise) costs no
 // read of the sphere. Memory: 20 bytes an entry and 4 bytes a cell: with
 // about 2.25 entries a sphere in a packed box, some 50 bytes a sphere (and
-// 12 a sphere while it is built).
+// 9 a sphere while it is built: each entry's cell, light/key_sort.h).
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -52,6 +52,7 @@ class shadow_bins {
   bool occluded(const float p[3], uint32_t skip) const { return occluded(locate(p), p, skip); }
 
   size_t bytes() const { return first_.size() * 4 + entries_.size() * sizeof(entry); }
+  size_t longest_list() const;  // the most entries a cell lists
 
   // A sphere's entry: public for the build's helpers.
   struct entry {
