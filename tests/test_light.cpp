@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <vector>
 
@@ -322,34 +323,79 @@ TEST(Light, ShadowRaysGetTheSameVerdictsFromTheBinsAndTheCells) {
   }
 }
 
+// The grid and the bins are the same built on one thread or several (the
+// renderer builds them on its threads for scenes of 2^15 spheres and more).
+TEST(Light, GridAndBinsAreTheSameOnAnyNumberOfThreads) {
+  const vec3 l = unit_vector(vec3(0.3, 1.0, 0.6));
+  const float lf[3] = {float(l.x), float(l.y), float(l.z)};
+  scene_params cp = particle_cloud(5000);
+  for (sphere& sp : cp.spheres) sp.shade = shading::lit;
+  const scene box = lit_box(5000, 0), cloud = make_scene(cp), column = column_along(l);
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (const scene* s : {&box, &cloud, &column}) {
+    const sphere_grid one(*s, true, 1), three(*s, true, 3);
+    ASSERT_EQ(one.size(), three.size());
+    EXPECT_EQ(one.cells(), three.cells());
+    EXPECT_EQ(one.references(), three.references());
+    EXPECT_EQ(one.free_path(), three.free_path());
+    size_t differ = 0;
+    for (uint32_t k = 0; k < one.size(); ++k)
+      differ += one.position(k) != three.position(k) || std::memcmp(one.at(k), three.at(k), 4 * sizeof(float)) != 0;
+    EXPECT_EQ(differ, 0u);
+    const shadow_bins b1(one, lf, 1), b3(one, lf, 3);
+    EXPECT_EQ(b1.bytes(), b3.bytes());
+    EXPECT_EQ(b1.longest_list(), b3.longest_list());
+    size_t rays = 0, verdicts = 0;
+    for (uint32_t k = 0; k < one.size(); ++k)
+      for (int q = 0; q < 4; ++q) {
+        const vec3 n = cosine_direction(l, u(rng), u(rng));
+        float pf[3];
+        on_sphere(one, k, n, pf);
+        ++rays;
+        verdicts += b1.occluded(pf, k) != b3.occluded(pf, k);
+        verdicts += one.occluded(pf, lf, 0.05f, k) != three.occluded(pf, lf, 0.05f, k);
+      }
+    EXPECT_EQ(verdicts, 0u) << "of " << rays << " rays";
+  }
+}
+
 // The bins' and the grid's builds group records by cell with key_sort: the
 // same groups, in the same order within each, as a stable sort by key, over
-// one key, keys in few and in many bands, keys no record has, and records
-// all of one key.
+// one key, keys in few and in many bands, keys no record has, records all
+// of one key, and records in runs (parts) filled by as many threads or one.
 TEST(Light, KeySortIsAStableSortByKey) {
   std::mt19937 rng(21);
   for (size_t keys : {size_t(1), size_t(7), size_t(5000), size_t(300000)})
     for (size_t n : {size_t(0), size_t(1), size_t(100), size_t(40000), size_t(200000)})
-      for (bool one_key : {false, true}) {
-        std::vector<std::pair<uint32_t, uint32_t>> rec(n);  // key, order given
-        for (size_t i = 0; i < n; ++i) rec[i] = {one_key ? uint32_t(keys / 2) : uint32_t(rng() % keys), uint32_t(i)};
-        key_sort<uint32_t> sort(keys, n);
-        for (const auto& r : rec) sort.count(r.first);
-        out_of_order_array<uint32_t> out, first;
-        sort.start(out);
-        for (const auto& r : rec) sort.put(r.first, r.second);
-        size_t seen = 0;
-        sort.finish(first, [&](uint32_t* b, uint32_t* e) { seen += size_t(e - b); });
-        std::stable_sort(rec.begin(), rec.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-        ASSERT_EQ(first.size(), keys + 1);
-        EXPECT_EQ(first[0], 0u);
-        EXPECT_EQ(first[keys], n);
-        EXPECT_EQ(seen, n);
-        size_t bad = 0;
-        for (size_t k = 0; k < keys; ++k)
-          for (uint32_t j = first[k]; j < first[k + 1]; ++j) bad += rec[j].first != k || rec[j].second != out[j];
-        EXPECT_EQ(bad, 0u) << keys << " keys, " << n << " records";
-      }
+      for (int parts : {1, 3})
+        for (bool one_key : {false, true}) {
+          std::vector<std::pair<uint32_t, uint32_t>> rec(n);  // key, order given
+          for (size_t i = 0; i < n; ++i) rec[i] = {one_key ? uint32_t(keys / 2) : uint32_t(rng() % keys), uint32_t(i)};
+          const auto run = [&](int p) { return std::pair(n * size_t(p) / size_t(parts), n * size_t(p + 1) / size_t(parts)); };
+          key_sort<uint32_t> sort(keys, n, parts);
+          for (int p = 0; p < parts; ++p)
+            for (size_t i = run(p).first; i < run(p).second; ++i) sort.count(p, rec[i].first);
+          out_of_order_array<uint32_t> out, first;
+          sort.start(out);
+#pragma omp parallel for num_threads(parts)
+          for (int p = 0; p < parts; ++p)
+            for (size_t i = run(p).first; i < run(p).second; ++i) sort.put(p, rec[i].first, rec[i].second);
+          size_t seen = 0;
+          sort.finish(first, [&](uint32_t* b, uint32_t* e) {
+#pragma omp atomic
+            seen += size_t(e - b);
+          }, parts);
+          std::stable_sort(rec.begin(), rec.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+          ASSERT_EQ(first.size(), keys + 1);
+          EXPECT_EQ(first[0], 0u);
+          EXPECT_EQ(first[keys], n);
+          EXPECT_EQ(seen, n);
+          size_t bad = 0;
+          for (size_t k = 0; k < keys; ++k)
+            for (uint32_t j = first[k]; j < first[k + 1]; ++j) bad += rec[j].first != k || rec[j].second != out[j];
+          EXPECT_EQ(bad, 0u) << keys << " keys, " << n << " records, " << parts << " parts";
+        }
 }
 
 // The AO directions' turn about the normal, computed without the C

@@ -25,11 +25,12 @@ struct cell_range {
 
 }  // namespace
 
-sphere_grid::sphere_grid(const scene& s, bool cells) {
+sphere_grid::sphere_grid(const scene& s, bool cells, int threads) : threads_(std::max(threads, 1)) {
   const size_t n = s.sphere_count();
   if (n == 0) return;
   double lo[3], hi[3];
   for (int a = 0; a < 3; ++a) lo[a] = std::numeric_limits<double>::infinity(), hi[a] = -lo[a];
+#pragma omp parallel for schedule(static) num_threads(threads_) reduction(min : lo[:3]) reduction(max : hi[:3])
   for (size_t k = 0; k < n; ++k) {
     const raycast::sphere sp = s.sphere_at(k);
     for (int a = 0; a < 3; ++a) {
@@ -45,13 +46,22 @@ sphere_grid::sphere_grid(const scene& s, bool cells) {
   std::frexp(half, &scale_exp);  // half < 2^scale_exp
   const double unit = std::ldexp(1.0, -scale_exp);  // a power of two: the products are exact
   spheres_.resize(n * 4);
-  double cross_section = 0, volume = 1;  // grid units
-  for (size_t k = 0; k < n; ++k) {
-    const raycast::sphere sp = s.sphere_at(k);
-    for (int a = 0; a < 3; ++a) spheres_[k * 4 + a] = float((sp.center[a] - origin[a]) * unit);
-    spheres_[k * 4 + 3] = float(sp.radius * unit);
-    cross_section += double(spheres_[k * 4 + 3]) * double(spheres_[k * 4 + 3]);
+  // The cross-section summed by blocks of 2^16 spheres, in their order: the
+  // same sum on any number of threads.
+  std::vector<double> block((n + 0xffff) >> 16);
+#pragma omp parallel for schedule(static) num_threads(threads_)
+  for (size_t b = 0; b < block.size(); ++b) {
+    double sum = 0;  // grid units
+    for (size_t k = b << 16; k < std::min(n, (b + 1) << 16); ++k) {
+      const raycast::sphere sp = s.sphere_at(k);
+      for (int a = 0; a < 3; ++a) spheres_[k * 4 + a] = float((sp.center[a] - origin[a]) * unit);
+      spheres_[k * 4 + 3] = float(sp.radius * unit);
+      sum += double(spheres_[k * 4 + 3]) * double(spheres_[k * 4 + 3]);
+    }
+    block[b] = sum;
   }
+  double cross_section = 0, volume = 1;
+  for (double x : block) cross_section += x;
   for (int a = 0; a < 3; ++a) volume *= std::ldexp(hi[a] - lo[a], -scale_exp);
   cross_section *= 3.14159265358979323846;
   free_path_ = cross_section > 0 ? volume / cross_section / std::cbrt(volume / double(n))
@@ -91,8 +101,9 @@ void sphere_grid::build_cells(const double lo[3], const double hi[3]) {
   };
   for (;;) {  // coarser until the references fit
     for (int a = 0; a < 3; ++a) dims_[a] = int(std::clamp(std::ceil(size[a] / h), 1.0, double(1 << 20)));
-    size_t total = 0;
-    for (size_t k = 0; k < n && total <= max_references; ++k) total += range_of(k).count();
+    size_t total = 0;  // each sphere's count capped, so that the sum cannot wrap
+#pragma omp parallel for schedule(static) num_threads(threads_) reduction(+ : total)
+    for (size_t k = 0; k < n; ++k) total += std::min(range_of(k).count(), max_references + 1);
     if (total <= max_references && total <= 64 * n + 4096) break;
     h *= 2;
   }
@@ -131,24 +142,35 @@ void sphere_grid::build_cells(const double lo[3], const double hi[3]) {
 void sphere_grid::sort_by_home_cell(double h) {
   const size_t n = size(), cells = size_t(dims_[0]) * size_t(dims_[1]) * size_t(dims_[2]);
   out_of_order_array<uint32_t> home(n);
-  key_sort<placed> sort(cells, n);
+  const int parts = threads_;  // the spheres in one run a thread, the same runs for both passes
+  const auto run = [&](int p, auto&& f) {
+    for (size_t k = n * size_t(p) / size_t(parts), end = n * size_t(p + 1) / size_t(parts); k < end; ++k) f(k);
+  };
+  key_sort<placed> sort(cells, n, parts);
   const double inv = 1.0 / h;
-  for (size_t k = 0; k < n; ++k) {
-    const float* s = &spheres_[k * 4];
-    size_t c = 0, stride = 1;
-    for (int a = 0; a < 3; ++a) {
-      c += size_t(std::clamp(int((double(s[a]) - lo_[a]) * inv), 0, dims_[a] - 1)) * stride;
-      stride *= size_t(dims_[a]);
-    }
-    home[k] = uint32_t(c);
-    sort.count(c);
-  }
-  out_of_order_array<placed> sorted;
+#pragma omp parallel for schedule(static, 1) num_threads(parts)
+  for (int p = 0; p < parts; ++p)
+    run(p, [&](size_t k) {
+      const float* s = &spheres_[k * 4];
+      size_t c = 0, stride = 1;
+      for (int a = 0; a < 3; ++a) {
+        c += size_t(std::clamp(int((double(s[a]) - lo_[a]) * inv), 0, dims_[a] - 1)) * stride;
+        stride *= size_t(dims_[a]);
+      }
+      home[k] = uint32_t(c);
+      sort.count(p, c);
+    });
+  filled_later_array<placed> sorted;
   sort.start(sorted);
-  for (size_t k = 0; k < n; ++k) sort.put(home[k], {{spheres_[k * 4], spheres_[k * 4 + 1], spheres_[k * 4 + 2], spheres_[k * 4 + 3]}, uint32_t(k)});
+#pragma omp parallel for schedule(static, 1) num_threads(parts)
+  for (int p = 0; p < parts; ++p)
+    run(p, [&](size_t k) {
+      sort.put(p, home[k], {{spheres_[k * 4], spheres_[k * 4 + 1], spheres_[k * 4 + 2], spheres_[k * 4 + 3]}, uint32_t(k)});
+    });
   home = {};
-  sort.finish(home_);
+  sort.finish(home_, parts);
   rank_.resize(n);
+#pragma omp parallel for schedule(static) num_threads(parts)
   for (size_t p = 0; p < n; ++p) {
     for (int a = 0; a < 4; ++a) spheres_[p * 4 + a] = sorted[p].s[a];
     rank_[sorted[p].k] = uint32_t(p);

@@ -34,8 +34,9 @@ class sphere_grid {
  public:
   sphere_grid() = default;
   // Over every sphere of s; without `cells`, the spheres alone (in the
-  // grid's frame, for shadow_bins), and occluded() is never asked.
-  explicit sphere_grid(const scene& s, bool cells = true);
+  // grid's frame, for shadow_bins), and occluded() is never asked. Built
+  // on `threads` threads: the same grid on any number.
+  explicit sphere_grid(const scene& s, bool cells = true, int threads = 1);
   bool has_cells() const { return !first_.empty(); }
 
   // A ray's mean free path among the spheres, in mean spacings: the box's
@@ -105,6 +106,7 @@ class sphere_grid {
   float h_ = 1, inv_h_ = 1;  // the cell's side, and 1 / it
   int dims_[3] = {0, 0, 0};
   double free_path_ = 0;
+  int threads_ = 1;
   out_of_order_array<float> spheres_;   // 4 per sphere, by position
   out_of_order_array<uint32_t> rank_;   // with cells: each sphere's position (empty: the scene's order)
   // Cell c lists the spheres at positions home_[c] .. home_[c + 1] (those

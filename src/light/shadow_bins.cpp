@@ -62,22 +62,24 @@ void sort_by_reach(shadow_bins::entry* begin, shadow_bins::entry* end) {
 
 }  // namespace
 
-shadow_bins::shadow_bins(const sphere_grid& grid, const float light[3]) : grid_(&grid) {
+shadow_bins::shadow_bins(const sphere_grid& grid, const float light[3], int threads)
+    : grid_(&grid), threads_(std::max(threads, 1)) {
   for (int k = 0; k < 3; ++k) l_[k] = light[k];
   frame_about(l_, u_, v_);  // the plane's axes
   const size_t n = grid.size();
   if (n == 0) return;
   // The discs' bounds across L.
-  float hi[2];
-  lo_[0] = lo_[1] = std::numeric_limits<float>::infinity();
-  hi[0] = hi[1] = -lo_[0];
+  float lo0 = std::numeric_limits<float>::infinity(), lo1 = lo0, hi0 = -lo0, hi1 = -lo0;
+#pragma omp parallel for schedule(static) num_threads(threads_) reduction(min : lo0, lo1) reduction(max : hi0, hi1)
   for (size_t k = 0; k < n; ++k) {
     const entry e = entry_of(uint32_t(k));
-    lo_[0] = std::min(lo_[0], e.u - e.r - margin);
-    lo_[1] = std::min(lo_[1], e.v - e.r - margin);
-    hi[0] = std::max(hi[0], e.u + e.r + margin);
-    hi[1] = std::max(hi[1], e.v + e.r + margin);
+    lo0 = std::min(lo0, e.u - e.r - margin);
+    lo1 = std::min(lo1, e.v - e.r - margin);
+    hi0 = std::max(hi0, e.u + e.r + margin);
+    hi1 = std::max(hi1, e.v + e.r + margin);
   }
+  lo_[0] = lo0, lo_[1] = lo1;
+  const float hi[2] = {hi0, hi1};
   bin(hi);
 }
 
@@ -107,12 +109,24 @@ void shadow_bins::bin(const float hi[2]) {
       for (int x = r[0]; x <= r[1]; ++x) f(size_t(x) + size_t(dims_[0]) * size_t(y));
   };
   const size_t most = std::min(max_entries, 64 * n + 4096);
+  // The spheres in one run a thread, the same runs for counting and filling.
+  const int parts = threads_;
+  const auto run = [&](int p, auto&& f) {
+    for (size_t k = n * size_t(p) / size_t(parts), end = n * size_t(p + 1) / size_t(parts); k < end; ++k) f(uint32_t(k));
+  };
   key_sort<entry> sort;
   for (;;) {  // each cell's count; coarser until the entries fit (a try stops once they cannot)
     for (int a = 0; a < 2; ++a) dims_[a] = int(std::clamp(std::ceil((hi[a] - lo_[a]) * inv), 1.0, double(1 << 15)));
-    sort = key_sort<entry>(size_t(dims_[0]) * size_t(dims_[1]), n * 9 / 4);
+    sort = key_sort<entry>(size_t(dims_[0]) * size_t(dims_[1]), n * 9 / 4, parts);
     size_t total = 0;
-    for (size_t k = 0; k < n && total <= most; ++k) each_cell(entry_of(uint32_t(k)), [&](size_t c) { sort.count(c), ++total; });
+#pragma omp parallel for schedule(static, 1) num_threads(parts) reduction(+ : total)
+    for (int p = 0; p < parts; ++p) {
+      size_t mine = 0;
+      run(p, [&](uint32_t k) {
+        if (mine <= most) each_cell(entry_of(k), [&](size_t c) { sort.count(p, c), ++mine; });
+      });
+      total += mine;
+    }
     if (total <= most) break;
     g *= 2, inv = 1.0 / g;
   }
@@ -120,11 +134,13 @@ void shadow_bins::bin(const float hi[2]) {
   // Each cell's list, in the order of position, then sorted by reach. Each
   // entry is computed again from its sphere (the same floats).
   sort.start(entries_);
-  for (size_t k = 0; k < n; ++k) {
-    const entry e = entry_of(uint32_t(k));
-    each_cell(e, [&](size_t c) { sort.put(c, e); });
-  }
-  sort.finish(first_, sort_by_reach);
+#pragma omp parallel for schedule(static, 1) num_threads(parts)
+  for (int p = 0; p < parts; ++p)
+    run(p, [&](uint32_t k) {
+      const entry e = entry_of(k);
+      each_cell(e, [&](size_t c) { sort.put(p, c, e); });
+    });
+  sort.finish(first_, sort_by_reach, parts);
 }
 
 size_t shadow_bins::longest_list() const {

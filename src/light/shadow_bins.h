@@ -30,8 +30,9 @@ namespace raycast {
 class shadow_bins {
  public:
   shadow_bins() = default;
-  // light: the unit direction toward the light, in the grid's frame (the world's axes).
-  shadow_bins(const sphere_grid& grid, const float light[3]);
+  // light: the unit direction toward the light, in the grid's frame (the
+  // world's axes); built on `threads` threads (the same bins on any number).
+  shadow_bins(const sphere_grid& grid, const float light[3], int threads = 1);
 
   // Where a shadow ray from p (grid frame) looks: the cell p projects to
   // (none: outside every disc), and p's coordinates across L and along it.
@@ -68,8 +69,9 @@ class shadow_bins {
   float l_[3] = {0, 0, 0}, u_[3] = {0, 0, 0}, v_[3] = {0, 0, 0};  // L and the plane's axes
   float lo_[2] = {0, 0}, inv_g_ = 1;
   int dims_[2] = {0, 0};
+  int threads_ = 1;
   out_of_order_array<uint32_t> first_;  // cells + 1
-  std::vector<entry> entries_;
+  filled_later_array<entry> entries_;
 };
 
 }  // namespace raycast

@@ -140,7 +140,8 @@ void renderer::set_light(const scene& s) {
   }
   if (s.light.secondary()) {
     const auto start = std::chrono::steady_clock::now();
-    grid_.emplace(s, s.light.ao_samples > 0);  // the cells for AO rays
+    const int team = preparation_threads(s, threads_);
+    grid_.emplace(s, s.light.ao_samples > 0, team);  // the cells for AO rays
     secondary_.grid = &*grid_;
     for (int k = 0; k < 3; ++k) secondary_.light[k] = light_[k];
     secondary_.shadows = s.light.shadows;
@@ -150,7 +151,7 @@ void renderer::set_light(const scene& s) {
     // clouds are long, and without AO the bins cost less to build than the
     // cells of a packed box of 10^8 random spheres.
     if (s.light.shadows && !(grid_->has_cells() && grid_->free_path() <= sphere_grid::short_free_path))
-      secondary_.bins = &bins_.emplace(*grid_, light_);
+      secondary_.bins = &bins_.emplace(*grid_, light_, team);
     secondary_.ao = ao_;
     secondary_.ao_distance = float(std::ldexp(s.light.ao_distance, -grid_->scale_exp));
     light_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

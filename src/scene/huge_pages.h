@@ -19,6 +19,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <new>
 #include <utility>
 #include <vector>
@@ -109,5 +110,27 @@ struct huge_page_allocator {
 // value is given.
 template <class T>
 using out_of_order_array = std::vector<T, huge_page_allocator<T, true>>;
+
+// Small pages and the C++ allocator, but elements not zeroed unless a value
+// is given: an array whose every element is written before it is read
+// first faults its pages in where it is filled, by as many threads as fill
+// it (a light structure of 10^8 spheres: 5 GB, 11 s on one thread here).
+template <class T>
+struct uninitialized_allocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = uninitialized_allocator<U>;
+  };
+  uninitialized_allocator() = default;
+  template <class U>
+  uninitialized_allocator(const uninitialized_allocator<U>&) noexcept {}
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    if constexpr (sizeof...(Args) == 0) ::new (static_cast<void*>(p)) U;
+    else ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+template <class T>
+using filled_later_array = std::vector<T, uninitialized_allocator<T>>;
 
 }  // namespace raycast
