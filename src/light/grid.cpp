@@ -99,11 +99,13 @@ void sphere_grid::build_cells(const double lo[3], const double hi[3]) {
     }
     return r;
   };
+  size_t listings = 0;  // each sphere's count capped, so that the sum cannot wrap
   for (;;) {  // coarser until the references fit
     for (int a = 0; a < 3; ++a) dims_[a] = int(std::clamp(std::ceil(size[a] / h), 1.0, double(1 << 20)));
-    size_t total = 0;  // each sphere's count capped, so that the sum cannot wrap
+    size_t total = 0;
 #pragma omp parallel for schedule(static) num_threads(threads_) reduction(+ : total)
     for (size_t k = 0; k < n; ++k) total += std::min(range_of(k).count(), max_references + 1);
+    listings = total;
     if (total <= max_references && total <= 64 * n + 4096) break;
     h *= 2;
   }
@@ -117,23 +119,27 @@ void sphere_grid::build_cells(const double lo[3], const double hi[3]) {
         for (int x = r.c0[0]; x <= r.c1[0]; ++x) f(size_t(x) + size_t(dims_[0]) * (size_t(y) + size_t(dims_[1]) * size_t(z)));
   };
   sort_by_home_cell(h);
-  // Each sphere (by position, so by home cell) in the other cells it overlaps.
-  const auto each_foreign = [&](auto&& f) {
-    for (size_t home = 0; home < cells; ++home)
+  // Each sphere (by position, so by home cell) in the other cells it
+  // overlaps, grouped by cell (ascending within each): a run of home cells a
+  // thread.
+  const int parts = threads_;
+  const auto each_foreign = [&](int part, auto&& f) {
+    for (size_t home = cells * size_t(part) / size_t(parts); home < cells * size_t(part + 1) / size_t(parts); ++home)
       for (uint32_t p = home_[home]; p < home_[home + 1]; ++p)
         each_cell(range_of(p), [&](size_t c) {
           if (c != home) f(c, p);
         });
   };
-  first_.assign(cells + 1, 0);
-  each_foreign([&](size_t c, uint32_t) { ++first_[c + 1]; });
-  for (size_t c = 0; c < cells; ++c) first_[c + 1] += first_[c];
-  refs_.resize(first_[cells]);
+  key_sort<uint32_t> sort(cells, listings - n, parts);
+#pragma omp parallel for schedule(static, 1) num_threads(parts)
+  for (int part = 0; part < parts; ++part) each_foreign(part, [&](size_t c, uint32_t) { sort.count(part, c); });
+  sort.start(refs_);
+#pragma omp parallel for schedule(static, 1) num_threads(parts)
+  for (int part = 0; part < parts; ++part) each_foreign(part, [&](size_t c, uint32_t p) { sort.put(part, c, p); });
+  sort.finish(first_, parts);
   occupied_.assign((cells + 63) / 64, 0);
   for (size_t c = 0; c < cells; ++c)
     if (first_[c + 1] != first_[c] || home_[c + 1] != home_[c]) occupied_[c >> 6] |= uint64_t(1) << (c & 63);
-  out_of_order_array<uint32_t> fill(first_.begin(), first_.end() - 1);
-  each_foreign([&](size_t c, uint32_t p) { refs_[fill[c]++] = p; });
 }
 
 // The spheres stored in the order of the cells their centres lie in (a
