@@ -372,7 +372,7 @@ TEST(Light, KeySortIsAStableSortByKey) {
         for (bool one_key : {false, true}) {
           std::vector<std::pair<uint32_t, uint32_t>> rec(n);  // key, order given
           for (size_t i = 0; i < n; ++i) rec[i] = {one_key ? uint32_t(keys / 2) : uint32_t(rng() % keys), uint32_t(i)};
-          const auto run = [&](int p) { return std::pair(n * size_t(p) / size_t(parts), n * size_t(p + 1) / size_t(parts)); };
+          const auto run = [&](int p) { return std::pair(part_begin(n, p, parts), part_begin(n, p + 1, parts)); };
           key_sort<uint32_t> sort(keys, n, parts);
           for (int p = 0; p < parts; ++p)
             for (size_t i = run(p).first; i < run(p).second; ++i) sort.count(p, rec[i].first);

@@ -22,6 +22,9 @@
 
 namespace raycast {
 
+// Part p of `parts`' run of n records: [n p / parts, n (p + 1) / parts).
+inline size_t part_begin(size_t n, int p, int parts) { return n * size_t(p) / size_t(parts); }
+
 template <class Rec>
 class key_sort {
  public:
