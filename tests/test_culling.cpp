@@ -317,6 +317,49 @@ TEST(Culling, ListsPastTheBudgetMatchScalar) {
   expect_scalar_bytes(s, "4000 large spheres");
 }
 
+// ------------------------------------------------------------ one colour
+
+// A scene whose spheres all have the same shading and colour keeps that
+// colour once (float_spheres::look_mask), not once a sphere; it renders the
+// bytes of the same scene with one more sphere, of another colour, that the
+// camera does not see (which keeps a colour a sphere), on every target and
+// in every order, flat and lit, with the light's shadows and AO rays too.
+TEST(Shading, OneColourForAllIsKeptOnceAndRendersAsAColourASphere) {
+  for (shading shade : {shading::flat, shading::lit}) {
+    scene_params p = raycast_test::particle_box(20000);
+    p.camera.image_width = 192;
+    p.camera.image_height = 108;
+    for (sphere& b : p.spheres) b.shade = shade, b.flat_color = color(0.85, 0.6, 0.35);
+    if (shade == shading::lit) p.light = {vec3(0.3, 1.0, 0.6), true, 4, 5.0 * p.spheres[0].radius};
+    scene_params other = p;
+    sphere unseen = p.spheres[0];
+    unseen.center = p.camera.origin + (p.camera.origin - *p.camera.lookat);  // behind the camera
+    unseen.flat_color = color(0.1, 0.9, 0.2);
+    other.spheres.push_back(unseen);
+    const scene one = make_scene(p), each = make_scene(other);
+    for (sphere_order order : {sphere_order::scene, sphere_order::depth}) {
+      const float_scene f = prepare_float_scene(one, 2, 0, order), g = prepare_float_scene(each, 2, 0, order);
+      ASSERT_EQ(f.spheres.red.size(), 1u);
+      ASSERT_EQ(f.spheres.kind.size(), 1u);
+      ASSERT_EQ(g.spheres.red.size(), g.spheres.size());
+    }
+    for (backend b : target_backends) {
+      if (backend_unavailable(b)) continue;
+      for (sphere_order order : {sphere_order::scene, sphere_order::depth}) {
+        render_options o;
+        o.which = b;
+        o.threads = 2;
+        o.sort_from = 0;
+        o.order = order;
+        const image want = raycast_test::render_with(renderer(each, o), pixel_format::rgb8);
+        const image got = raycast_test::render_with(renderer(one, o), pixel_format::rgb8);
+        const raycast_test::difference d = raycast_test::compare(got, want);
+        EXPECT_EQ(d.max, 0) << to_string(b) << ", order " << int(order) << ": " << d.where();
+      }
+    }
+  }
+}
+
 // ------------------------------------------------------------ depth order
 
 // Every order of the float scene (the scene's, rows, depth: float_scene.h)

@@ -214,21 +214,29 @@ depth_of depth_of_sphere(const camera& c, const sphere& b) {
 // screen area the spheres cover.
 struct survey {
   bool any_flat = false, any_normal = false, any_lit = false;
+  bool one_look = true;  // every sphere shaded as the first is, in its colour
   double near_lo = INFINITY, near_hi = -INFINITY, lateral = 0.0;
 };
+
+// Whether b is shaded as a is (the colour counts for flat and lit spheres).
+bool same_look(const sphere& a, const sphere& b) {
+  return a.shade == b.shade && (a.shade == shading::normal || a.flat_color == b.flat_color);
+}
 survey survey_spheres(const scene& s, sphere_order order, size_t team, uint32_t* key) {
   const bool ortho = s.cam.proj == projection::orthographic, depth = order == sphere_order::depth;
   const bool rows = order == sphere_order::rows;
   survey v;
-  bool any_flat = false, any_normal = false, any_lit = false;
+  bool any_flat = false, any_normal = false, any_lit = false, one_look = true;
   double lo = INFINITY, hi = -INFINITY, lateral = 0.0;
   const size_t n = s.sphere_count();
+  const sphere first = n > 0 ? s.sphere_at(0) : sphere{};
 #pragma omp parallel for schedule(static, 1) num_threads(int(team)) \
-    reduction(|| : any_flat, any_normal, any_lit) reduction(min : lo) reduction(max : hi, lateral)
+    reduction(|| : any_flat, any_normal, any_lit) reduction(&& : one_look) reduction(min : lo) reduction(max : hi, lateral)
   for (size_t t = 0; t < team; ++t) {
     const auto [begin, end] = chunk(n, t, team);
     for (size_t k = begin; k < end; ++k) {
       const sphere b = s.sphere_at(k);  // a vector's, or a caller's arrays'
+      one_look = one_look && same_look(first, b);
       any_flat = any_flat || b.shade == shading::flat;
       any_lit = any_lit || b.shade == shading::lit;
       any_normal = any_normal || b.shade == shading::normal;
@@ -241,7 +249,7 @@ survey survey_spheres(const scene& s, sphere_order order, size_t team, uint32_t*
       if (depth) key[k] = std::bit_cast<uint32_t>(float(d.nearest));
     }
   }
-  v.any_flat = any_flat, v.any_normal = any_normal, v.any_lit = any_lit;
+  v.any_flat = any_flat, v.any_normal = any_normal, v.any_lit = any_lit, v.one_look = one_look;
   v.near_lo = lo, v.near_hi = hi, v.lateral = lateral;
   return v;
 }
@@ -297,7 +305,7 @@ std::vector<uint32_t> places(const uint32_t* key, size_t n, size_t keys, size_t 
 }
 
 // The float spheres' arrays for n spheres: records, the scene indices of a
-// depth-ordered scene, colours and kinds where some sphere has a colour.
+// depth-ordered scene, colours and kinds where the spheres' differ.
 void allocate(float_spheres& sp, size_t n, bool indexed, bool colored) {
   sp.rec.resize(n);
   if (indexed) sp.order.resize(n);
@@ -306,6 +314,15 @@ void allocate(float_spheres& sp, size_t n, bool indexed, bool colored) {
   sp.green.resize(n);
   sp.blue.resize(n);
   sp.kind.resize(n);
+}
+
+// The colour and kind of every sphere, where all have the same: one entry.
+void one_colour(float_spheres& sp, const sphere& b) {
+  const bool flat = b.shade == shading::flat;
+  sp.red.assign(1, flush(b.flat_color.r) + 0.0f);
+  sp.green.assign(1, flush(b.flat_color.g) + 0.0f);
+  sp.blue.assign(1, flush(b.flat_color.b) + 0.0f);
+  sp.kind.assign(1, flat ? shading_kind::flat : shading_kind::lit);
 }
 
 // Sphere k's record, colour and kind at place i.
@@ -429,9 +446,10 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from, s
   }
   if (reorder) team = std::clamp<size_t>(n / keys, 1, team);
   std::vector<uint32_t> next = reorder ? places(key.data(), n, keys, team) : std::vector<uint32_t>{};
-  // Colours only where some sphere has one (13 bytes a sphere a cloud of
-  // normal-shaded spheres does without).
-  const bool colored = v.any_flat || v.any_lit;
+  // Colours only where some sphere has one (16 bytes a sphere a cloud of
+  // normal-shaded spheres does without), and one for all where every sphere
+  // has the same (the kernels read colour 0 then: sphere_arrays::look).
+  const bool colored = (v.any_flat || v.any_lit) && !v.one_look;
   // Each sphere's index in the scene, for the tie rule, where the order is
   // depth's: it is written out of order (4 bytes a sphere, a quarter of a
   // 10^6-sphere cloud's preparation), and the row order keeps coincident
@@ -440,6 +458,7 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from, s
   const bool indexed = order == sphere_order::depth;
   allocate(sp, n, indexed, colored);
   sp.any_inside = fill_spheres(f, s, {key.data(), next, keys, team, reorder, indexed, colored});
+  if ((v.any_flat || v.any_lit) && v.one_look) one_colour(sp, s.sphere_at(0));
   sp.any_flat = v.any_flat;
   sp.any_normal = v.any_normal;
   sp.any_lit = v.any_lit;

@@ -100,7 +100,8 @@ inline constexpr size_t small_scene = size_t(1) << 18;
 
 // With up to `threads` threads for large scenes; the same bytes for any count.
 // Memory: 36 bytes a sphere (float_spheres: a 32-byte record and the culling
-// radius), 52 when some sphere is flat or lit (the colours and kinds), and 4
+// radius), 52 when flat or lit spheres differ in shading or colour (the
+// colours and kinds; where every sphere looks the same, one of each), and 4
 // more for a depth-ordered scene (each sphere's index in the scene).
 inline constexpr size_t sorted_from = size_t(1) << 15;
 float_scene prepare_float_scene(const scene& s, int threads = 1, size_t sort_from = sorted_from,

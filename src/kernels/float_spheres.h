@@ -123,7 +123,8 @@ struct float_spheres {
   using array = std::vector<T, huge_page_allocator<T>>;  // scene/huge_pages.h
   array<sphere_record> rec;
   // Empty when every sphere is normal-shaded (!any_flat && !any_lit): the
-  // colour (0 for normal-shaded spheres) and shading_kind of each sphere.
+  // colour (0 for normal-shaded spheres) and shading_kind of each sphere;
+  // one entry for all where every sphere has the same shading and colour.
   array<float> red, green, blue;
   array<float> kind;
   bool any_flat = false, any_normal = false, any_lit = false, any_inside = false;
@@ -145,7 +146,9 @@ struct float_spheres {
   array<float> depth_key;
 
   size_t size() const { return rec.size(); }
-  float kind_of(size_t k) const { return kind.empty() ? shading_kind::normal : kind[k]; }
+  float kind_of(size_t k) const { return kind.empty() ? shading_kind::normal : kind[k & look_mask()]; }
+  // Sphere k's entry in the colours is k & look_mask(): 0 where they hold one for all.
+  size_t look_mask() const { return red.size() == 1 ? 0 : ~size_t(0); }
   bool empty() const { return rec.empty(); }
 };
 
@@ -170,14 +173,19 @@ struct sphere_arrays {
   const float* light = nullptr;
   const secondary_rays* secondary = nullptr;
 
+  size_t look_mask = ~size_t(0);  // float_spheres::look_mask()
+
   // Sphere k's index in the scene.
   RAYCAST_INLINE uint32_t scene_index(size_t k) const { return order ? order[k] : uint32_t(k); }
+  // Sphere k's entry in red, green, blue and kind.
+  RAYCAST_INLINE size_t look(size_t k) const { return k & look_mask; }
 };
 
 inline sphere_arrays arrays_of(const float_spheres& s) {
   return {s.rec.data(), s.red.data(), s.green.data(), s.blue.data(), s.kind.data(),
           s.order.empty() ? nullptr : s.order.data(), s.depth_key.empty() ? nullptr : s.depth_key.data(), nullptr,
-          s.size(), s.any_flat, s.any_normal, s.any_lit, s.any_inside, !s.order.empty()};
+          s.size(), s.any_flat, s.any_normal, s.any_lit, s.any_inside, !s.order.empty(), nullptr, nullptr,
+          s.look_mask()};
 }
 
 }  // namespace raycast

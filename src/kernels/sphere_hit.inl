@@ -98,10 +98,11 @@ RAYCAST_INLINE void record(const sphere_arrays& sp, size_t k, vmask m, vfloat s,
       if (sp.any_inside) h.inside = sp.rec[k].inside ? 1.0f : 0.0f;
     }
     if constexpr ((Shades & flat_shading) != 0) {
-      h.red = sp.red[k];
-      h.green = sp.green[k];
-      h.blue = sp.blue[k];
-      if constexpr (mixed<Shades>) h.kind = sp.kind[k];
+      const size_t c = sp.look(k);
+      h.red = sp.red[c];
+      h.green = sp.green[c];
+      h.blue = sp.blue[c];
+      if constexpr (mixed<Shades>) h.kind = sp.kind[c];
     }
     return;
   }
@@ -116,10 +117,11 @@ RAYCAST_INLINE void record(const sphere_arrays& sp, size_t k, vmask m, vfloat s,
     if (sp.any_inside) h.inside = select(m, vfloat(sp.rec[k].inside ? 1.0f : 0.0f), h.inside);
   }
   if constexpr ((Shades & flat_shading) != 0) {
-    h.red = select(m, vfloat(sp.red[k]), h.red);
-    h.green = select(m, vfloat(sp.green[k]), h.green);
-    h.blue = select(m, vfloat(sp.blue[k]), h.blue);
-    if constexpr (mixed<Shades>) h.kind = select(m, vfloat(sp.kind[k]), h.kind);
+    const size_t c = sp.look(k);
+    h.red = select(m, vfloat(sp.red[c]), h.red);
+    h.green = select(m, vfloat(sp.green[c]), h.green);
+    h.blue = select(m, vfloat(sp.blue[c]), h.blue);
+    if constexpr (mixed<Shades>) h.kind = select(m, vfloat(sp.kind[c]), h.kind);
   }
 }
 
