@@ -12,35 +12,59 @@ namespace raycast {
 
 namespace {
 
-// cos and sin of x in [0, pi/4]: their Taylor series to x^10 and x^9 (the
-// next terms below 2e-9).
-void eighth_turn(float x, float& c, float& s) {
-  const float x2 = x * x;
-  s = x * (1.0f + x2 * (-1.0f / 6 + x2 * (1.0f / 120 + x2 * (-1.0f / 5040 + x2 * (1.0f / 362880)))));
-  c = 1.0f + x2 * (-0.5f + x2 * (1.0f / 24 + x2 * (-1.0f / 720 + x2 * (1.0f / 40320 + x2 * (-1.0f / 3628800)))));
+// cos and sin of x in [0, pi/4], in double: their Taylor series to x^16
+// and x^17 (the next terms below 1e-17 of them).
+void eighth_turn(double x, double& c, double& s) {
+  double term_c = 1.0, term_s = x;
+  c = 0.0, s = 0.0;
+  for (int k = 0; k <= 8; ++k) {
+    c += term_c, s += term_s;
+    term_c *= -x * x / double((2 * k + 1) * (2 * k + 2));
+    term_s *= -x * x / double((2 * k + 2) * (2 * k + 3));
+  }
 }
+
+// cos and sin of the turns i / 256, rounded to float: the octant's from
+// eighth_turn, the rest by symmetry (exact: 0 and 1 at the quarters).
+struct turn_table {
+  float c[256], s[256];
+  turn_table() {
+    for (int i = 0; i < 256; ++i) {
+      const int q = i / 64, r = i % 64;  // the quarter and the 256ths within it
+      const bool fold = r > 32;           // cos(pi/2 f) = sin(pi/2 (1 - f))
+      double c0 = 0, s0 = 0;
+      eighth_turn((fold ? 64 - r : r) * (2.0 * 3.14159265358979323846 / 256.0), c0, s0);
+      if (fold) std::swap(c0, s0);
+      const double cq[4] = {c0, -s0, -c0, s0}, sq[4] = {s0, c0, -s0, -c0};
+      c[i] = float(cq[q]), s[i] = float(sq[q]);
+    }
+  }
+};
+const turn_table turns;
 
 }  // namespace
 
 void unit_circle(float u, float& c, float& s) {
-  const float x = 4.0f * u;  // exact: the quarter turn and the fraction of it
-  const int q = int(x);
-  const float f = x - float(q);
-  const bool fold = f > 0.5f;  // cos(pi/2 f) = sin(pi/2 (1 - f))
-  float c0, s0;
-  eighth_turn((fold ? 1.0f - f : f) * 1.57079632679489661923f, c0, s0);
-  if (fold) std::swap(c0, s0);
-  switch (q & 3) {
-    case 0: c = c0, s = s0; break;
-    case 1: c = -s0, s = c0; break;
-    case 2: c = -c0, s = -s0; break;
-    default: c = s0, s = -c0; break;
-  }
+  // u = (i + f) / 256: the table's turn i / 256, and a small angle
+  // d = 2 pi f / 256 < 0.0246 (f exact) by its series: 1 - cos d and sin d
+  // to d^4 and d^3 (the next terms below 8e-11), added to the table's
+  // values as corrections, so that only the table's rounding and the last
+  // addition's round at the scale of the result. No branch: AO rays' turns
+  // are random, and a mispredicted quarter costs more than the arithmetic.
+  const float x = u * 256.0f;  // exact
+  const int i = int(x) & 255;
+  const float d = (x - float(int(x))) * 0.0245436926f;  // 2 pi / 256
+  const float d2 = d * d;
+  const float one_less_cos = d2 * (0.5f - d2 * (1.0f / 24)), sin_d = d * (1.0f - d2 * (1.0f / 6));
+  const float c0 = turns.c[i], s0 = turns.s[i];
+  c = c0 - (c0 * one_less_cos + s0 * sin_d);
+  s = s0 + (c0 * sin_d - s0 * one_less_cos);
 }
 
-void ao_direction(const float n[3], float u1, float u2, float dir[3]) {
-  float t[3], bt[3];
-  frame_about(n, t, bt);
+namespace {
+
+// ao_direction in a frame (t, b) about n made once for a hit's rays.
+void direction_in_frame(const float n[3], const float t[3], const float bt[3], float u1, float u2, float dir[3]) {
   float cos_phi, sin_phi;
   unit_circle(u1, cos_phi, sin_phi);
   const float rad = std::sqrt(u2);
@@ -48,7 +72,38 @@ void ao_direction(const float n[3], float u1, float u2, float dir[3]) {
   for (int k = 0; k < 3; ++k) dir[k] = (x * t[k] + y * bt[k]) + z * n[k];
 }
 
+}  // namespace
+
+void ao_direction(const float n[3], float u1, float u2, float dir[3]) {
+  float t[3], bt[3];
+  frame_about(n, t, bt);
+  direction_in_frame(n, t, bt, u1, u2, dir);
+}
+
 namespace {
+
+// How many of a hit's AO rays reach their distance: their directions made
+// a group at a time before any is walked, so that the arithmetic of one
+// overlaps the next instead of waiting behind each walk's branches.
+uint32_t open_ao_rays(const secondary_rays& r, const lit_lanes& ls, int l, const float n[3], const float p[3],
+                      uint32_t skip) {
+  constexpr uint32_t group = 8;
+  float t[3], bt[3];
+  frame_about(n, t, bt);
+  const sampling::ao_seeds seeds = sampling::ao_pixel(r.ao, uint32_t(ls.i0 + l), uint32_t(ls.j));
+  uint32_t open = 0;
+  for (uint32_t a0 = 0; a0 < r.ao.count; a0 += group) {
+    const uint32_t m = std::min(group, r.ao.count - a0);
+    float dir[group][3];
+    for (uint32_t a = 0; a < m; ++a) {
+      float u1, u2;
+      sampling::ao_numbers(r.ao, seeds, ls.sample, a0 + a, u1, u2);
+      direction_in_frame(n, t, bt, u1, u2, dir[a]);
+    }
+    for (uint32_t a = 0; a < m; ++a) open += r.grid->occluded(p, dir[a], r.ao_distance, skip) ? 0u : 1u;
+  }
+  return open;
+}
 
 // Lane l's secondary rays' origin P = C + r n_out (n_out the outward
 // normal: the faced one, turned back inside).
@@ -94,17 +149,7 @@ float light_lane(const secondary_rays& r, const lit_lanes& ls, const batch_rays&
       (r.bins ? r.bins->occluded(b.q[l], p, skip) : g.occluded(p, r.light, std::numeric_limits<float>::infinity(), skip)))
     shadow = 0.0f;
   float ambient = 1.0f;
-  if (r.ao.count > 0) {
-    uint32_t open = 0;
-    const sampling::ao_seeds seeds = sampling::ao_pixel(r.ao, uint32_t(ls.i0 + l), uint32_t(ls.j));
-    for (uint32_t a = 0; a < r.ao.count; ++a) {
-      float u1, u2, dir[3];
-      sampling::ao_numbers(r.ao, seeds, ls.sample, a, u1, u2);
-      ao_direction(n, u1, u2, dir);
-      if (!g.occluded(p, dir, r.ao_distance, skip)) ++open;
-    }
-    ambient = float(open) / float(r.ao.count);
-  }
+  if (r.ao.count > 0) ambient = float(open_ao_rays(r, ls, l, n, p, skip)) / float(r.ao.count);
   return lit_ambient * ambient + (lit_diffuse * ls.diffuse[l]) * shadow;
 }
 
