@@ -402,7 +402,7 @@ TEST(Light, KeySortIsAStableSortByKey) {
 // library (whose sincosf rounds differently with FMA and without): within
 // 1.5e-7 (about a float ulp at 1, 1.19e-7) of the double cos and sin of
 // 2 pi u, over the whole turn and at its quarter and eighth points
-// (measured: 9.4e-8).
+// (measured: 6.0e-8).
 TEST(Light, TheTurnOfAnAoDirectionIsCosAndSinWithinAFloatUlp) {
   std::vector<float> us = {0.0f, 0.125f, 0.25f, 0.375f, 0.5f, 0.625f, 0.75f, 0.875f, std::nextafter(1.0f, 0.0f),
                            1e-30f, 0x1p-24f};
