@@ -316,13 +316,26 @@ void allocate(float_spheres& sp, size_t n, bool indexed, bool colored) {
   sp.kind.resize(n);
 }
 
+// A sphere's colour and kind as the kernels read them (a normal-shaded
+// sphere's colour is never read: 0).
+struct sphere_look {
+  float red, green, blue;
+  float kind;  // a shading_kind
+};
+sphere_look look_of(const sphere& b) {
+  const bool flat = b.shade == shading::flat, lit = b.shade == shading::lit;
+  if (!flat && !lit) return {0.0f, 0.0f, 0.0f, shading_kind::normal};
+  return {flush(b.flat_color.r) + 0.0f, flush(b.flat_color.g) + 0.0f, flush(b.flat_color.b) + 0.0f,
+          flat ? shading_kind::flat : shading_kind::lit};
+}
+
 // The colour and kind of every sphere, where all have the same: one entry.
 void one_colour(float_spheres& sp, const sphere& b) {
-  const bool flat = b.shade == shading::flat;
-  sp.red.assign(1, flush(b.flat_color.r) + 0.0f);
-  sp.green.assign(1, flush(b.flat_color.g) + 0.0f);
-  sp.blue.assign(1, flush(b.flat_color.b) + 0.0f);
-  sp.kind.assign(1, flat ? shading_kind::flat : shading_kind::lit);
+  const sphere_look l = look_of(b);
+  sp.red.assign(1, l.red);
+  sp.green.assign(1, l.green);
+  sp.blue.assign(1, l.blue);
+  sp.kind.assign(1, l.kind);
 }
 
 // Sphere k's record, colour and kind at place i.
@@ -331,11 +344,11 @@ void write_sphere(float_spheres& sp, size_t i, const sphere& b, const float_scen
   sp.rec[i] = f.orthographic ? record_of_ortho(b, c, f.plane_offset) : record_of(b, c.origin);
   sp.rec[i].depth = depth;
   if (!colored) return;
-  const bool flat = b.shade == shading::flat, lit = b.shade == shading::lit;
-  sp.red[i] = flat || lit ? flush(b.flat_color.r) + 0.0f : 0.0f;
-  sp.green[i] = flat || lit ? flush(b.flat_color.g) + 0.0f : 0.0f;
-  sp.blue[i] = flat || lit ? flush(b.flat_color.b) + 0.0f : 0.0f;
-  sp.kind[i] = flat ? shading_kind::flat : lit ? shading_kind::lit : shading_kind::normal;
+  const sphere_look l = look_of(b);
+  sp.red[i] = l.red;
+  sp.green[i] = l.green;
+  sp.blue[i] = l.blue;
+  sp.kind[i] = l.kind;
 }
 
 // How the spheres are placed: their keys and the counting sort's places
