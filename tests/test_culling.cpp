@@ -326,7 +326,7 @@ TEST(Culling, ListsPastTheBudgetMatchScalar) {
 // in every order, flat and lit, with the light's shadows and AO rays too.
 TEST(Shading, OneColourForAllIsKeptOnceAndRendersAsAColourASphere) {
   for (shading shade : {shading::flat, shading::lit}) {
-    scene_params p = raycast_test::particle_box(20000);
+    scene_params p = raycast_test::particle_box(4000);
     p.camera.image_width = 192;
     p.camera.image_height = 108;
     for (sphere& b : p.spheres) b.shade = shade, b.flat_color = color(0.85, 0.6, 0.35);
@@ -412,9 +412,9 @@ TEST(DepthOrder, CloudsRenderTheSameInEveryOrder) {
 // changes -- in perspective and orthographic views, with one sample a pixel
 // and with four (whose rays stray across the pixel). Along the lattice's
 // axis, where gaps let every tile see through, nothing is hidden.
-scene medium(scene_params p) {
-  p.camera.image_width = 320;
-  p.camera.image_height = 180;
+scene medium(scene_params p, int64_t width = 160) {
+  p.camera.image_width = width;
+  p.camera.image_height = width * 9 / 16;
   return make_scene(p);
 }
 
@@ -438,33 +438,33 @@ size_t hidden_in(const scene& s, bool samples) {
 }
 
 TEST(DepthOrder, OcclusionLeavesOutHiddenSpheresAndChangesNoPixel) {
-  const auto ortho = [](int64_t n) {
+  const auto ortho = [](int64_t n, int64_t width) {
     scene_params p = raycast_test::particle_box(n, true);
     p.camera.origin = point3(2.0, 1.7, 2.3);  // off the lattice's axes
     p.camera.viewport_height = 1.8;
-    return medium(p);
+    return medium(p, width);
   };
   // Spheres a few pixels wide with one sample a pixel; wider with four,
   // which hide fewer (a sphere covers a pixel where all its samples' rays
   // surely hit it, and its box is widened by a sample's stray).
   const std::tuple<const char*, scene, uint32_t> views[] = {
-      {"box", medium(raycast_test::particle_box(8000)), 1},
-      {"box", medium(raycast_test::particle_box(4000)), 4},
-      {"orthographic box", ortho(8000), 1},
-      {"orthographic box", ortho(1000), 4}};
+      {"box", medium(raycast_test::particle_box(1000)), 1},
+      {"box", medium(raycast_test::particle_box(4000), 320), 4},
+      {"orthographic box", ortho(1000, 160), 1},
+      {"orthographic box", ortho(1000, 320), 4}};
   for (const auto& [what, s, samples] : views) {
     EXPECT_GT(hidden_in(s, samples > 1), s.sphere_count() / (samples > 1 ? 50 : 4)) << what << ", " << samples
                                                                                      << " samples";
     expect_depth_order_bytes(s, samples, what);
   }
   // Tiles cut by the image's edges, and one row.
-  for (const auto& [w, h] : {std::pair<int64_t, int64_t>{321, 179}, {320, 1}}) {
-    scene_params p = raycast_test::particle_box(8000);
+  for (const auto& [w, h] : {std::pair<int64_t, int64_t>{161, 89}, {160, 1}}) {
+    scene_params p = raycast_test::particle_box(1000);
     p.camera.image_width = w;
     p.camera.image_height = h;
     expect_depth_order_bytes(make_scene(p), 1, "box, odd sizes");
   }
-  const scene along = medium(raycast_test::particle_box(8000, true));
+  const scene along = medium(raycast_test::particle_box(1000, true));
   EXPECT_EQ(hidden_in(along, false), 0u) << "the lattice's gaps line up: every tile sees through";
   expect_depth_order_bytes(along, 1, "box along its axis");
 }
