@@ -126,7 +126,7 @@ class batch_culler {
   size_t entries_ = 0;  // the kept spheres' batches, added up
   const float_scene& f_;
   int shift_;
-  int batch_;
+  int batch_shift_;  // log2 of the batch's width (a vector's: a power of two)
   double spread_;
   int64_t batches_;
   sphere_span* spans_ = nullptr;
