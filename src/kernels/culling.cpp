@@ -148,18 +148,6 @@ struct plane_family {
     n_max = std::sqrt(std::max(n00 - n01 + 0.25 * n11, n00 + n01 + 0.25 * n11));
   }
 
-  // Indices holding range()'s, cheaper (no square root): where plane s comes
-  // within w of the sphere, |fk.n(s)| = |p1| |s - s_c| <= w |n(s)| <= w n_max,
-  // s_c the plane through the centre. False when none is near.
-  bool around(const double* fk, double w, int64_t& lo, int64_t& hi) const {
-    lo = 0;
-    hi = count - 1;
-    const double p0 = dot(fk, N0), p1 = dot(fk, N1);
-    if (count == 1 || !(std::abs(p1) > 0.0)) return true;
-    const double inv = 1.0 / p1, s_c = -p0 * inv, delta = w * n_max * std::abs(inv);
-    return index_range(s_c - delta, s_c + delta, last, mid, 1.0, count, lo, hi);
-  }
-
   // The indices i in [0, count) whose plane may come near the sphere at fk
   // (within w): where (fk.n)^2 <= w^2 |n|^2, a quadratic in s, in double; the
   // indices rounded outwards (the radius's margin covers the float rounding
@@ -453,16 +441,57 @@ class occlusion {
   std::vector<float> depth_;      // per tile: far_ once every pixel is covered, else infinity
 };
 
-// A box that holds box_of's, cheaper (plane_family::around): false where
-// it is empty or too tall to be worth a test.
-bool rough_box(const float_scene& f, const frame_vectors& fv, uint32_t k, double spread, frame_box& box) {
-  const sphere_record& e = f.spheres.rec[k];
-  const double fk[3] = {e.fx, e.fy, e.fz}, wide = widened(f.spheres, k, spread);
-  int64_t j_lo = 0, j_hi = 0, c_lo = 0, c_hi = 0;
-  if (!fv.rows.around(fk, wide, j_lo, j_hi) || j_hi - j_lo >= boxed_rows || !fv.cols.around(fk, wide, c_lo, c_hi))
-    return false;
-  box = {int32_t(f.height - 1 - j_hi), int32_t(f.height - 1 - j_lo), int32_t(c_lo), int32_t(c_hi)};
-  return true;
+// Boxes that hold box_of's, cheaper (no square root), for the spheres
+// [k0, k0 + m), m <= rough_block: ok[i] false where a box is empty or too
+// tall to be worth a test. For each family of planes (rows, columns), plane
+// s comes within w of the sphere only where |fk.n(s)| = |p1| |s - s_c| <=
+// w |n(s)| <= w n_max, s_c the plane through the centre; the indices of
+// [s_c - delta, s_c + delta] with a slack of one each way (index_range's).
+// The block's arithmetic comes first, in loops with no branch, then its
+// boxes: a sphere at a time, this took twice as long (branches between one
+// sphere's divisions and the next's).
+constexpr uint32_t rough_block = 32;
+void rough_boxes(const float_scene& f, const frame_vectors& fv, uint32_t k0, uint32_t m, double spread, frame_box* box,
+                 bool* ok) {
+  double fx[rough_block], fy[rough_block], fz[rough_block], wide[rough_block];
+  for (uint32_t i = 0; i < m; ++i) {
+    const sphere_record& e = f.spheres.rec[k0 + i];
+    fx[i] = e.fx, fy[i] = e.fy, fz[i] = e.fz, wide[i] = widened(f.spheres, k0 + i, spread);
+  }
+  const plane_family* family[2] = {&fv.rows, &fv.cols};
+  double lo[2][rough_block], hi[2][rough_block];
+  bool whole[2][rough_block];  // every index: one plane, or p1 = 0
+  for (int a = 0; a < 2; ++a) {
+    const plane_family& P = *family[a];
+    const double n0[3] = {P.N0[0], P.N0[1], P.N0[2]}, n1[3] = {P.N1[0], P.N1[1], P.N1[2]};
+    const double n_max = P.n_max, last = P.last, mid = P.mid;
+    for (uint32_t i = 0; i < m; ++i) {  // dot(fk, N0), dot(fk, N1)
+      const double p0 = fx[i] * n0[0] + fy[i] * n0[1] + fz[i] * n0[2], p1 = fx[i] * n1[0] + fy[i] * n1[1] + fz[i] * n1[2];
+      const double inv = 1.0 / p1, s_c = -p0 * inv, delta = wide[i] * n_max * std::abs(inv);
+      whole[a][i] = P.count == 1 || !(std::abs(p1) > 0.0);
+      lo[a][i] = (s_c - delta) * last + mid;
+      hi[a][i] = (s_c + delta) * last + mid;
+    }
+    for (uint32_t i = 0; i < m; ++i) lo[a][i] = std::floor(lo[a][i]) - 1.0, hi[a][i] = std::ceil(hi[a][i]) + 1.0;
+  }
+  for (uint32_t i = 0; i < m; ++i) {
+    int64_t r[2][2];
+    ok[i] = true;
+    for (int a = 0; a < 2 && ok[i]; ++a) {
+      const int64_t count = family[a]->count;
+      const double i0 = lo[a][i], i1 = hi[a][i], end = double(count - 1);
+      r[a][0] = 0, r[a][1] = count - 1;
+      if (whole[a][i]) {
+      } else if (i1 < 0.0 || i0 > end || i0 > i1) {
+        ok[i] = false;
+      } else {
+        r[a][0] = i0 > 0.0 ? int64_t(i0) : 0;  // (NaN: 0)
+        r[a][1] = i1 < end ? int64_t(i1) : count - 1;
+      }
+      if (a == 0 && r[0][1] - r[0][0] >= boxed_rows) ok[i] = false;
+    }
+    if (ok[i]) box[i] = {int32_t(f.height - 1 - r[0][1]), int32_t(f.height - 1 - r[0][0]), int32_t(r[1][0]), int32_t(r[1][1])};
+  }
 }
 
 // A sphere in some row of the frame, and its box.
@@ -513,18 +542,22 @@ placed_boxes boxes(const float_scene& f, double spread, int team, size_t& hidden
   }
   occlusion occ(f, spread);
   const size_t check = std::max<size_t>(n / 16, 4096);
+  frame_box rough[rough_block];
+  bool rough_ok[rough_block] = {};
   for (size_t k = 0; k < n; ++k) {
     if (k == check && hidden < k / 8) {
       append_boxes(f, fv, spread, team, k, n, out);
       break;
     }
+    const uint32_t i = uint32_t(k % rough_block);
+    if (i == 0 && !f.orthographic)
+      rough_boxes(f, fv, uint32_t(k), uint32_t(std::min<size_t>(rough_block, n - k)), spread, rough, rough_ok);
     const float nearest = f.spheres.depth_key[f.spheres.rec[k].depth];
-    frame_box b;
-    if (!f.orthographic && rough_box(f, fv, uint32_t(k), spread, b) && occ.hidden(b, nearest)) {
+    if (!f.orthographic && rough_ok[i] && occ.hidden(rough[i], nearest)) {
       ++hidden;
       continue;
     }
-    b = box_of(f, fv, uint32_t(k), spread);
+    const frame_box b = box_of(f, fv, uint32_t(k), spread);
     if (b.r_lo > b.r_hi) continue;  // in no row
     if (b.c_lo >= 0) {  // tall spheres are kept, and cover nothing
       if (occ.hidden(b, nearest)) {
