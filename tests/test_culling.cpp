@@ -136,6 +136,28 @@ TEST(Culling, WideImagesRoundBoxesOutwards) {
   for (int batch : {8, 16}) EXPECT_GT(expect_every_hit_listed(f, 1, batch), size_t(10000));
 }
 
+// A batch's list is kept in a slot of the row's memory while it fits
+// (about 2^16 entries over the row's batches); a row where one overflows is
+// listed again in the two-pass way. Here one-column batches of a 2048-wide
+// frame (slots of 32) look down a line of 100 small spheres, one behind the
+// other, every one of them boxed (a few rows tall).
+TEST(Culling, ListsPastASlotAreListedTheTwoPassWay) {
+  scene_params p;
+  p.camera.image_width = 2048;
+  p.camera.image_height = 9;
+  p.camera.vfov_degrees = 2.0;
+  for (int k = 0; k < 100; ++k) {
+    sphere s;
+    s.center = vec3(0.0001 * (k % 7), 0.0, -2.0 - 0.1 * k);
+    s.radius = 0.004;
+    p.spheres.push_back(s);
+  }
+  const float_scene f = prepare_float_scene(make_scene(p));
+  const row_index ix = row_index::build(f, 0.0, 1);
+  for (const row_entry& e : ix.list) ASSERT_NE(e.lo, row_entry::tall);
+  EXPECT_GT(expect_every_hit_listed(f, 1, 1), size_t(100));
+}
+
 // The index culls: a sphere behind every ray is in no row, and a small sphere
 // in view is in a few rows only, with a column box.
 TEST(Culling, IndexLeavesOutWhatNoRayReaches) {

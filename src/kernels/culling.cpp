@@ -644,10 +644,20 @@ batch_culler::batch_culler(const float_scene& f, size_t most, int shift, int bat
       batches_((f.width + batch - 1) / batch) {
   spans_ = static_cast<sphere_span*>(std::malloc(most * sizeof(sphere_span) + 1));
   capacity_ = std::max(4 * most, budget);
+  const size_t batches = size_t(batches_);
   list_ = static_cast<uint32_t*>(std::malloc(capacity_ * sizeof(uint32_t)));
-  first_ = static_cast<uint32_t*>(std::malloc(size_t(batches_ + 1) * sizeof(uint32_t)));
-  fill_ = static_cast<uint32_t*>(std::malloc(size_t(batches_ + 1) * sizeof(uint32_t)));
-  if (!spans_ || !list_ || !first_ || !fill_) release();
+  first_ = static_cast<uint32_t*>(std::malloc((batches + 1) * sizeof(uint32_t)));
+  fill_ = static_cast<uint32_t*>(std::malloc((batches + 1) * sizeof(uint32_t)));
+  count_ = static_cast<uint32_t*>(std::malloc(batches * sizeof(uint32_t)));
+  slot_start_ = static_cast<uint32_t*>(std::malloc(batches * sizeof(uint32_t)));
+  if (!spans_ || !list_ || !first_ || !fill_ || !count_ || !slot_start_) {
+    release();
+    return;
+  }
+  // Slots share the list's memory: a batch's slot is touched only as far
+  // as its list reaches, so a long slot costs no cache.
+  slot_ = std::min<size_t>(capacity_ / batches, UINT32_MAX / batches);
+  for (size_t b = 0; b < batches; ++b) slot_start_[b] = uint32_t(b * slot_);
 }
 
 batch_culler::~batch_culler() { release(); }
@@ -657,14 +667,19 @@ void batch_culler::release() {
   std::free(list_);
   std::free(first_);
   std::free(fill_);
+  std::free(count_);
+  std::free(slot_start_);
   spans_ = nullptr;
-  list_ = first_ = fill_ = nullptr;
+  list_ = first_ = fill_ = count_ = slot_start_ = nullptr;
 }
 
 size_t batch_culler::row(float sv, const row_entry* entries, size_t count) {
+  b0_ = 0;
+  if (row_in_slots(sv, entries, count)) return kept_;
   const int64_t last_batch = batches_ - 1;
   kept_ = 0;
   entries_ = 0;
+  start_ = first_;
   const auto keep = [&](uint32_t k, int64_t lo, int64_t hi) {
     // lo, hi >= 0: a shift is the division (an integer division per end was half the row's time).
     const int32_t a = int32_t(std::min(lo >> batch_shift_, last_batch)), b = int32_t(std::min(hi >> batch_shift_, last_batch));
@@ -685,13 +700,44 @@ size_t batch_culler::row(float sv, const row_entry* entries, size_t count) {
   return kept_;
 }
 
+bool batch_culler::row_in_slots(float sv, const row_entry* entries, size_t count) {
+  slotted_ = false;
+  if (slot_ == 0) return false;
+  const int64_t last_batch = batches_ - 1;
+  std::fill(count_, count_ + batches_, 0u);
+  kept_ = 0;
+  const auto keep = [&](uint32_t k, int64_t lo, int64_t hi) {
+    const int64_t a = std::min(lo >> batch_shift_, last_batch), b = std::min(hi >> batch_shift_, last_batch);
+    for (int64_t i = a; i <= b; ++i) {
+      if (count_[i] == slot_) return false;
+      list_[slot_start_[i] + count_[i]++] = k;
+    }
+    ++kept_;
+    return true;
+  };
+  std::optional<row_test> exact;  // for the tall spheres, made at the first
+  for (size_t x = 0; x < count; ++x) {
+    const row_entry& e = entries[x];
+    int64_t lo = int64_t(e.lo) << shift_, hi = ((int64_t(e.hi) + 1) << shift_) - 1;
+    if (e.lo == row_entry::tall) {
+      if (!exact) exact.emplace(f_, sv, spread_);
+      if (!exact->columns(e.sphere, lo, hi)) continue;
+    }
+    if (!keep(e.sphere, lo, hi)) return false;
+  }
+  slotted_ = true;
+  start_ = slot_start_;
+  return true;
+}
+
 int64_t batch_culler::run_length() const {
-  if (entries_ <= capacity_) return batches_;  // the whole row at once
+  if (slotted_ || entries_ <= capacity_) return batches_;  // the whole row at once
   const int64_t most = int64_t(capacity_ / kept_);
   return std::clamp<int64_t>(most, 1, batches_);
 }
 
 void batch_culler::build(int64_t b0, int64_t b1) {
+  if (slotted_) return;  // made by row(), for every batch (b0_ = 0)
   b0_ = b0;
   if (kept_ == 0) return;
   const int64_t n = b1 - b0;
@@ -709,6 +755,7 @@ void batch_culler::build(int64_t b0, int64_t b1) {
   first_[0] = 0;
   for (int64_t i = 0; i < n; ++i) {
     first_[i + 1] = first_[i] + fill_[i + 1];
+    count_[i] = fill_[i + 1];
     fill_[i] = first_[i];
   }
   for (size_t x = 0; x < kept_; ++x) {

@@ -113,11 +113,16 @@ class batch_culler {
   // The lists of the row's batches [b0, b1) (b1 - b0 <= run_length()).
   void build(int64_t b0, int64_t b1);
   // Batch b's spheres (b in the last build's run).
-  const uint32_t* list(int64_t b) const { return list_ + first_[b - b0_]; }
-  size_t tests(int64_t b) const { return kept_ == 0 ? 0 : first_[b - b0_ + 1] - first_[b - b0_]; }
+  const uint32_t* list(int64_t b) const { return list_ + start_[b - b0_]; }
+  size_t tests(int64_t b) const { return kept_ == 0 ? 0 : count_[b - b0_]; }
 
  private:
   void release();
+  // The common case, in one pass over the row's entries: each batch's list
+  // in its own slot of slot_ entries, appended to as the entries come; false
+  // (nothing kept) where a slot would overflow.
+  bool row_in_slots(float sv, const row_entry* entries, size_t count);
+  bool slotted_ = false;  // the row's lists are in slots: build has nothing to do
   // List entries one run may hold: the row's own entries where they fit in
   // four per candidate (each sphere in a few batches), else runs of fewer
   // batches (spheres that span much of the row).
@@ -133,6 +138,10 @@ class batch_culler {
   uint32_t* list_ = nullptr;
   uint32_t* first_ = nullptr;
   uint32_t* fill_ = nullptr;
+  uint32_t* count_ = nullptr;       // per batch of the run: its list's length
+  uint32_t* slot_start_ = nullptr;  // per batch: b slot_
+  const uint32_t* start_ = nullptr; // per batch of the run: its list's first entry (first_ or slot_start_)
+  size_t slot_ = 0;                 // entries a slot holds (0: no slots)
   size_t kept_ = 0;
   int64_t b0_ = 0;
 };
