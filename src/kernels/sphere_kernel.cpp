@@ -70,6 +70,12 @@ int64_t store_mirrored_ends(const float_scene& s, const sky_shader& sky, batch_c
   return ends;
 }
 
+// A deep scene's next batch's first candidates, asked for while batch b
+// works (sphere_hit.inl: prefetch_list); b + 1 in the lists' run [.., b1).
+RAYCAST_INLINE void prefetch_next_batch(const sphere_arrays& sp, const batch_culler& lists, int64_t b, int64_t b1) {
+  if (sp.depth_key && b + 1 < b1) prefetch_list(sp, lists.list(b + 1), lists.tests(b + 1));
+}
+
 // One sample per pixel: each batch's rays against its list, shaded, stored.
 template <int Shades, bool Float, bool Lanes, bool Ortho>
 void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
@@ -122,6 +128,7 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
         // The ray batch: scalar.h's direction and its squared length.
         rays ry = rays_at(i0);
         const size_t tests = cull ? lists.tests(b) : sp.n;
+        if (cull) prefetch_next_batch(sp, lists, b, b1);
         vfloat c[3];
         if (tests == 0) {
           sky.shade(ry, c);  // no sphere comes near these rays
@@ -259,6 +266,7 @@ void render_samples(const kernel_args& a, const image_band& band, int64_t r0, in
         const int64_t i0 = b * N;
         const size_t tests = cull ? lists.tests(b) : sp.n;
         const uint32_t* list = cull && tests > 0 ? lists.list(b) : nullptr;
+        if (cull) prefetch_next_batch(sp, lists, b, b1);
         const vuint column = vuint::iota(uint32_t(i0));
         const vfloat su_i = W == 1 ? vfloat(0.0f) : (to_float(column) - s.mid_col) / s.last_col;  // scalar.h
         vfloat base[5];  // the pixels' one-sample directions, and an orthographic ray's start
