@@ -224,13 +224,18 @@ RAYCAST_INLINE bool nearer_than(const sphere_arrays& sp, const sphere_record& e,
 // 10^6 renders in 18.5 ms instead of 20.8, one thread; three ahead gave half
 // that, ten no more), and a batch's first six while the batch before it
 // works (prefetch_list: 14.5 ms instead of 15.8).
+// With the record, its index in the scene (a hit records it: the tie rule).
 constexpr size_t prefetch_distance = 6;
+RAYCAST_INLINE void prefetch_sphere(const sphere_arrays& sp, uint32_t k) {
+  __builtin_prefetch(&sp.rec[k]);
+  if (sp.order) __builtin_prefetch(&sp.order[k]);
+}
 RAYCAST_INLINE void prefetch_ahead(const sphere_arrays& sp, const uint32_t* list, size_t x, size_t count) {
-  if (list && x + prefetch_distance < count) __builtin_prefetch(&sp.rec[list[x + prefetch_distance]]);
+  if (list && x + prefetch_distance < count) prefetch_sphere(sp, list[x + prefetch_distance]);
 }
 RAYCAST_INLINE void prefetch_list(const sphere_arrays& sp, const uint32_t* list, size_t count) {
   const size_t m = count < prefetch_distance ? count : prefetch_distance;
-  for (size_t x = 0; x < m; ++x) __builtin_prefetch(&sp.rec[list[x]]);
+  for (size_t x = 0; x < m; ++x) prefetch_sphere(sp, list[x]);
 }
 
 // Tests the spheres list[0 .. count) (every sphere, 0 .. count, when list is
