@@ -708,11 +708,18 @@ bool batch_culler::row_in_slots(float sv, const row_entry* entries, size_t count
   kept_ = 0;
   const auto keep = [&](uint32_t k, int64_t lo, int64_t hi) {
     const int64_t a = std::min(lo >> batch_shift_, last_batch), b = std::min(hi >> batch_shift_, last_batch);
+    ++kept_;
+    if (b - a <= 1) {  // most spheres: one batch or two, written with no branch between them
+      if (count_[a] + 1 >= slot_ || count_[b] + 1 >= slot_) return false;  // (one spare: the write below)
+      list_[slot_start_[a] + count_[a]++] = k;
+      list_[slot_start_[b] + count_[b]] = k;  // where b = a: past the list's end, and not counted
+      count_[b] += uint32_t(b != a);
+      return true;
+    }
     for (int64_t i = a; i <= b; ++i) {
       if (count_[i] == slot_) return false;
       list_[slot_start_[i] + count_[i]++] = k;
     }
-    ++kept_;
     return true;
   };
   std::optional<row_test> exact;  // for the tall spheres, made at the first
