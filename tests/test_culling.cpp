@@ -136,26 +136,55 @@ TEST(Culling, WideImagesRoundBoxesOutwards) {
   for (int batch : {8, 16}) EXPECT_GT(expect_every_hit_listed(f, 1, batch), size_t(10000));
 }
 
-// A batch's list is kept in a slot of the row's memory while it fits
-// (about 2^16 entries over the row's batches); a row where one overflows is
-// listed again in the two-pass way. Here one-column batches of a 2048-wide
-// frame (slots of 32) look down a line of 100 small spheres, one behind the
-// other, every one of them boxed (a few rows tall).
-TEST(Culling, ListsPastASlotAreListedTheTwoPassWay) {
+// batch_culler's lists against the row entries they come from: each entry's
+// sphere in every batch its columns touch, in the entries' order. A batch's
+// list is kept in a slot of the row's list memory while it fits (here 8192
+// entries: 2^16 over 8 batches), a sphere one or two batches wide written with
+// one spare entry; a row where a slot would overflow is listed the earlier
+// way (spans, counted and then placed). Batch 6 or 7 (the memory's last slot)
+// gets 8190 to 8193 one-batch entries among others, the rest of the row
+// random spans of one to three batches.
+TEST(Culling, BatchListsHoldEachEntryInItsBatchesInOrder) {
   scene_params p;
-  p.camera.image_width = 2048;
-  p.camera.image_height = 9;
-  p.camera.vfov_degrees = 2.0;
-  for (int k = 0; k < 100; ++k) {
-    sphere s;
-    s.center = vec3(0.0001 * (k % 7), 0.0, -2.0 - 0.1 * k);
-    s.radius = 0.004;
-    p.spheres.push_back(s);
-  }
+  p.camera.image_width = 64;
+  p.camera.image_height = 2;
   const float_scene f = prepare_float_scene(make_scene(p));
-  const row_index ix = row_index::build(f, 0.0, 1);
-  for (const row_entry& e : ix.list) ASSERT_NE(e.lo, row_entry::tall);
-  EXPECT_GT(expect_every_hit_listed(f, 1, 1), size_t(100));
+  constexpr int batch = 8, batches = 8;
+  std::mt19937 rng(11);
+  for (int full : {6, 7}) {
+    for (int in_full : {8190, 8191, 8192, 8193}) {
+      std::vector<row_entry> entries;
+      for (int placed = 0, others = 0; placed < in_full || others < 4000;) {
+        const uint32_t k = uint32_t(entries.size());
+        if (placed < in_full && (rng() % 3 != 0 || others == 4000)) {  // in batch `full` only
+          entries.push_back({k, uint16_t(full * batch + int(rng() % 8)), uint16_t(full * batch + 7)});
+          ++placed;
+          continue;
+        }
+        int lo = int(rng() % 64), hi = std::min(63, lo + int(rng() % 20));  // not in batch `full`
+        if (lo / batch == full) continue;
+        if (lo / batch < full) hi = std::min(hi, full * batch - 1);
+        entries.push_back({k, uint16_t(lo), uint16_t(hi)});
+        ++others;
+      }
+      std::vector<std::vector<uint32_t>> want(batches);
+      for (const row_entry& e : entries)
+        for (int b = e.lo / batch; b <= e.hi / batch; ++b) want[size_t(b)].push_back(e.sphere);
+      ASSERT_EQ(want[size_t(full)].size(), size_t(in_full));
+      batch_culler lists(f, entries.size(), 0, batch, 0.0);
+      ASSERT_TRUE(lists.ok());
+      EXPECT_EQ(lists.row(0.0f, entries.data(), entries.size()), entries.size());
+      const int64_t run = lists.run_length();
+      for (int64_t b0 = 0; b0 < batches; b0 += run) {
+        const int64_t b1 = std::min<int64_t>(batches, b0 + run);
+        lists.build(b0, b1);
+        for (int64_t b = b0; b < b1; ++b) {
+          const std::vector<uint32_t> got(lists.list(b), lists.list(b) + lists.tests(b));
+          EXPECT_EQ(got, want[size_t(b)]) << "batch " << b << " (" << in_full << " in batch " << full << ")";
+        }
+      }
+    }
+  }
 }
 
 // The index culls: a sphere behind every ray is in no row, and a small sphere

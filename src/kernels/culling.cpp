@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cassert>
 #include <cmath>
 #include <cstdlib>
 #include <optional>
@@ -53,6 +54,15 @@ bool below_zero(double alpha, double beta, double gamma, double& s0, double& s1)
   return r.kind != solved::empty;
 }
 
+// The indices [i0, i1] (whole numbers in double) clamped to [0, count) as
+// [lo, hi]; false when none is inside.
+bool clamp_indices(double i0, double i1, int64_t count, int64_t& lo, int64_t& hi) {
+  if (i1 < 0.0 || i0 > double(count - 1) || i0 > i1) return false;
+  lo = i0 > 0.0 ? int64_t(i0) : 0;  // (NaN: 0)
+  hi = i1 < double(count - 1) ? int64_t(i1) : count - 1;
+  return true;
+}
+
 // The indices i in [0, count) with (i - mid) / last in [s0, s1] (a column
 // from su, a row from sv: kernels/scalar.h), widened by slack each way, as
 // [lo, hi]; false when there is none.
@@ -60,10 +70,7 @@ bool index_range(double s0, double s1, float last, float mid, double slack, int6
                  int64_t& hi) {
   const double i0 = std::floor(s0 * double(last) + double(mid)) - slack;
   const double i1 = std::ceil(s1 * double(last) + double(mid)) + slack;
-  if (i1 < 0.0 || i0 > double(count - 1) || i0 > i1) return false;
-  lo = i0 > 0.0 ? int64_t(i0) : 0;  // (NaN: 0)
-  hi = i1 < double(count - 1) ? int64_t(i1) : count - 1;
-  return true;
+  return clamp_indices(i0, i1, count, lo, hi);
 }
 
 // The columns [lo, hi] of the row whose rays come within r of the sphere's
@@ -478,16 +485,8 @@ void rough_boxes(const float_scene& f, const frame_vectors& fv, uint32_t k0, uin
     int64_t r[2][2];
     ok[i] = true;
     for (int a = 0; a < 2 && ok[i]; ++a) {
-      const int64_t count = family[a]->count;
-      const double i0 = lo[a][i], i1 = hi[a][i], end = double(count - 1);
-      r[a][0] = 0, r[a][1] = count - 1;
-      if (whole[a][i]) {
-      } else if (i1 < 0.0 || i0 > end || i0 > i1) {
-        ok[i] = false;
-      } else {
-        r[a][0] = i0 > 0.0 ? int64_t(i0) : 0;  // (NaN: 0)
-        r[a][1] = i1 < end ? int64_t(i1) : count - 1;
-      }
+      r[a][0] = 0, r[a][1] = family[a]->count - 1;
+      if (!whole[a][i]) ok[i] = clamp_indices(lo[a][i], hi[a][i], family[a]->count, r[a][0], r[a][1]);
       if (a == 0 && r[0][1] - r[0][0] >= boxed_rows) ok[i] = false;
     }
     if (ok[i]) box[i] = {int32_t(f.height - 1 - r[0][1]), int32_t(f.height - 1 - r[0][0]), int32_t(r[1][0]), int32_t(r[1][1])};
@@ -642,6 +641,7 @@ row_index row_index::build(const float_scene& f, double spread, int threads) {
 batch_culler::batch_culler(const float_scene& f, size_t most, int shift, int batch, double spread)
     : f_(f), shift_(shift), batch_shift_(std::countr_zero(unsigned(batch))), spread_(spread),
       batches_((f.width + batch - 1) / batch) {
+  assert(std::has_single_bit(unsigned(batch)));  // a vector's width: batch_shift_ divides by it
   spans_ = static_cast<sphere_span*>(std::malloc(most * sizeof(sphere_span) + 1));
   capacity_ = std::max(4 * most, budget);
   const size_t batches = size_t(batches_);
@@ -673,30 +673,45 @@ void batch_culler::release() {
   list_ = first_ = fill_ = count_ = slot_start_ = nullptr;
 }
 
+namespace {
+
+// Each of a row's entries whose sphere its rays may come near, as keep(k,
+// lo, hi) with the columns [lo, hi] (a tall sphere's from the exact test,
+// made at the first); stops, false, where keep returns false.
+template <class Keep>
+bool each_entry(const float_scene& f, float sv, double spread, int shift, const row_entry* entries, size_t count,
+                const Keep& keep) {
+  std::optional<row_test> exact;
+  for (size_t x = 0; x < count; ++x) {
+    const row_entry& e = entries[x];
+    int64_t lo = int64_t(e.lo) << shift, hi = ((int64_t(e.hi) + 1) << shift) - 1;
+    if (e.lo == row_entry::tall) {
+      if (!exact) exact.emplace(f, sv, spread);
+      if (!exact->columns(e.sphere, lo, hi)) continue;
+    }
+    if (!keep(e.sphere, lo, hi)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 size_t batch_culler::row(float sv, const row_entry* entries, size_t count) {
   b0_ = 0;
   if (row_in_slots(sv, entries, count)) return kept_;
+  // A slot would overflow (a batch listing more than slot_ spheres: rare,
+  // spheres that each cover much of the frame): the spans, which build()
+  // counts and then places.
   const int64_t last_batch = batches_ - 1;
   kept_ = 0;
   entries_ = 0;
   start_ = first_;
-  const auto keep = [&](uint32_t k, int64_t lo, int64_t hi) {
-    // lo, hi >= 0: a shift is the division (an integer division per end was half the row's time).
+  each_entry(f_, sv, spread_, shift_, entries, count, [&](uint32_t k, int64_t lo, int64_t hi) {
     const int32_t a = int32_t(std::min(lo >> batch_shift_, last_batch)), b = int32_t(std::min(hi >> batch_shift_, last_batch));
     spans_[kept_++] = {k, a, b};
     entries_ += size_t(b - a + 1);
-  };
-  std::optional<row_test> exact;  // for the tall spheres, made at the first
-  for (size_t x = 0; x < count; ++x) {
-    const row_entry& e = entries[x];
-    if (e.lo != row_entry::tall) {
-      keep(e.sphere, int64_t(e.lo) << shift_, ((int64_t(e.hi) + 1) << shift_) - 1);
-      continue;
-    }
-    if (!exact) exact.emplace(f_, sv, spread_);
-    int64_t lo = 0, hi = 0;
-    if (exact->columns(e.sphere, lo, hi)) keep(e.sphere, lo, hi);
-  }
+    return true;
+  });
   return kept_;
 }
 
@@ -706,13 +721,17 @@ bool batch_culler::row_in_slots(float sv, const row_entry* entries, size_t count
   const int64_t last_batch = batches_ - 1;
   std::fill(count_, count_ + batches_, 0u);
   kept_ = 0;
-  const auto keep = [&](uint32_t k, int64_t lo, int64_t hi) {
+  // lo, hi >= 0: a shift is the division by the batch's width (an integer
+  // division per end was half the row's time).
+  const bool fit = each_entry(f_, sv, spread_, shift_, entries, count, [&](uint32_t k, int64_t lo, int64_t hi) {
     const int64_t a = std::min(lo >> batch_shift_, last_batch), b = std::min(hi >> batch_shift_, last_batch);
     ++kept_;
     if (b - a <= 1) {  // most spheres: one batch or two, written with no branch between them
-      if (count_[a] + 1 >= slot_ || count_[b] + 1 >= slot_) return false;  // (one spare: the write below)
+      // Room for the second write too, which lands one past the list's end
+      // (and is not counted) where b = a.
+      if (count_[a] + 1 >= slot_ || count_[b] + 1 >= slot_) return false;
       list_[slot_start_[a] + count_[a]++] = k;
-      list_[slot_start_[b] + count_[b]] = k;  // where b = a: past the list's end, and not counted
+      list_[slot_start_[b] + count_[b]] = k;
       count_[b] += uint32_t(b != a);
       return true;
     }
@@ -721,17 +740,8 @@ bool batch_culler::row_in_slots(float sv, const row_entry* entries, size_t count
       list_[slot_start_[i] + count_[i]++] = k;
     }
     return true;
-  };
-  std::optional<row_test> exact;  // for the tall spheres, made at the first
-  for (size_t x = 0; x < count; ++x) {
-    const row_entry& e = entries[x];
-    int64_t lo = int64_t(e.lo) << shift_, hi = ((int64_t(e.hi) + 1) << shift_) - 1;
-    if (e.lo == row_entry::tall) {
-      if (!exact) exact.emplace(f_, sv, spread_);
-      if (!exact->columns(e.sphere, lo, hi)) continue;
-    }
-    if (!keep(e.sphere, lo, hi)) return false;
-  }
+  });
+  if (!fit) return false;
   slotted_ = true;
   start_ = slot_start_;
   return true;

@@ -17,7 +17,8 @@
 //  - per row, while it is rendered: each listed sphere's batches (from its
 //    columns, or for a tall sphere an exact quadratic in the column), turned
 //    into one list per batch of columns (batch_culler). 12 bytes per listed
-//    sphere and 4 bytes per batch entry, per thread, reused row after row.
+//    sphere, 4 bytes per batch entry and 16 per batch, per thread, reused
+//    row after row.
 // Every test is conservative: the margins are hundreds of times the float
 // intersection's rounding, so leaving a sphere out never changes a pixel
 // (tests/test_culling.cpp checks every hit against the lists).
@@ -112,7 +113,8 @@ class batch_culler {
   int64_t run_length() const;
   // The lists of the row's batches [b0, b1) (b1 - b0 <= run_length()).
   void build(int64_t b0, int64_t b1);
-  // Batch b's spheres (b in the last build's run).
+  // Batch b's spheres (b in the last build's run; list(b) only where
+  // tests(b) > 0).
   const uint32_t* list(int64_t b) const { return list_ + start_[b - b0_]; }
   size_t tests(int64_t b) const { return kept_ == 0 ? 0 : count_[b - b0_]; }
 
@@ -120,7 +122,8 @@ class batch_culler {
   void release();
   // The common case, in one pass over the row's entries: each batch's list
   // in its own slot of slot_ entries, appended to as the entries come; false
-  // (nothing kept) where a slot would overflow.
+  // where a slot would overflow (what it wrote is then left for row() to
+  // write over).
   bool row_in_slots(float sv, const row_entry* entries, size_t count);
   bool slotted_ = false;  // the row's lists are in slots: build has nothing to do
   // List entries one run may hold: the row's own entries where they fit in
@@ -128,7 +131,7 @@ class batch_culler {
   // batches (spheres that span much of the row).
   static constexpr size_t budget = size_t(1) << 16;
   size_t capacity_ = 0;
-  size_t entries_ = 0;  // the kept spheres' batches, added up
+  size_t entries_ = 0;  // the kept spheres' batches, added up (rows not in slots)
   const float_scene& f_;
   int shift_;
   int batch_shift_;  // log2 of the batch's width (a vector's: a power of two)
@@ -139,7 +142,7 @@ class batch_culler {
   uint32_t* first_ = nullptr;
   uint32_t* fill_ = nullptr;
   uint32_t* count_ = nullptr;       // per batch of the run: its list's length
-  uint32_t* slot_start_ = nullptr;  // per batch: b slot_
+  uint32_t* slot_start_ = nullptr;  // per batch b: b * slot_
   const uint32_t* start_ = nullptr; // per batch of the run: its list's first entry (first_ or slot_start_)
   size_t slot_ = 0;                 // entries a slot holds (0: no slots)
   size_t kept_ = 0;

@@ -223,11 +223,12 @@ RAYCAST_INLINE bool nearer_than(const sphere_arrays& sp, const sphere_record& e,
 // centres in several rows, whose records lie a row's worth apart): the
 // record six candidates ahead is asked for now, so that its cache miss
 // overlaps the tests before it, and a batch's first six while the batch
-// before it works (prefetch_list). One thread, render at 1920x1080: box
-// of 10^6 20.8 to 14.5 ms, dense cloud of 10^6 121 to 107 ms, sparse 96 to
-// 86 ms; three ahead gave less, ten no more, and scenes of 10^3 spheres
-// take what they took. With the record, its index in the scene (a hit in a
-// reordered scene records it).
+// before it works (prefetch_list). One thread, render at 1920x1080: the
+// box of 10^6, six ahead 20.8 to 18.5 ms, the next batch's 15.8 to 14.5
+// (after the culler's one-pass lists); both, in every walk: dense cloud of
+// 10^6 121 to 107 ms, sparse 96 to 86 ms. Three ahead gave less, ten no
+// more, and scenes of 10^3 spheres take what they took. With the record,
+// its index in the scene (a hit in a reordered scene records it).
 constexpr size_t prefetch_distance = 6;
 RAYCAST_INLINE void prefetch_sphere(const sphere_arrays& sp, uint32_t k) {
   __builtin_prefetch(&sp.rec[k]);
@@ -288,7 +289,7 @@ RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, siz
 // SSE2's two-half vectors in one-element arrays are not kept in registers by
 // GCC 12 (+40 % on sse2/world).
 // (Deep: a depth-ordered walk, which may stop early; its own loop, so that
-// other scenes ask nothing per sphere.)
+// other scenes ask nothing of the depth keys.)
 template <bool Ortho, bool Deep, int Shades>
 RAYCAST_INLINE void walk(const sphere_arrays& sp, const uint32_t* list, size_t count, rays& r, closest_hit<Shades>& h) {
   for (size_t x = 0; x < count; ++x) {

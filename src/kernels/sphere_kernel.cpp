@@ -73,7 +73,8 @@ int64_t store_mirrored_ends(const float_scene& s, const sky_shader& sky, batch_c
 // The next batch's first candidates, asked for while batch b works
 // (sphere_hit.inl: prefetch_list); b + 1 in the lists' run [.., b1).
 RAYCAST_INLINE void prefetch_next_batch(const sphere_arrays& sp, const batch_culler& lists, int64_t b, int64_t b1) {
-  if (b + 1 < b1) prefetch_list(sp, lists.list(b + 1), lists.tests(b + 1));
+  if (b + 1 >= b1) return;
+  if (const size_t n = lists.tests(b + 1)) prefetch_list(sp, lists.list(b + 1), n);
 }
 
 // One sample per pixel: each batch's rays against its list, shaded, stored.
