@@ -9,7 +9,9 @@
 #
 # Weak: nm's W, V (weak code, weak object), u (unique global), i (indirect).
 # Allowed outside a namespace: DW.ref.__gxx_personality_v0, the exception
-# tables' reference to the C++ runtime (data, no code of any target).
+# tables' reference to the C++ runtime, and the type information of function
+# types that clang's UBSan (-fsanitize=function) emits for indirect calls:
+# data, no code of any target.
 set(_bad)
 set(_checked 0)
 string(REPLACE "," ";" _entries "${OBJECTS}")
@@ -29,7 +31,7 @@ foreach(_entry IN LISTS _entries)
         continue()
       endif()
       set(_name "${CMAKE_MATCH_2}")
-      if(_name MATCHES "::${_target}::" OR _name STREQUAL "DW.ref.__gxx_personality_v0")
+      if(_name MATCHES "::${_target}::" OR _name STREQUAL "DW.ref.__gxx_personality_v0" OR _name MATCHES "^typeinfo (name )?for ")
         continue()
       endif()
       get_filename_component(_base "${_obj}" NAME)

@@ -168,7 +168,12 @@ traced_image blank(const scene& s) {
   return t;
 }
 
-unsigned char byte_of(float c) { return static_cast<unsigned char>(int(std::clamp(c, 0.0f, 1.0f) * 255.999f)); }
+// NaN (the book's float arithmetic at 1e30 and beyond) is 0, as x86's
+// conversion makes it (and without the conversion's undefined behaviour).
+unsigned char byte_of(float c) {
+  if (std::isnan(c)) return 0;
+  return static_cast<unsigned char>(int(std::clamp(c, 0.0f, 1.0f) * 255.999f));
+}
 
 struct f3 {
   float x, y, z;
