@@ -9,9 +9,10 @@
 #
 # Weak: nm's W, V (weak code, weak object), u (unique global), i (indirect).
 # Allowed outside a namespace: DW.ref.__gxx_personality_v0, the exception
-# tables' reference to the C++ runtime, and the type information of function
-# types that clang's UBSan (-fsanitize=function) emits for indirect calls:
-# data, no code of any target.
+# tables' reference to the C++ runtime, and type information ("typeinfo for",
+# "typeinfo name for": objects and names, data, no code of any target), which
+# clang's UBSan (-fsanitize=function) emits for the function types of
+# indirect calls.
 set(_bad)
 set(_checked 0)
 string(REPLACE "," ";" _entries "${OBJECTS}")
