@@ -120,13 +120,7 @@ double peak_mb(const std::string& err) {
 // index, and each secondary structure, from --stats' peak on a packed box
 // of 300,000 spheres (a margin of about a sixth over what was measured).
 TEST_F(CliPly, ASphereCostsWhatTheSceneRoomSays) {
-#if defined(__SANITIZE_ADDRESS__) || defined(RAYCAST_EXE_LAUNCHER)
-  GTEST_SKIP() << "the peak of a sanitized or emulated raycast is not its own";
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)  // clang's way of saying it
-  GTEST_SKIP() << "the peak of a sanitized raycast is not its own";
-#endif
-#endif
+  if (sanitized() || emulated()) GTEST_SKIP() << "the peak of a sanitized or emulated raycast is not its own";
   constexpr size_t n = 300000;
   const float side = float(std::cbrt(double(n) * 4.18879 / 0.3));  // radius 1, packing fraction 0.3
   std::mt19937 rng(29);

@@ -30,7 +30,9 @@ namespace {
 
 using raycast_test::cli_sandbox;
 using raycast_test::count_lines;
+using raycast_test::emulated;
 using raycast_test::expect_runtime_error;
+using raycast_test::sanitized;
 using raycast_test::how_it_ended;
 using raycast_test::precious;
 using raycast_test::have_image_module;
@@ -64,26 +66,6 @@ void expect_default_ppm(const fs::path& p) {
   EXPECT_EQ(ppm.error, "") << p;
   EXPECT_EQ(ppm.width, 400);
   EXPECT_EQ(ppm.height, 225);
-}
-
-bool sanitized() {
-#if defined(__SANITIZE_ADDRESS__)
-  return true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-  return true;
-#endif
-#endif
-  return false;
-}
-
-// Under an emulator (qemu-user), limits on the process limit the emulator.
-bool emulated() {
-#ifdef RAYCAST_EXE_LAUNCHER
-  return true;
-#else
-  return false;
-#endif
 }
 
 // Root, and a `nobody` that can reach the sandbox; otherwise the reason.

@@ -84,6 +84,27 @@ struct run_options {
   std::vector<std::string> env;
 };
 
+// Whether the tests (and the raycast they run) are built with AddressSanitizer
+// (GCC's macro, or clang's feature), and whether they run under an emulator:
+// a process's limits and peak memory are then not raycast's own.
+inline bool sanitized() {
+#if defined(__SANITIZE_ADDRESS__)
+  return true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+  return true;
+#endif
+#endif
+  return false;
+}
+inline bool emulated() {
+#ifdef RAYCAST_EXE_LAUNCHER
+  return true;
+#else
+  return false;
+#endif
+}
+
 // The command line that runs the executable `exe`: itself, or in a cross build
 // its emulator first (qemu-aarch64 -L ...). RAYCAST_EXE_LAUNCHER is that
 // emulator's command line, '|'-separated (tests/CMakeLists.txt).
