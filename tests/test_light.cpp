@@ -265,6 +265,67 @@ TEST(Light, GridWalkFindsWhatTestingEverySphereFindsInACoarseGrid) {
   EXPECT_EQ(w.mismatches, 0u) << "of " << w.rays << " rays";
 }
 
+// A hit's rays walked together (sphere_grid::occluded for a group) find,
+// ray by ray, what testing every sphere finds: from a point on each sphere,
+// eight cosine-weighted directions about a random normal (in every third
+// group some along an axis, their other components +0 or -0), most groups
+// short enough to walk in vector lanes (at most 4 cells), some longer (one
+// ray at a time), a group of fewer than eight now and then; on the three
+// grids above.
+struct group_count {
+  size_t groups = 0, in_lanes = 0, rays = 0, blocked = 0, mismatches = 0;
+};
+group_count groups_against_every_sphere(const sphere_grid& g, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  group_count w;
+  for (uint32_t k = 0; k < g.size(); k += 2) {
+    const vec3 n = unit_vector(vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5));
+    const float* c = g.sphere(k);
+    float o[3], d[sphere_grid::group][3];
+    for (int a = 0; a < 3; ++a) o[a] = c[a] + c[3] * float(n[a]);
+    const int m = k % 7 == 3 ? 1 + int(k / 7 % 7) : sphere_grid::group;
+    for (int l = 0; l < m; ++l) {
+      vec3 dl = cosine_direction(n, u(rng), u(rng));
+      if (k % 3 == 1 && l % 2 == 0) {
+        const int a = (l / 2 + int(k)) % 3;
+        dl = vec3(l % 4 ? -0.0 : 0.0, -0.0, 0.0);
+        dl[a] = n[a] < 0 ? -1.0 : 1.0;
+      }
+      for (int a = 0; a < 3; ++a) d[l][a] = float(dl[a]);
+    }
+    const float tmax = float(u(rng) * 5) * g.cell_side();
+    ++w.groups;
+    w.in_lanes += g.walks_in_lanes(tmax);
+    const uint32_t got = g.occluded(o, d, m, tmax, k);
+    for (int l = 0; l < m; ++l) {
+      bool want = false;
+      for (uint32_t q = 0; q < g.size() && !want; ++q) want = q != k && g.blocks(g.position(q), o, d[l], tmax);
+      ++w.rays;
+      w.blocked += want;
+      w.mismatches += ((got >> l) & 1u) != uint32_t(want);
+    }
+  }
+  return w;
+}
+
+TEST(Light, AHitsRaysWalkedTogetherFindWhatTestingEverySphereFinds) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  scene_params mixed;
+  for (int k = 0; k < 3000; ++k)
+    mixed.spheres.push_back(sphere{point3(u(rng) * 4 - 2, u(rng) * 2 - 1, u(rng) * 3 - 8), 0.01 + 0.12 * u(rng) * u(rng)});
+  const sphere_grid grids[] = {sphere_grid(make_scene(mixed)), sphere_grid(make_scene(particle_box(2000))),
+                               sphere_grid(huge_among_small())};
+  for (const sphere_grid& g : grids) {
+    const group_count w = groups_against_every_sphere(g, 11);
+    EXPECT_EQ(w.mismatches, 0u) << "of " << w.rays << " rays among " << g.size() << " spheres";
+    EXPECT_GT(w.in_lanes, w.groups * 7 / 10) << "most groups should walk in lanes";
+    EXPECT_GT(w.blocked, w.rays / 10);
+    EXPECT_LT(w.blocked, w.rays * 9 / 10);
+  }
+}
+
 // The point C + r n of sphere k in the grid's frame (n a unit vector).
 void on_sphere(const sphere_grid& g, uint32_t k, const vec3& n, float p[3]) {
   const float* c = g.sphere(k);

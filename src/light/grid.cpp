@@ -9,7 +9,7 @@
 namespace raycast {
 namespace {
 
-constexpr double margin = 0x1p-20;       // grid units: the widening of each sphere's box
+constexpr double margin = 0x1p-16;       // grid units: the widening of each sphere's box (grid.h)
 constexpr size_t max_references = size_t(1) << 31;
 
 struct placed {  // a sphere (x y z r) and its index in the scene
@@ -181,16 +181,6 @@ void sphere_grid::sort_by_home_cell(double h) {
     for (int a = 0; a < 4; ++a) spheres_[p * 4 + a] = sorted[p].s[a];
     rank_[sorted[p].k] = uint32_t(p);
   }
-}
-
-// Whether a sphere of cell c but skip blocks the segment: its own spheres
-// read in one run, then those reaching in from other cells.
-inline bool sphere_grid::cell_occluded(size_t c, const float o[3], const float d[3], float tmax, uint32_t skip) const {
-  for (uint32_t p = home_[c]; p < home_[c + 1]; ++p)
-    if (p != skip && blocks(p, o, d, tmax)) return true;
-  for (uint32_t e = first_[c]; e < first_[c + 1]; ++e)
-    if (refs_[e] != skip && blocks(refs_[e], o, d, tmax)) return true;
-  return false;
 }
 
 // Amanatides and Woo's walk over the cells of the segment o + t d, t in

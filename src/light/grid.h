@@ -7,8 +7,9 @@
 // middle of the spheres' bounding box), times 2^-scale_exp (a power of two
 // that brings the box into [-1, 1]: exact, so a scene at 1e-20 or 1e20 gives
 // the same float bits as at 1), rounded to float once. Each sphere is listed
-// in every cell its bounding box (widened by 2^-20 of the grid's size, far
-// above the query's rounding) overlaps: the spheres are stored in the order
+// in every cell its bounding box (widened by 2^-16 of the grid's size, far
+// above the queries' rounding: grid_lanes.cpp's float walk strays by less than
+// 2^-17) overlaps: the spheres are stored in the order
 // of their centres' (home) cells, so a cell's own spheres are one run of
 // them, and only the spheres reaching in from other cells are referenced.
 // About N cells for N spheres, at most 2^31 listings; a scene of a few huge spheres among small ones
@@ -54,6 +55,14 @@ class sphere_grid {
   // index in the scene): a ray that starts inside a sphere is blocked by
   // it. Grid units: world * 2^-scale_exp.
   bool occluded(const float o[3], const float d[3], float tmax, uint32_t skip) const;
+  // occluded() for m <= 8 rays from one origin (a hit's AO rays): bit a of
+  // the result is occluded(o, d[a], tmax, skip). Short rays from inside the
+  // grid's box walk together, one a vector lane (light/README.md), so that
+  // no branch waits on which face each ray leaves its cell by.
+  static constexpr int group = 8;
+  uint32_t occluded(const float o[3], const float (*d)[3], int m, float tmax, uint32_t skip) const;
+  // Whether a group's rays of length tmax from inside the box walk in lanes.
+  bool walks_in_lanes(float tmax) const { return tmax <= 4 * h_ && h_ <= 0.5f && cells() < size_t(1) << 31; }
 
   // Sphere k's (its index in the scene) centre (grid frame) and radius (grid
   // units), x y z r. The spheres are stored in the order of the cells their
@@ -88,6 +97,7 @@ class sphere_grid {
   int scale_exp = 0;  // grid units = world units * 2^-scale_exp
 
   size_t cells() const { return first_.empty() ? 0 : first_.size() - 1; }
+  float cell_side() const { return h_; }  // grid units
   // Listings: each sphere in its home cell, and in every other cell it overlaps.
   size_t references() const { return size() + refs_.size(); }
   size_t bytes() const {
@@ -98,8 +108,18 @@ class sphere_grid {
  private:
   void build_cells(const double lo[3], const double hi[3]);
   void sort_by_home_cell(double h);
-  bool cell_occluded(size_t c, const float o[3], const float d[3], float tmax, uint32_t skip) const;
+  // Whether a sphere of cell c but skip blocks the segment: its own spheres
+  // read in one run, then those reaching in from other cells.
+  bool cell_occluded(size_t c, const float o[3], const float d[3], float tmax, uint32_t skip) const {
+    for (uint32_t p = home_[c]; p < home_[c + 1]; ++p)
+      if (p != skip && blocks(p, o, d, tmax)) return true;
+    for (uint32_t e = first_[c]; e < first_[c + 1]; ++e)
+      if (refs_[e] != skip && blocks(refs_[e], o, d, tmax)) return true;
+    return false;
+  }
+  bool occupied(size_t c) const { return occupied_[c >> 6] >> (c & 63) & 1u; }
   struct walk;
+  struct lanes_walk;
   bool far_occluded(walk& w, const float o[3], const float d[3], float tmax, uint32_t skip) const;
 
   float lo_[3] = {0, 0, 0}, hi_[3] = {0, 0, 0};

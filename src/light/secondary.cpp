@@ -87,7 +87,7 @@ namespace {
 // overlaps the next instead of waiting behind each walk's branches.
 uint32_t open_ao_rays(const secondary_rays& r, const lit_lanes& ls, int l, const float n[3], const float p[3],
                       uint32_t skip) {
-  constexpr uint32_t group = 8;
+  constexpr uint32_t group = sphere_grid::group;
   float t[3], bt[3];
   frame_about(n, t, bt);
   const sampling::ao_seeds seeds = sampling::ao_pixel(r.ao, uint32_t(ls.i0 + l), uint32_t(ls.j));
@@ -100,7 +100,7 @@ uint32_t open_ao_rays(const secondary_rays& r, const lit_lanes& ls, int l, const
       sampling::ao_numbers(r.ao, seeds, ls.sample, a0 + a, u1, u2);
       direction_in_frame(n, t, bt, u1, u2, dir[a]);
     }
-    for (uint32_t a = 0; a < m; ++a) open += r.grid->occluded(p, dir[a], r.ao_distance, skip) ? 0u : 1u;
+    open += m - uint32_t(__builtin_popcount(r.grid->occluded(p, dir, int(m), r.ao_distance, skip)));
   }
   return open;
 }

@@ -11,7 +11,7 @@
 namespace raycast {
 namespace {
 
-constexpr float margin = 0x1p-20f;  // grid units, as the 3-D grid's widening
+constexpr float margin = 0x1p-20f;  // grid units: far above a shadow ray's rounding
 constexpr size_t max_entries = size_t(1) << 31;
 
 float dot(const float a[3], const float* b) { return (a[0] * b[0] + a[1] * b[1]) + a[2] * b[2]; }
