@@ -12,29 +12,22 @@
 // the spheres' widening (grid.cpp). So where the two walks part (a ray
 // within that of a cell's edge) each cell one visits and the other not is
 // one the segment passes within 2^-17 of, and lists every sphere the
-// segment can meet there: a ray's verdict is the lone walk's. GCC's and clang's vector types, compiled once like the rest of
-// light/: SSE2 or NEON instructions, four rays at a time.
+// segment can meet there: a ray's verdict is the lone walk's. Four rays at
+// a time (light/lanes.h).
 #include <algorithm>
 #include <cstdint>
 #include <limits>
 
 #include "light/grid.h"
+#include "light/lanes.h"
 
 namespace raycast {
-namespace {
 
-constexpr int lanes = 4;  // one SSE2 or NEON register of floats
-typedef float fvec __attribute__((vector_size(lanes * sizeof(float))));
-typedef int32_t ivec __attribute__((vector_size(lanes * sizeof(float))));  // also masks: 0 or -1 a lane
-
-fvec pick(ivec m, fvec a, fvec b) { return fvec((ivec(a) & m) | (ivec(b) & ~m)); }
-uint32_t bits_of(ivec m) {
-  uint32_t b = 0;
-  for (int l = 0; l < lanes; ++l) b |= uint32_t(m[l] & 1) << l;
-  return b;
-}
-
-}  // namespace
+using lanes::fvec;
+using lanes::ivec;
+using lanes::pick;
+using lanes::bits_of;
+constexpr int width = lanes::width;
 
 // The walk's state, lane by lane: the t of the next boundary on each axis,
 // the t between two, the steps left on each axis before the grid ends, the
@@ -87,8 +80,8 @@ uint32_t sphere_grid::occluded(const float o[3], const float (*d)[3], int m, flo
     return blocked;
   }
   const uint32_t skip = skip_index < size() ? position(skip_index) : skip_index;
-  for (int l0 = 0; l0 < m; l0 += lanes) {
-    const int k = std::min(lanes, m - l0);
+  for (int l0 = 0; l0 < m; l0 += width) {
+    const int k = std::min(width, m - l0);
     const float(*dk)[3] = d + l0;
     lanes_walk w(*this, o, dk, k);
     const size_t first = size_t(uint32_t(w.cell[0]));

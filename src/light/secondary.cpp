@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "light/frame.h"
+#include "light/lanes.h"
 #include "scene/sphere.h"
 
 namespace raycast {
@@ -44,47 +45,71 @@ const turn_table turns;
 
 }  // namespace
 
-void unit_circle(float u, float& c, float& s) {
-  // u = (i + f) / 256: the table's turn i / 256, and a small angle
-  // d = 2 pi f / 256 < 0.0246 (f exact) by its series: 1 - cos d and sin d
-  // to d^4 and d^3 (the next terms below 8e-11), added to the table's
-  // values as corrections, so that only the table's rounding and the last
-  // addition's round at the scale of the result. No branch: AO rays' turns
-  // are random, and a mispredicted quarter costs more than the arithmetic.
-  const float x = u * 256.0f;  // exact
-  const int i = int(x) & 255;
-  const float d = (x - float(int(x))) * 0.0245436926f;  // 2 pi / 256
-  const float d2 = d * d;
-  const float one_less_cos = d2 * (0.5f - d2 * (1.0f / 24)), sin_d = d * (1.0f - d2 * (1.0f / 6));
-  const float c0 = turns.c[i], s0 = turns.s[i];
+namespace {
+
+// A turn's table entry, the whole part of a float and its float: of one
+// number, or of a vector's lanes (light/lanes.h) with the same roundings.
+float turn_at(const float* table, int i) { return table[i]; }
+lanes::fvec turn_at(const float* table, lanes::ivec i) {
+  lanes::fvec v;
+  for (int l = 0; l < lanes::width; ++l) v[l] = table[i[l]];
+  return v;
+}
+int whole_of(float x) { return int(x); }
+lanes::ivec whole_of(lanes::fvec x) { return __builtin_convertvector(x, lanes::ivec); }
+float float_of(int i) { return float(i); }
+lanes::fvec float_of(lanes::ivec i) { return __builtin_convertvector(i, lanes::fvec); }
+float sqrt_of(float x) { return std::sqrt(x); }
+lanes::fvec sqrt_of(lanes::fvec x) {
+  for (int l = 0; l < lanes::width; ++l) x[l] = std::sqrt(x[l]);
+  return x;
+}
+
+// unit_circle of a float or of a vector's lanes. u = (i + f) / 256: the
+// table's turn i / 256, and a small angle d = 2 pi f / 256 < 0.0246 (f
+// exact) by its series: 1 - cos d and sin d to d^4 and d^3 (the next terms
+// below 8e-11), added to the table's values as corrections, so that only the
+// table's rounding and the last addition's round at the scale of the result.
+// No branch: AO rays' turns are random, and a mispredicted quarter costs
+// more than the arithmetic.
+template <class F>
+void turn_of(F u, F& c, F& s) {
+  const F x = u * 256.0f;  // exact
+  const auto whole = whole_of(x);
+  const F d = (x - float_of(whole)) * 0.0245436926f;  // 2 pi / 256
+  const F d2 = d * d;
+  const F one_less_cos = d2 * (0.5f - d2 * (1.0f / 24)), sin_d = d * (1.0f - d2 * (1.0f / 6));
+  const F c0 = turn_at(turns.c, whole & 255), s0 = turn_at(turns.s, whole & 255);
   c = c0 - (c0 * one_less_cos + s0 * sin_d);
   s = s0 + (c0 * sin_d - s0 * one_less_cos);
 }
 
-namespace {
-
-// ao_direction in a frame (t, b) about n made once for a hit's rays.
-void direction_in_frame(const float n[3], const float t[3], const float bt[3], float u1, float u2, float dir[3]) {
-  float cos_phi, sin_phi;
-  unit_circle(u1, cos_phi, sin_phi);
-  const float rad = std::sqrt(u2);
-  const float x = rad * cos_phi, y = rad * sin_phi, z = std::sqrt(1.0f - u2);
+// ao_direction in a frame (t, b) about n made once for a hit's rays: of one
+// pair of numbers, or of a vector's lanes.
+template <class F>
+void direction_in_frame(const float n[3], const float t[3], const float bt[3], F u1, F u2, F dir[3]) {
+  F cos_phi, sin_phi;
+  turn_of(u1, cos_phi, sin_phi);
+  const F rad = sqrt_of(u2);
+  const F x = rad * cos_phi, y = rad * sin_phi, z = sqrt_of(1.0f - u2);
   for (int k = 0; k < 3; ++k) dir[k] = (x * t[k] + y * bt[k]) + z * n[k];
 }
 
 }  // namespace
 
+void unit_circle(float u, float& c, float& s) { turn_of(u, c, s); }
+
 void ao_direction(const float n[3], float u1, float u2, float dir[3]) {
   float t[3], bt[3];
   frame_about(n, t, bt);
-  direction_in_frame(n, t, bt, u1, u2, dir);
+  direction_in_frame<float>(n, t, bt, u1, u2, dir);
 }
 
 namespace {
 
 // How many of a hit's AO rays reach their distance: their directions made
-// a group at a time before any is walked, so that the arithmetic of one
-// overlaps the next instead of waiting behind each walk's branches.
+// a group at a time, four to a vector (light/lanes.h), before any is
+// walked, and the group walked together (sphere_grid::occluded).
 uint32_t open_ao_rays(const secondary_rays& r, const lit_lanes& ls, int l, const float n[3], const float p[3],
                       uint32_t skip) {
   constexpr uint32_t group = sphere_grid::group;
@@ -94,11 +119,16 @@ uint32_t open_ao_rays(const secondary_rays& r, const lit_lanes& ls, int l, const
   uint32_t open = 0;
   for (uint32_t a0 = 0; a0 < r.ao.count; a0 += group) {
     const uint32_t m = std::min(group, r.ao.count - a0);
+    lanes::fvec u1[group / lanes::width] = {}, u2[group / lanes::width] = {};
+    for (uint32_t a = 0; a < m; ++a)
+      sampling::ao_numbers(r.ao, seeds, ls.sample, a0 + a, u1[a / lanes::width][a % lanes::width],
+                           u2[a / lanes::width][a % lanes::width]);
     float dir[group][3];
-    for (uint32_t a = 0; a < m; ++a) {
-      float u1, u2;
-      sampling::ao_numbers(r.ao, seeds, ls.sample, a0 + a, u1, u2);
-      direction_in_frame(n, t, bt, u1, u2, dir[a]);
+    for (uint32_t v = 0; v * lanes::width < m; ++v) {
+      lanes::fvec d[3];
+      direction_in_frame(n, t, bt, u1[v], u2[v], d);
+      for (int q = 0; q < lanes::width; ++q)
+        for (int k = 0; k < 3; ++k) dir[v * lanes::width + q][k] = d[k][q];
     }
     open += m - uint32_t(__builtin_popcount(r.grid->occluded(p, dir, int(m), r.ao_distance, skip)));
   }
