@@ -183,6 +183,24 @@ TEST(Light, GridVerdictsAgreeWithTheReferenceButForGrazingRays) {
 // a random normal (every fourth along an axis, the other components +0 or
 // -0), a third unbounded, the rest short (or, from outside, just long
 // enough to reach the spheres).
+// The float test (sphere_grid::blocks) of every sphere but skip.
+bool blocked_by_any(const sphere_grid& g, const float o[3], const float d[3], float tmax, uint32_t skip) {
+  for (uint32_t q = 0; q < g.size(); ++q)
+    if (q != skip && g.blocks(g.position(q), o, d, tmax)) return true;
+  return false;
+}
+
+// 3000 spheres of mixed sizes at random places, most reaching over their
+// cells' faces into others.
+scene mixed_sizes() {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  scene_params p;
+  for (int k = 0; k < 3000; ++k)
+    p.spheres.push_back(sphere{point3(u(rng) * 4 - 2, u(rng) * 2 - 1, u(rng) * 3 - 8), 0.01 + 0.12 * u(rng) * u(rng)});
+  return make_scene(p);
+}
+
 struct walk_count {
   size_t rays = 0, blocked = 0, mismatches = 0;
 };
@@ -208,8 +226,7 @@ walk_count walk_against_every_sphere(const sphere_grid& g, uint32_t seed) {
     const float reach = outside ? 3.0f : 0.0f;
     const float tmax = k % 3 == 0 ? INFINITY : reach + float(u(rng) * 0.5);
     const uint32_t skip = outside ? uint32_t(-1) : k;
-    bool want = false;
-    for (uint32_t q = 0; q < g.size() && !want; ++q) want = q != skip && g.blocks(g.position(q), o, df, tmax);
+    const bool want = blocked_by_any(g, o, df, tmax, skip);
     ++w.rays;
     w.blocked += want;
     w.mismatches += g.occluded(o, df, tmax, skip) != want;
@@ -221,12 +238,7 @@ walk_count walk_against_every_sphere(const sphere_grid& g, uint32_t seed) {
 // of mixed sizes at random places (most reaching over their cells' faces
 // into others), ...
 TEST(Light, GridWalkFindsWhatTestingEverySphereFinds) {
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  scene_params p;
-  for (int k = 0; k < 3000; ++k)
-    p.spheres.push_back(sphere{point3(u(rng) * 4 - 2, u(rng) * 2 - 1, u(rng) * 3 - 8), 0.01 + 0.12 * u(rng) * u(rng)});
-  const sphere_grid g(make_scene(p));
+  const sphere_grid g(mixed_sizes());
   ASSERT_GT(g.references(), 2 * g.size()) << "most spheres should reach into other cells";
   const walk_count w = walk_against_every_sphere(g, 6);
   EXPECT_GT(w.blocked, w.rays / 10);
@@ -299,8 +311,7 @@ group_count groups_against_every_sphere(const sphere_grid& g, uint32_t seed) {
     w.in_lanes += g.walks_in_lanes(tmax);
     const uint32_t got = g.occluded(o, d, m, tmax, k);
     for (int l = 0; l < m; ++l) {
-      bool want = false;
-      for (uint32_t q = 0; q < g.size() && !want; ++q) want = q != k && g.blocks(g.position(q), o, d[l], tmax);
+      const bool want = blocked_by_any(g, o, d[l], tmax, k);
       ++w.rays;
       w.blocked += want;
       w.mismatches += ((got >> l) & 1u) != uint32_t(want);
@@ -310,12 +321,7 @@ group_count groups_against_every_sphere(const sphere_grid& g, uint32_t seed) {
 }
 
 TEST(Light, AHitsRaysWalkedTogetherFindWhatTestingEverySphereFinds) {
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  scene_params mixed;
-  for (int k = 0; k < 3000; ++k)
-    mixed.spheres.push_back(sphere{point3(u(rng) * 4 - 2, u(rng) * 2 - 1, u(rng) * 3 - 8), 0.01 + 0.12 * u(rng) * u(rng)});
-  const sphere_grid grids[] = {sphere_grid(make_scene(mixed)), sphere_grid(make_scene(particle_box(2000))),
+  const sphere_grid grids[] = {sphere_grid(mixed_sizes()), sphere_grid(make_scene(particle_box(2000))),
                                sphere_grid(huge_among_small())};
   for (const sphere_grid& g : grids) {
     const group_count w = groups_against_every_sphere(g, 11);
