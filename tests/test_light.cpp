@@ -280,12 +280,13 @@ TEST(Light, GridWalkFindsWhatTestingEverySphereFindsInACoarseGrid) {
 // A hit's rays walked together (sphere_grid::occluded for a group) find,
 // ray by ray, what testing every sphere finds: from a point on each sphere,
 // eight cosine-weighted directions about a random normal (in every third
-// group some along an axis, their other components +0 or -0), most groups
-// short enough to walk in vector lanes (at most 4 cells), some longer (one
-// ray at a time), a group of fewer than eight now and then; on the three
-// grids above.
+// group some along an axis, their other components +0, -0 or below the
+// normal floats), most groups short enough to walk in vector lanes (at most
+// 4 cells), some longer (one ray at a time), a group of fewer than eight now
+// and then; on the three grids above. Each verdict is also the same ray's
+// walked alone.
 struct group_count {
-  size_t groups = 0, in_lanes = 0, rays = 0, blocked = 0, mismatches = 0;
+  size_t groups = 0, in_lanes = 0, rays = 0, blocked = 0, mismatches = 0, differ_from_lone = 0;
 };
 group_count groups_against_every_sphere(const sphere_grid& g, uint32_t seed) {
   std::mt19937 rng(seed);
@@ -305,6 +306,8 @@ group_count groups_against_every_sphere(const sphere_grid& g, uint32_t seed) {
         dl[a] = n[a] < 0 ? -1.0 : 1.0;
       }
       for (int a = 0; a < 3; ++a) d[l][a] = float(dl[a]);
+      if (k % 3 == 1 && l % 4 == 2)  // along an axis, the others below the normal floats
+        for (int a = 0; a < 3; ++a) d[l][a] = std::abs(d[l][a]) == 1.0f ? d[l][a] : a % 2 ? 1e-40f : -3e-41f;
     }
     const float tmax = float(u(rng) * 5) * g.cell_side();
     ++w.groups;
@@ -315,6 +318,7 @@ group_count groups_against_every_sphere(const sphere_grid& g, uint32_t seed) {
       ++w.rays;
       w.blocked += want;
       w.mismatches += ((got >> l) & 1u) != uint32_t(want);
+      w.differ_from_lone += ((got >> l) & 1u) != uint32_t(g.occluded(o, d[l], tmax, k));
     }
   }
   return w;
@@ -326,6 +330,7 @@ TEST(Light, AHitsRaysWalkedTogetherFindWhatTestingEverySphereFinds) {
   for (const sphere_grid& g : grids) {
     const group_count w = groups_against_every_sphere(g, 11);
     EXPECT_EQ(w.mismatches, 0u) << "of " << w.rays << " rays among " << g.size() << " spheres";
+    EXPECT_EQ(w.differ_from_lone, 0u) << "verdicts unlike the same ray's walked alone";
     EXPECT_GT(w.in_lanes, w.groups * 7 / 10) << "most groups should walk in lanes";
     EXPECT_GT(w.blocked, w.rays / 10);
     EXPECT_LT(w.blocked, w.rays * 9 / 10);

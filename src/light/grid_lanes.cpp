@@ -25,6 +25,7 @@ namespace raycast {
 
 using lanes::fvec;
 using lanes::ivec;
+using lanes::uvec;
 using lanes::pick;
 using lanes::bits_of;
 constexpr int width = lanes::width;
@@ -34,7 +35,8 @@ constexpr int width = lanes::width;
 // step's change of cell index on each axis and the cell's index.
 struct sphere_grid::lanes_walk {
   fvec next[3], delta[3];
-  ivec left[3], move[3], cell = {};
+  ivec left[3];
+  uvec move[3], cell = {};  // unsigned: a lane that has ended may step on past the grid
 
   // From o, in the cell that holds it (o inside the grid's box).
   lanes_walk(const sphere_grid& g, const float o[3], const float (*d)[3], int m) {
@@ -44,15 +46,17 @@ struct sphere_grid::lanes_walk {
       const int c = p <= 0.0f ? 0 : std::min(int(p), g.dims_[a] - 1);
       fvec da = {};
       for (int l = 0; l < m; ++l) da[l] = d[l][a];
-      const ivec ahead = ivec(da > 0.0f), still = ivec(da == 0.0f);
+      // A component below the normal floats walks as 0 (its 1 / d would be
+      // infinite): it moves the ray by less than 2^-125 over the walk.
+      const ivec ahead = ivec(da > 0.0f), still = ivec(pick(ivec(da < 0.0f), -da, da) < std::numeric_limits<float>::min());
       const fvec inv = 1.0f / da;
       const fvec boundary = (g.lo_[a] + __builtin_convertvector(ivec{} + c + (ahead & 1), fvec) * g.h_) - o[a];
       const fvec inf = fvec{} + std::numeric_limits<float>::infinity();
       next[a] = pick(still, inf, boundary * inv);
       delta[a] = pick(still, inf, g.h_ * pick(ivec(inv < 0.0f), -inv, inv));
       left[a] = (ahead & (g.dims_[a] - 1 - c)) | (~ahead & c);
-      move[a] = (ahead & stride[a]) | (~ahead & -stride[a]);
-      cell += c * stride[a];
+      move[a] = uvec((ahead & stride[a]) | (~ahead & -stride[a]));
+      cell += uint32_t(c) * uint32_t(stride[a]);
     }
   }
   // Every lane to its next cell (the axis whose boundary is nearest, ties
@@ -64,7 +68,7 @@ struct sphere_grid::lanes_walk {
     const fvec t = pick(along[0], next[0], pick(along[1], next[1], next[2]));
     for (int a = 0; a < 3; ++a) {
       left[a] += along[a];  // -1 on the axis stepped along
-      cell += along[a] & move[a];
+      cell += uvec(along[a]) & move[a];
       next[a] += fvec(along[a] & ivec(delta[a]));
     }
     return bits_of(ivec(t > end) | ((left[0] | left[1] | left[2]) < 0));
@@ -84,7 +88,7 @@ uint32_t sphere_grid::occluded(const float o[3], const float (*d)[3], int m, flo
     const int k = std::min(width, m - l0);
     const float(*dk)[3] = d + l0;
     lanes_walk w(*this, o, dk, k);
-    const size_t first = size_t(uint32_t(w.cell[0]));
+    const size_t first = w.cell[0];
     uint32_t hit = 0;
     if (occupied(first))
       for (int l = 0; l < k; ++l) hit |= uint32_t(cell_occluded(first, o, dk[l], tmax, skip)) << l;
@@ -92,7 +96,7 @@ uint32_t sphere_grid::occluded(const float o[3], const float (*d)[3], int m, flo
       live &= ~w.step(tmax);
       for (uint32_t b = live; b != 0; b &= b - 1) {
         const int l = __builtin_ctz(b);
-        const size_t c = size_t(uint32_t(w.cell[l]));
+        const size_t c = w.cell[l];
         if (occupied(c) && cell_occluded(c, o, dk[l], tmax, skip)) hit |= 1u << l, live &= ~(1u << l);
       }
     }

@@ -12,6 +12,7 @@ namespace lanes {
 constexpr int width = 4;
 typedef float fvec __attribute__((vector_size(width * sizeof(float))));
 typedef int32_t ivec __attribute__((vector_size(width * sizeof(float))));  // also masks: 0 or -1 a lane
+typedef uint32_t uvec __attribute__((vector_size(width * sizeof(float))));
 
 // a where m is set, b elsewhere.
 inline fvec pick(ivec m, fvec a, fvec b) { return fvec((ivec(a) & m) | (ivec(b) & ~m)); }

@@ -120,9 +120,11 @@ uint32_t open_ao_rays(const secondary_rays& r, const lit_lanes& ls, int l, const
   for (uint32_t a0 = 0; a0 < r.ao.count; a0 += group) {
     const uint32_t m = std::min(group, r.ao.count - a0);
     lanes::fvec u1[group / lanes::width] = {}, u2[group / lanes::width] = {};
-    for (uint32_t a = 0; a < m; ++a)
-      sampling::ao_numbers(r.ao, seeds, ls.sample, a0 + a, u1[a / lanes::width][a % lanes::width],
-                           u2[a / lanes::width][a % lanes::width]);
+    for (uint32_t a = 0; a < m; ++a) {
+      float x, y;  // a vector's lane is not a reference (clang)
+      sampling::ao_numbers(r.ao, seeds, ls.sample, a0 + a, x, y);
+      u1[a / lanes::width][a % lanes::width] = x, u2[a / lanes::width][a % lanes::width] = y;
+    }
     float dir[group][3];
     for (uint32_t v = 0; v * lanes::width < m; ++v) {
       lanes::fvec d[3];
