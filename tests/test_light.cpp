@@ -494,6 +494,45 @@ TEST(Light, TheTurnOfAnAoDirectionIsCosAndSinWithinAFloatUlp) {
   EXPECT_EQ(s, 1.0f);
 }
 
+// A hit's AO directions are made four to a vector (light/lanes.h): each
+// lane gives ao_direction's bits (the one-at-a-time form, which the Embree
+// peer casts), for every count of rays a group holds, normals along and
+// near the axes (the frame's sign flips at n.z = 0) and numbers at the
+// ends of [0, 1); and each is the double reference's cosine_direction of
+// the same numbers to within float rounding.
+TEST(Light, AoDirectionsMadeInVectorsAreTheOneAtATimeBits) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f), c(-1.0f, 1.0f);
+  std::vector<vec3> normals = {vec3(0, 0, 1), vec3(0, 0, -1), vec3(1, 0, 0), vec3(0, -1, 0),
+                               vec3(1e-7, 0, -1), vec3(0.6, 0.8, 0), vec3(-0.6, 0, 1e-30)};
+  for (int k = 0; k < 2000; ++k) normals.push_back(vec3(c(rng), c(rng), c(rng)));
+  const float edge[] = {0.0f, 0.25f, 0.5f, std::nextafter(1.0f, 0.0f), 0x1p-24f};
+  size_t compared = 0, differ = 0;
+  double worst = 0;
+  for (size_t q = 0; q < normals.size(); ++q) {
+    if (glm::length(normals[q]) < 1e-3) continue;
+    const vec3 nd = unit_vector(normals[q]);
+    const float n[3] = {float(nd.x), float(nd.y), float(nd.z)};
+    const uint32_t m = uint32_t(q % sphere_grid::group) + 1;
+    float u1[sphere_grid::group], u2[sphere_grid::group], got[sphere_grid::group][3];
+    for (uint32_t a = 0; a < m; ++a) {
+      u1[a] = q < 40 ? edge[(q + a) % 5] : u(rng);
+      u2[a] = q < 40 ? edge[(q / 5 + a) % 5] : u(rng);
+    }
+    ao_directions(n, u1, u2, m, got);
+    for (uint32_t a = 0; a < m; ++a) {
+      float want[3];
+      ao_direction(n, u1[a], u2[a], want);
+      differ += std::memcmp(want, got[a], sizeof want) != 0;
+      ++compared;
+      const vec3 ref = cosine_direction(vec3(n[0], n[1], n[2]), u1[a], u2[a]);
+      for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(double(got[a][k]) - ref[k]));
+    }
+  }
+  EXPECT_EQ(differ, 0u) << "of " << compared << " directions";
+  EXPECT_LE(worst, 2e-6);
+}
+
 // The same for shadow rays through the light-space bins (light/shadow_bins.h),
 // from points on every sphere's lit side.
 TEST(Light, ShadowBinVerdictsAgreeWithTheReferenceButForGrazingRays) {

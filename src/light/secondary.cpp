@@ -95,6 +95,20 @@ void direction_in_frame(const float n[3], const float t[3], const float bt[3], F
   for (int k = 0; k < 3; ++k) dir[k] = (x * t[k] + y * bt[k]) + z * n[k];
 }
 
+// ao_direction of m numbers in a frame (t, b) about n, four to a vector.
+void directions_in_frame(const float n[3], const float t[3], const float bt[3], const float* u1, const float* u2,
+                         uint32_t m, float (*dir)[3]) {
+  constexpr uint32_t width = lanes::width;
+  for (uint32_t v0 = 0; v0 < m; v0 += width) {
+    const uint32_t k = std::min(width, m - v0);
+    lanes::fvec x = {}, y = {}, d[3];
+    for (uint32_t q = 0; q < k; ++q) x[q] = u1[v0 + q], y[q] = u2[v0 + q];
+    direction_in_frame(n, t, bt, x, y, d);
+    for (uint32_t q = 0; q < k; ++q)
+      for (int c = 0; c < 3; ++c) dir[v0 + q][c] = d[c][q];
+  }
+}
+
 }  // namespace
 
 void unit_circle(float u, float& c, float& s) { turn_of(u, c, s); }
@@ -103,6 +117,12 @@ void ao_direction(const float n[3], float u1, float u2, float dir[3]) {
   float t[3], bt[3];
   frame_about(n, t, bt);
   direction_in_frame<float>(n, t, bt, u1, u2, dir);
+}
+
+void ao_directions(const float n[3], const float* u1, const float* u2, uint32_t m, float (*dir)[3]) {
+  float t[3], bt[3];
+  frame_about(n, t, bt);
+  directions_in_frame(n, t, bt, u1, u2, m, dir);
 }
 
 namespace {
@@ -119,19 +139,9 @@ uint32_t open_ao_rays(const secondary_rays& r, const lit_lanes& ls, int l, const
   uint32_t open = 0;
   for (uint32_t a0 = 0; a0 < r.ao.count; a0 += group) {
     const uint32_t m = std::min(group, r.ao.count - a0);
-    lanes::fvec u1[group / lanes::width] = {}, u2[group / lanes::width] = {};
-    for (uint32_t a = 0; a < m; ++a) {
-      float x, y;  // a vector's lane is not a reference (clang)
-      sampling::ao_numbers(r.ao, seeds, ls.sample, a0 + a, x, y);
-      u1[a / lanes::width][a % lanes::width] = x, u2[a / lanes::width][a % lanes::width] = y;
-    }
-    float dir[group][3];
-    for (uint32_t v = 0; v * lanes::width < m; ++v) {
-      lanes::fvec d[3];
-      direction_in_frame(n, t, bt, u1[v], u2[v], d);
-      for (int q = 0; q < lanes::width; ++q)
-        for (int k = 0; k < 3; ++k) dir[v * lanes::width + q][k] = d[k][q];
-    }
+    float u1[group], u2[group], dir[group][3];
+    for (uint32_t a = 0; a < m; ++a) sampling::ao_numbers(r.ao, seeds, ls.sample, a0 + a, u1[a], u2[a]);
+    directions_in_frame(n, t, bt, u1, u2, m, dir);
     open += m - uint32_t(__builtin_popcount(r.grid->occluded(p, dir, int(m), r.ao_distance, skip)));
   }
   return open;

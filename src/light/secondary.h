@@ -53,6 +53,9 @@ void light_lanes(const secondary_rays& r, const lit_lanes& lanes, float light[li
 // (light/frame.h's frame): phi = 2 pi u1, (sqrt(u2) cos phi,
 // sqrt(u2) sin phi, sqrt(1 - u2)) in (t, b, n).
 void ao_direction(const float n[3], float u1, float u2, float dir[3]);
+// The same for m numbers, four to a vector, as a hit's rays are made: the
+// same float operations lane by lane, so the same bits as ao_direction's.
+void ao_directions(const float n[3], const float* u1, const float* u2, uint32_t m, float (*dir)[3]);
 
 // c = cos 2 pi u, s = sin 2 pi u (u in [0, 1)), within 1.5e-7, in float
 // operations alone: the same bits on every machine, where the C library's
