@@ -494,6 +494,50 @@ TEST(Light, TheTurnOfAnAoDirectionIsCosAndSinWithinAFloatUlp) {
   EXPECT_EQ(s, 1.0f);
 }
 
+// A hit's AO numbers are drawn a group of up to 8 rays at a time (Sobol's
+// from two points a group: each dimension is linear in its index's bits);
+// each ray's are the numbers ao_numbers gives it alone, for every sampler,
+// counts that do and do not fill whole groups, and later samples of a pixel.
+// And a hit's 16 Sobol rays are a (0, 4, 2)-net: every box of 1/16 of the
+// square with power-of-two sides holds one of them.
+TEST(Light, AoNumbersDrawnAGroupAtATimeAreEachRaysOwn) {
+  size_t compared = 0, differ = 0;
+  for (sampler_kind kind : {sampler_kind::random, sampler_kind::stratified, sampler_kind::sobol})
+    for (uint32_t count : {1u, 3u, 8u, 12u, 16u, 64u}) {
+      const sampling::ao_plan plan = sampling::make_ao_plan(kind, count, 42);
+      for (uint32_t px = 0; px < 5; ++px) {
+        const uint32_t i = px * 977u, j = px * 131u + 7u;
+        const sampling::ao_seeds seeds = sampling::ao_pixel(plan, i, j);
+        for (uint32_t sample : {0u, 1u, 2u, 5u})
+          for (uint32_t k0 = 0; k0 < count; k0 += 8) {
+            const uint32_t m = std::min(8u, count - k0);
+            float u1[8], u2[8];
+            sampling::ao_numbers(plan, seeds, sample, k0, m, u1, u2);
+            for (uint32_t q = 0; q < m; ++q) {
+              float v1 = 0, v2 = 0;
+              sampling::ao_numbers(plan, i, j, sample, k0 + q, v1, v2);
+              differ += std::memcmp(&v1, &u1[q], 4) != 0 || std::memcmp(&v2, &u2[q], 4) != 0;
+              ++compared;
+            }
+          }
+      }
+    }
+  EXPECT_EQ(differ, 0u) << "of " << compared << " rays";
+  const sampling::ao_plan sobol = sampling::make_ao_plan(sampler_kind::sobol, 16, 7);
+  for (uint32_t px = 0; px < 20; ++px) {
+    float u1[16], u2[16];
+    const sampling::ao_seeds seeds = sampling::ao_pixel(sobol, px, 3 * px);
+    sampling::ao_numbers(sobol, seeds, 0, 0, 8, u1, u2);
+    sampling::ao_numbers(sobol, seeds, 0, 8, 8, u1 + 8, u2 + 8);
+    for (int a = 0; a <= 4; ++a) {
+      const int cols = 1 << a, rows = 16 >> a;
+      std::vector<int> in(16, 0);
+      for (int q = 0; q < 16; ++q) ++in[size_t(int(u1[q] * float(cols)) * rows + int(u2[q] * float(rows)))];
+      EXPECT_EQ(*std::min_element(in.begin(), in.end()), 1) << "pixel " << px << ", " << cols << " x " << rows;
+    }
+  }
+}
+
 // A hit's AO directions are made four to a vector (light/lanes.h): each
 // lane gives ao_direction's bits (the one-at-a-time form, which the Embree
 // peer casts), for every count of rays a group holds, normals along and

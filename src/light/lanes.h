@@ -5,6 +5,9 @@
 // build with -ffp-contract=off), so a lane's result is the scalar code's bits.
 #pragma once
 #include <cstdint>
+#if defined(__SSE2__)
+#include <xmmintrin.h>
+#endif
 
 namespace raycast {
 namespace lanes {
@@ -16,11 +19,15 @@ typedef uint32_t uvec __attribute__((vector_size(width * sizeof(float))));
 
 // a where m is set, b elsewhere.
 inline fvec pick(ivec m, fvec a, fvec b) { return fvec((ivec(a) & m) | (ivec(b) & ~m)); }
-// Bit l set where lane l of m is.
+// Bit l set where lane l of m is: SSE2's movmskps (the lanes' sign bits),
+// elsewhere each lane's weight summed.
 inline uint32_t bits_of(ivec m) {
-  uint32_t b = 0;
-  for (int l = 0; l < width; ++l) b |= uint32_t(m[l] & 1) << l;
-  return b;
+#if defined(__SSE2__)
+  return uint32_t(_mm_movemask_ps(__m128(m)));
+#else
+  const uvec w = uvec(m) & uvec{1, 2, 4, 8};
+  return (w[0] | w[1]) | (w[2] | w[3]);
+#endif
 }
 
 }  // namespace lanes

@@ -140,7 +140,7 @@ uint32_t open_ao_rays(const secondary_rays& r, const lit_lanes& ls, int l, const
   for (uint32_t a0 = 0; a0 < r.ao.count; a0 += group) {
     const uint32_t m = std::min(group, r.ao.count - a0);
     float u1[group], u2[group], dir[group][3];
-    for (uint32_t a = 0; a < m; ++a) sampling::ao_numbers(r.ao, seeds, ls.sample, a0 + a, u1[a], u2[a]);
+    sampling::ao_numbers(r.ao, seeds, ls.sample, a0, m, u1, u2);
     directions_in_frame(n, t, bt, u1, u2, m, dir);
     open += m - uint32_t(__builtin_popcount(r.grid->occluded(p, dir, int(m), r.ao_distance, skip)));
   }

@@ -73,19 +73,54 @@ ao_seeds ao_pixel(const ao_plan& p, uint32_t i, uint32_t j) {
 }
 
 void ao_numbers(const ao_plan& p, const ao_seeds& px, uint32_t s, uint32_t k, float& u1, float& u2) {
-  const uint32_t g = s * p.count + k;
-  if (p.kind == sampler_kind::sobol) {
-    u1 = float((sobol_dimension0(g) ^ px.a) >> 8) * 0x1p-24f;
-    u2 = float((sobol_dimension1(g) ^ px.b) >> 8) * 0x1p-24f;
+  ao_numbers(p, px, s, k, 1, &u1, &u2);
+}
+
+namespace {
+
+// The first eight points of the Sobol sequence's two dimensions.
+struct sobol_eight {
+  uint32_t x[8], y[8];
+  sobol_eight() {
+    for (uint32_t q = 0; q < 8; ++q) x[q] = sobol_dimension0(q), y[q] = sobol_dimension1(q);
+  }
+};
+const sobol_eight eight;
+
+// Sobol points g0 .. g0 + m (24 bits, the pixel's digital shift applied).
+// Each dimension's point is linear in the bits of its index (a generator
+// matrix's product over GF(2)), so where g0 is a multiple of 8 and m <= 8,
+// point g0 + q = g0 | q is point g0's xor point q's: two values a group, not
+// a loop over the index's bits a ray.
+void sobol_numbers(const ao_seeds& px, uint32_t g0, uint32_t m, float* u1, float* u2) {
+  if (g0 % 8 == 0 && m <= 8) {
+    const uint32_t x0 = sobol_dimension0(g0) ^ px.a, y0 = sobol_dimension1(g0) ^ px.b;
+    for (uint32_t q = 0; q < m; ++q) {
+      u1[q] = float((x0 ^ eight.x[q]) >> 8) * 0x1p-24f;
+      u2[q] = float((y0 ^ eight.y[q]) >> 8) * 0x1p-24f;
+    }
     return;
   }
-  const uint32_t r = mix(px.a + (g + 1) * golden);
-  if (p.kind == sampler_kind::random) {
-    u1 = float(r >> 8) * 0x1p-24f;
-    u2 = float(mix(r ^ 0x297a2d39u) >> 8) * 0x1p-24f;
-  } else {
-    u1 = min((float(k % p.nx) + unit_high<float>(r)) * p.inv_nx, one_below);
-    u2 = min((float(k / p.nx) + unit_low<float>(r)) * p.inv_ny, one_below);
+  for (uint32_t q = 0; q < m; ++q) {
+    u1[q] = float((sobol_dimension0(g0 + q) ^ px.a) >> 8) * 0x1p-24f;
+    u2[q] = float((sobol_dimension1(g0 + q) ^ px.b) >> 8) * 0x1p-24f;
+  }
+}
+
+}  // namespace
+
+void ao_numbers(const ao_plan& p, const ao_seeds& px, uint32_t s, uint32_t k0, uint32_t m, float* u1, float* u2) {
+  const uint32_t g0 = s * p.count + k0;
+  if (p.kind == sampler_kind::sobol) return sobol_numbers(px, g0, m, u1, u2);
+  for (uint32_t q = 0; q < m; ++q) {
+    const uint32_t r = mix(px.a + (g0 + q + 1) * golden), k = k0 + q;
+    if (p.kind == sampler_kind::random) {
+      u1[q] = float(r >> 8) * 0x1p-24f;
+      u2[q] = float(mix(r ^ 0x297a2d39u) >> 8) * 0x1p-24f;
+    } else {
+      u1[q] = min((float(k % p.nx) + unit_high<float>(r)) * p.inv_nx, one_below);
+      u2[q] = min((float(k / p.nx) + unit_low<float>(r)) * p.inv_ny, one_below);
+    }
   }
 }
 
