@@ -497,9 +497,23 @@ TEST(Light, TheTurnOfAnAoDirectionIsCosAndSinWithinAFloatUlp) {
 // A hit's AO numbers are drawn a group of up to 8 rays at a time (Sobol's
 // from two points a group: each dimension is linear in its index's bits);
 // each ray's are the numbers ao_numbers gives it alone, for every sampler,
-// counts that do and do not fill whole groups, and later samples of a pixel.
+// counts that do and do not fill whole groups, and later samples of a pixel
+// (random's and stratified's also as their rule in scene/sampler.h says).
 // And a hit's 16 Sobol rays are a (0, 4, 2)-net: every box of 1/16 of the
 // square with power-of-two sides holds one of them.
+// Random's and stratified's numbers as scene/sampler.h states them.
+void rule_numbers(const sampling::ao_plan& p, const sampling::ao_seeds& px, uint32_t s, uint32_t k, float& u1,
+                  float& u2) {
+  const uint32_t r = sampling::mix(px.a + (s * p.count + k + 1) * sampling::golden);
+  if (p.kind == sampler_kind::random) {
+    u1 = float(r >> 8) * 0x1p-24f;
+    u2 = float(sampling::mix(r ^ 0x297a2d39u) >> 8) * 0x1p-24f;
+  } else {
+    u1 = std::min((float(k % p.nx) + sampling::unit_high<float>(r)) * p.inv_nx, sampling::one_below);
+    u2 = std::min((float(k / p.nx) + sampling::unit_low<float>(r)) * p.inv_ny, sampling::one_below);
+  }
+}
+
 TEST(Light, AoNumbersDrawnAGroupAtATimeAreEachRaysOwn) {
   size_t compared = 0, differ = 0;
   for (sampler_kind kind : {sampler_kind::random, sampler_kind::stratified, sampler_kind::sobol})
@@ -516,6 +530,7 @@ TEST(Light, AoNumbersDrawnAGroupAtATimeAreEachRaysOwn) {
             for (uint32_t q = 0; q < m; ++q) {
               float v1 = 0, v2 = 0;
               sampling::ao_numbers(plan, i, j, sample, k0 + q, v1, v2);
+              if (kind != sampler_kind::sobol) rule_numbers(plan, seeds, sample, k0 + q, v1, v2);
               differ += std::memcmp(&v1, &u1[q], 4) != 0 || std::memcmp(&v2, &u2[q], 4) != 0;
               ++compared;
             }

@@ -22,6 +22,7 @@ inline fvec pick(ivec m, fvec a, fvec b) { return fvec((ivec(a) & m) | (ivec(b) 
 // Bit l set where lane l of m is: SSE2's movmskps (the lanes' sign bits),
 // elsewhere each lane's weight summed.
 inline uint32_t bits_of(ivec m) {
+  static_assert(width == 4, "one weight a lane below");
 #if defined(__SSE2__)
   return uint32_t(_mm_movemask_ps(__m128(m)));
 #else

@@ -24,7 +24,7 @@ namespace {
 
 // Dimension 0 of the Sobol sequence: the van der Corput sequence, index's
 // bits reversed.
-uint32_t sobol_dimension0(uint32_t x) {
+constexpr uint32_t sobol_dimension0(uint32_t x) {
   x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
   x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
   x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
@@ -34,7 +34,7 @@ uint32_t sobol_dimension0(uint32_t x) {
 
 // Dimension 1 (its generator matrix is Pascal's triangle mod 2; Burley,
 // "Practical Hash-based Owen Scrambling", JCGT 2020, listing 1).
-uint32_t sobol_dimension1(uint32_t index) {
+constexpr uint32_t sobol_dimension1(uint32_t index) {
   uint32_t v = 1u << 31, x = 0;
   for (; index != 0; index >>= 1, v ^= v >> 1)
     if (index & 1u) x ^= v;
@@ -78,16 +78,17 @@ void ao_numbers(const ao_plan& p, const ao_seeds& px, uint32_t s, uint32_t k, fl
 
 namespace {
 
-// The first eight points of the Sobol sequence's two dimensions.
+// The first eight points of the Sobol sequence's two dimensions (made by
+// the compiler: no order of static initialisation to mind).
 struct sobol_eight {
-  uint32_t x[8], y[8];
-  sobol_eight() {
+  uint32_t x[8]{}, y[8]{};
+  constexpr sobol_eight() {
     for (uint32_t q = 0; q < 8; ++q) x[q] = sobol_dimension0(q), y[q] = sobol_dimension1(q);
   }
 };
-const sobol_eight eight;
+constexpr sobol_eight eight;
 
-// Sobol points g0 .. g0 + m (24 bits, the pixel's digital shift applied).
+// Sobol points [g0, g0 + m) (24 bits, the pixel's digital shift applied).
 // Each dimension's point is linear in the bits of its index (a generator
 // matrix's product over GF(2)), so where g0 is a multiple of 8 and m <= 8,
 // point g0 + q = g0 | q is point g0's xor point q's: two values a group, not

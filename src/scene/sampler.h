@@ -177,7 +177,7 @@ struct ao_seeds {
 };
 ao_seeds ao_pixel(const ao_plan& p, uint32_t i, uint32_t j);
 void ao_numbers(const ao_plan& p, const ao_seeds& px, uint32_t s, uint32_t k, float& u1, float& u2);
-// Rays k0 .. k0 + m of the hit, into u1[0 .. m) and u2[0 .. m): the same
+// Rays [k0, k0 + m) of the hit, into u1[0 .. m) and u2[0 .. m): the same
 // numbers, a hit's group at a time.
 void ao_numbers(const ao_plan& p, const ao_seeds& px, uint32_t s, uint32_t k0, uint32_t m, float* u1, float* u2);
 
