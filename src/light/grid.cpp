@@ -124,7 +124,8 @@ void sphere_grid::build_cells(const double lo[3], const double hi[3]) {
   // thread.
   const int parts = threads_;
   const auto each_foreign = [&](int part, auto&& f) {
-    for (size_t home = part_begin(cells, part, parts); home < part_begin(cells, part + 1, parts); ++home)
+    const size_t end = part_begin(cells, part + 1, parts);  // computed once: a division
+    for (size_t home = part_begin(cells, part, parts); home < end; ++home)
       for (uint32_t p = home_[home]; p < home_[home + 1]; ++p)
         each_cell(range_of(p), [&](size_t c) {
           if (c != home) f(c, p);
@@ -150,7 +151,8 @@ void sphere_grid::sort_by_home_cell(double h) {
   out_of_order_array<uint32_t> home(n);
   const int parts = threads_;  // the spheres in one run a thread, the same runs for both passes
   const auto run = [&](int p, auto&& f) {
-    for (size_t k = part_begin(n, p, parts); k < part_begin(n, p + 1, parts); ++k) f(k);
+    const size_t end = part_begin(n, p + 1, parts);  // computed once: a division
+    for (size_t k = part_begin(n, p, parts); k < end; ++k) f(k);
   };
   key_sort<placed> sort(cells, n, parts);
   const double inv = 1.0 / h;

@@ -112,7 +112,8 @@ void shadow_bins::bin(const float hi[2]) {
   // The spheres in one run a thread, the same runs for counting and filling.
   const int parts = threads_;
   const auto run = [&](int p, auto&& f) {
-    for (size_t k = part_begin(n, p, parts); k < part_begin(n, p + 1, parts); ++k) f(uint32_t(k));
+    const size_t end = part_begin(n, p + 1, parts);  // computed once: a division a sphere was 10 % of counting
+    for (size_t k = part_begin(n, p, parts); k < end; ++k) f(uint32_t(k));
   };
   key_sort<entry> sort;
   for (;;) {  // each cell's count; coarser until the entries fit (a try stops once they cannot)
