@@ -343,6 +343,21 @@ class occlusion {
 
   // Whether every tile of the box is covered by hits nearer than `nearest`.
   bool hidden(const frame_box& b, float nearest) const {
+    const int64_t tx0 = b.c_lo / T, tx1 = b.c_hi / T, ty0 = b.r_lo / T, ty1 = b.r_hi / T;
+    // A box of up to 3 x 3 tiles (nearly every sphere's in a deep scene):
+    // the farthest of all nine (a narrower box's some twice), with no
+    // branch (depth_ is never NaN: infinity, or a max of finite depths).
+    // The loop below, whose count and exit vary from sphere to sphere, made
+    // the occlusion walk of a packed box of 10^6 take 6 % longer.
+    if (tx1 - tx0 < 3 && ty1 - ty0 < 3) {
+      const float* row[3] = {&depth_[size_t(ty0 * tw_)], &depth_[size_t(std::min(ty0 + 1, ty1) * tw_)],
+                             &depth_[size_t(ty1 * tw_)]};
+      const int64_t col[3] = {tx0, std::min(tx0 + 1, tx1), tx1};
+      float far = row[0][col[0]];
+      for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 3; ++x) far = std::max(far, row[y][col[x]]);
+      return far < nearest;
+    }
     for (int64_t ty = b.r_lo / T; ty <= b.r_hi / T; ++ty)
       for (int64_t tx = b.c_lo / T; tx <= b.c_hi / T; ++tx)
         if (!(depth_[size_t(ty * tw_ + tx)] < nearest)) return false;
