@@ -27,8 +27,8 @@ TEST(HugePages, AdviceKeepsWhatTheMemoryHolds) {
 
 TEST(HugePages, MappedMemoryIsZeroedAndWhole) {
   for (size_t n : {size_t(1), size_t(5 << 20) + 3, size_t(16) << 20})
-    for (bool always : {false, true}) {
-      auto* p = static_cast<unsigned char*>(map_huge(n, always));
+    for (int how = 0; how < 3; ++how) {  // advised and faulted in, always huge, advised only
+      auto* p = static_cast<unsigned char*>(map_huge(n, how == 1, how != 2));
       ASSERT_NE(p, nullptr);
       EXPECT_EQ(reinterpret_cast<uintptr_t>(p) % huge_page_bytes, 0u);
       size_t nonzero = 0;
@@ -52,6 +52,24 @@ TEST(HugePages, OutOfOrderArraysActAsVectors) {
   EXPECT_EQ(b.size(), 10u);
   out_of_order_array<uint32_t> c(b.begin(), b.end());
   EXPECT_EQ(c, b);
+}
+
+// Filled later: huge pages or the C++ allocator's, as small pages cost here;
+// either way the elements written are kept through growth, copies and swaps.
+TEST(HugePages, FilledLaterArraysActAsVectors) {
+  filled_later_array<uint32_t> a(size_t(3) << 20), b;
+  std::iota(a.begin(), a.end(), 0u);
+  a.resize(size_t(5) << 20, 9u);  // moved into a bigger block
+  EXPECT_EQ(a[(size_t(3) << 20) - 1], uint32_t((3 << 20) - 1));
+  EXPECT_EQ(std::count(a.begin() + (3 << 20), a.end(), 9u), ptrdiff_t(2) << 20);
+  b = a;
+  a.resize(10);
+  a.shrink_to_fit();
+  a.swap(b);
+  EXPECT_EQ(a.size(), size_t(5) << 20);
+  EXPECT_EQ(a[12345], 12345u);
+  EXPECT_EQ(b.size(), 10u);
+  EXPECT_EQ(b[9], 9u);
 }
 
 }  // namespace

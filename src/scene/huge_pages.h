@@ -49,11 +49,11 @@ void advise_huge_pages(void* p, size_t n, bool always = false, bool prefault = f
 inline size_t huge_mapping_bytes(size_t n) { return (n + huge_page_bytes - 1) & ~(huge_page_bytes - 1); }
 
 // Fresh zeroed memory for n bytes (n > 0), mapped at a 2 MiB boundary in whole
-// huge pages and advised (advise_huge_pages), or nullptr. Both ends aligned matter: a mapping
+// huge pages and advised (advise_huge_pages, `prefault` its own), or nullptr. Both ends aligned matter: a mapping
 // that starts or ends inside a huge page is faulted in 4 KiB pages there,
 // and 4 MiB arrays (a million floats) would take half their pages that way.
 // Free with unmap_huge(p, n).
-inline void* map_huge(size_t n, bool always = false) {
+inline void* map_huge(size_t n, bool always = false, bool prefault = true) {
   const size_t bytes = huge_mapping_bytes(n);
   if (bytes < n) return nullptr;
   void* raw = ::mmap(nullptr, bytes + huge_page_bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
@@ -62,36 +62,41 @@ inline void* map_huge(size_t n, bool always = false) {
   const uintptr_t aligned = (start + huge_page_bytes - 1) & ~uintptr_t(huge_page_bytes - 1);
   if (aligned > start) ::munmap(raw, aligned - start);
   if (const size_t tail = start + huge_page_bytes - aligned) ::munmap(reinterpret_cast<void*>(aligned + bytes), tail);
-  advise_huge_pages(reinterpret_cast<void*>(aligned), bytes, always, true);
+  advise_huge_pages(reinterpret_cast<void*>(aligned), bytes, always, prefault);
   return reinterpret_cast<void*>(aligned);
 }
 inline void unmap_huge(void* p, size_t n) { ::munmap(p, huge_mapping_bytes(n)); }
 
 // Always: huge pages whatever the faults cost (map_huge's `always`).
-template <class T, bool Always = false>
+// FilledLater: memory whose every element is written before it is read,
+// by as many threads as fill it: in huge pages where small pages are dear,
+// advised but not faulted in here (their faults are then the fillers'),
+// and elsewhere the C++ allocator's small pages, touched first by the
+// fillers.
+template <class T, bool Always = false, bool FilledLater = false>
 struct huge_page_allocator {
   using value_type = T;
   static constexpr size_t mapped_from = size_t(1) << 20;
   template <class U>
   struct rebind {
-    using other = huge_page_allocator<U, Always>;
+    using other = huge_page_allocator<U, Always, FilledLater>;
   };
 
   huge_page_allocator() = default;
   template <class U>
-  huge_page_allocator(const huge_page_allocator<U, Always>&) noexcept {}
+  huge_page_allocator(const huge_page_allocator<U, Always, FilledLater>&) noexcept {}
 
   T* allocate(size_t n) {
     const size_t bytes = n * sizeof(T);
     if (n > size_t(-1) / sizeof(T)) throw std::bad_alloc();
-    if (bytes < mapped_from) return static_cast<T*>(::operator new(bytes, std::align_val_t(alignof(T))));
-    void* p = map_huge(bytes, Always);
+    if (!mapped(bytes)) return static_cast<T*>(::operator new(bytes, std::align_val_t(alignof(T))));
+    void* p = map_huge(bytes, Always, !FilledLater);
     if (!p) throw std::bad_alloc();
     return static_cast<T*>(p);
   }
   void deallocate(T* p, size_t n) noexcept {
     const size_t bytes = n * sizeof(T);
-    if (bytes < mapped_from) ::operator delete(p, std::align_val_t(alignof(T)));
+    if (!mapped(bytes)) ::operator delete(p, std::align_val_t(alignof(T)));
     else unmap_huge(p, bytes);
   }
   template <class U, class... Args>
@@ -100,7 +105,12 @@ struct huge_page_allocator {
     else ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
   }
   template <class U>
-  bool operator==(const huge_page_allocator<U, Always>&) const noexcept { return true; }
+  bool operator==(const huge_page_allocator<U, Always, FilledLater>&) const noexcept { return true; }
+
+ private:
+  // Whether n bytes are mapped (map_huge) rather than the C++ allocator's;
+  // small_pages_dear() is measured once, so a block is freed as it came.
+  static bool mapped(size_t bytes) { return bytes >= mapped_from && (!FilledLater || small_pages_dear()); }
 };
 
 // An array read or written out of order (the light's grid and bins, the
@@ -111,26 +121,13 @@ struct huge_page_allocator {
 template <class T>
 using out_of_order_array = std::vector<T, huge_page_allocator<T, true>>;
 
-// Small pages and the C++ allocator, but elements not zeroed unless a value
-// is given: an array whose every element is written before it is read
-// first faults its pages in where it is filled, by as many threads as fill
-// it (a light structure of 10^8 spheres: 5 GB, 11 s on one thread here).
+// An array whose every element is written before it is read, by as many
+// threads as fill it, so that they share its first touch (a light structure
+// of 10^8 spheres: 5 GB, 11 s on one thread where small pages cost 1.6 us):
+// in huge pages where small pages are dear (10 us a page on some hosts:
+// the bins of a packed box of 10^6, 45 MB, took 0.12 s of faults there),
+// small pages elsewhere. Elements are not zeroed unless a value is given.
 template <class T>
-struct uninitialized_allocator : std::allocator<T> {
-  template <class U>
-  struct rebind {
-    using other = uninitialized_allocator<U>;
-  };
-  uninitialized_allocator() = default;
-  template <class U>
-  uninitialized_allocator(const uninitialized_allocator<U>&) noexcept {}
-  template <class U, class... Args>
-  void construct(U* p, Args&&... args) {
-    if constexpr (sizeof...(Args) == 0) ::new (static_cast<void*>(p)) U;
-    else ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
-};
-template <class T>
-using filled_later_array = std::vector<T, uninitialized_allocator<T>>;
+using filled_later_array = std::vector<T, huge_page_allocator<T, false, true>>;
 
 }  // namespace raycast
