@@ -332,7 +332,7 @@ class occlusion {
   static constexpr int64_t T = 4;  // a tile's side, in pixels
   occlusion(const float_scene& f, double spread)
       : f_(f), spread_(spread), tw_((f.width + T - 1) / T), th_((f.height + T - 1) / T), su_(size_t(f.width)),
-        covered_(size_t(f.width * f.height)),
+        covered_(size_t(f.width * f.height), 0),
         open_(size_t(tw_ * th_)), far_(size_t(tw_ * th_), 0.0f), depth_(size_t(tw_ * th_), INFINITY) {
     for (int64_t ty = 0; ty < th_; ++ty)
       for (int64_t tx = 0; tx < tw_; ++tx)
@@ -458,7 +458,10 @@ class occlusion {
   int64_t tw_, th_;
   double h_[3], c_[3], v_[3];
   std::vector<double> su_;         // per column (kernels/scalar.h)
-  std::vector<uint8_t> covered_;  // per pixel, rows top-down
+  // Per pixel, rows top-down: a megabyte or more, in huge pages where they
+  // fault in faster (scene/huge_pages.h: a 4 KiB page's first touch costs
+  // 10 us on some hosts, and this is touched a pixel at a time).
+  std::vector<uint8_t, huge_page_allocator<uint8_t>> covered_;
   std::vector<uint8_t> open_;     // per tile: its pixels not covered yet
   std::vector<float> far_;        // per tile: the farthest first covering hit
   std::vector<float> depth_;      // per tile: far_ once every pixel is covered, else infinity
