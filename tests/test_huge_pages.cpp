@@ -27,8 +27,8 @@ TEST(HugePages, AdviceKeepsWhatTheMemoryHolds) {
 
 TEST(HugePages, MappedMemoryIsZeroedAndWhole) {
   for (size_t n : {size_t(1), size_t(5 << 20) + 3, size_t(16) << 20})
-    for (int how = 0; how < 3; ++how) {  // advised and faulted in, always huge, advised only
-      auto* p = static_cast<unsigned char*>(map_huge(n, how == 1, how != 2));
+    for (bool always : {false, true}) {
+      auto* p = static_cast<unsigned char*>(map_huge(n, always));
       ASSERT_NE(p, nullptr);
       EXPECT_EQ(reinterpret_cast<uintptr_t>(p) % huge_page_bytes, 0u);
       size_t nonzero = 0;
@@ -54,10 +54,14 @@ TEST(HugePages, OutOfOrderArraysActAsVectors) {
   EXPECT_EQ(c, b);
 }
 
-// Filled later: huge pages or the C++ allocator's, as small pages cost here;
-// either way the elements written are kept through growth, copies and swaps.
+// Filled later: huge pages where small pages are dear, else the C++
+// allocator's; either way the elements written are kept through growth,
+// copies and swaps.
 TEST(HugePages, FilledLaterArraysActAsVectors) {
   filled_later_array<uint32_t> a(size_t(3) << 20), b;
+  // Mapped at a huge page's boundary exactly where small pages are dear
+  // (the C++ allocator's blocks start 16 bytes into their chunk).
+  EXPECT_EQ(reinterpret_cast<uintptr_t>(a.data()) % huge_page_bytes == 0, small_pages_dear());
   std::iota(a.begin(), a.end(), 0u);
   a.resize(size_t(5) << 20, 9u);  // moved into a bigger block
   EXPECT_EQ(a[(size_t(3) << 20) - 1], uint32_t((3 << 20) - 1));

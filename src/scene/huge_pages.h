@@ -48,12 +48,13 @@ void advise_huge_pages(void* p, size_t n, bool always = false, bool prefault = f
 // n bytes rounded up to whole huge pages.
 inline size_t huge_mapping_bytes(size_t n) { return (n + huge_page_bytes - 1) & ~(huge_page_bytes - 1); }
 
-// Fresh zeroed memory for n bytes (n > 0), mapped at a 2 MiB boundary in whole
-// huge pages and advised (advise_huge_pages, `prefault` its own), or nullptr. Both ends aligned matter: a mapping
+// Fresh zeroed memory for n bytes (n > 0), mapped at a 2 MiB boundary in
+// whole huge pages and advised (advise_huge_pages, with `prefault`), or
+// nullptr. Both ends aligned matter: a mapping
 // that starts or ends inside a huge page is faulted in 4 KiB pages there,
 // and 4 MiB arrays (a million floats) would take half their pages that way.
 // Free with unmap_huge(p, n).
-inline void* map_huge(size_t n, bool always = false, bool prefault = true) {
+inline void* map_huge(size_t n, bool always = false) {
   const size_t bytes = huge_mapping_bytes(n);
   if (bytes < n) return nullptr;
   void* raw = ::mmap(nullptr, bytes + huge_page_bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
@@ -62,17 +63,17 @@ inline void* map_huge(size_t n, bool always = false, bool prefault = true) {
   const uintptr_t aligned = (start + huge_page_bytes - 1) & ~uintptr_t(huge_page_bytes - 1);
   if (aligned > start) ::munmap(raw, aligned - start);
   if (const size_t tail = start + huge_page_bytes - aligned) ::munmap(reinterpret_cast<void*>(aligned + bytes), tail);
-  advise_huge_pages(reinterpret_cast<void*>(aligned), bytes, always, prefault);
+  advise_huge_pages(reinterpret_cast<void*>(aligned), bytes, always, true);
   return reinterpret_cast<void*>(aligned);
 }
 inline void unmap_huge(void* p, size_t n) { ::munmap(p, huge_mapping_bytes(n)); }
 
 // Always: huge pages whatever the faults cost (map_huge's `always`).
 // FilledLater: memory whose every element is written before it is read,
-// by as many threads as fill it: in huge pages where small pages are dear,
-// advised but not faulted in here (their faults are then the fillers'),
-// and elsewhere the C++ allocator's small pages, touched first by the
-// fillers.
+// by as many threads as fill it: mapped only where small pages are dear,
+// and then advised huge but not faulted in here (advise_huge_pages: its
+// faults are the fillers'); elsewhere the C++ allocator's small pages,
+// touched first by the fillers.
 template <class T, bool Always = false, bool FilledLater = false>
 struct huge_page_allocator {
   using value_type = T;
@@ -90,7 +91,7 @@ struct huge_page_allocator {
     const size_t bytes = n * sizeof(T);
     if (n > size_t(-1) / sizeof(T)) throw std::bad_alloc();
     if (!mapped(bytes)) return static_cast<T*>(::operator new(bytes, std::align_val_t(alignof(T))));
-    void* p = map_huge(bytes, Always, !FilledLater);
+    void* p = map_huge(bytes, Always);
     if (!p) throw std::bad_alloc();
     return static_cast<T*>(p);
   }
@@ -123,10 +124,11 @@ using out_of_order_array = std::vector<T, huge_page_allocator<T, true>>;
 
 // An array whose every element is written before it is read, by as many
 // threads as fill it, so that they share its first touch (a light structure
-// of 10^8 spheres: 5 GB, 11 s on one thread where small pages cost 1.6 us):
-// in huge pages where small pages are dear (10 us a page on some hosts:
-// the bins of a packed box of 10^6, 45 MB, took 0.12 s of faults there),
-// small pages elsewhere. Elements are not zeroed unless a value is given.
+// of 10^8 spheres: 5 GB, 11 s on one thread): in huge pages where small
+// pages are dear (small_pages_dear: over 4 us a page; 10 us on some hosts,
+// where the bins of a packed box of 10^6 took 0.26 s to build in small
+// pages and 0.16 s in huge ones), small pages elsewhere. Elements are not
+// zeroed unless a value is given.
 template <class T>
 using filled_later_array = std::vector<T, huge_page_allocator<T, false, true>>;
 
