@@ -259,9 +259,19 @@ bool sphere_grid::occluded(const float o[3], const float d[3], float tmax, uint3
 // time, their lists, then their own spheres and references, then the
 // referenced spheres prefetched before any is tested, so that the misses
 // of a long walk overlap instead of following one another (unbounded rays
-// through 10^6 spheres: half the time).
+// through 10^6 spheres: half the time). The cells' spheres are tested from
+// one list (listed()), not in a loop over each cell's two runs, whose
+// lengths the walk cannot predict: the dense cloud's unbounded AO rays
+// took a tenth less time (a quarter less where its grid stays in the
+// cache, 10^5 spheres).
 bool sphere_grid::far_occluded(walk& w, const float o[3], const float d[3], float tmax, uint32_t skip) const {
-  constexpr int ahead = 8;
+  constexpr int ahead = 8, room = 64;
+  uint32_t list[room];
+  const auto test = [&](int n) {
+    for (int i = 0; i < n; ++i)
+      if (list[i] != skip && blocks(list[i], o, d, tmax)) return true;
+    return false;
+  };
   for (bool more = true; more;) {
     size_t found[ahead];
     int m = 0;
@@ -278,10 +288,17 @@ bool sphere_grid::far_occluded(walk& w, const float o[3], const float d[3], floa
       __builtin_prefetch(spheres_.data() + size_t(home_[found[i]]) * 4);
       __builtin_prefetch(refs_.data() + first_[found[i]]);
     }
-    for (int i = 0; i < m; ++i)
-      for (uint32_t e = first_[found[i]]; e < first_[found[i] + 1]; ++e) __builtin_prefetch(at(refs_[e]));
-    for (int i = 0; i < m; ++i)
-      if (cell_occluded(found[i], o, d, tmax, skip)) return true;
+    int n = 0;
+    for (int i = 0; i < m; ++i) {
+      if (n + 8 > room) {
+        if (test(n)) return true;
+        n = 0;
+      }
+      const int k = listed(found[i], list + n);
+      if (k >= 0) n += k;
+      else if (cell_occluded(found[i], o, d, tmax, skip)) return true;  // a long run: tested where it lies
+    }
+    if (test(n)) return true;
   }
   return false;
 }

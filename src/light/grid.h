@@ -21,6 +21,7 @@
 // clouds) and
 // 8 bytes a cell (about one a sphere): 30 to 60 bytes a sphere.
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -108,6 +109,22 @@ class sphere_grid {
  private:
   void build_cells(const double lo[3], const double hi[3]);
   void sort_by_home_cell(double h);
+  // Cell c's spheres, its own and those referenced from other cells, as
+  // positions in out[0 .. 8), the referenced ones prefetched: their count,
+  // or -1 where either run is longer than 4. A run of up to 4 is copied
+  // whole and its count added, with no loop: the runs' lengths (0 to a few)
+  // are branches a long walk cannot predict.
+  int listed(size_t c, uint32_t out[8]) const {
+    const uint32_t h0 = home_[c], nh = home_[c + 1] - h0, f0 = first_[c], nf = first_[c + 1] - f0;
+    if (nh > 4 || nf > 4) return -1;
+    for (uint32_t l = 0; l < 4; ++l) out[l] = h0 + l;
+    uint32_t tail[4] = {};
+    const uint32_t* r = refs_.data() + f0;
+    if (f0 + 4 > refs_.size()) r = std::copy(r, r + nf, tail) - nf;  // the array's last few
+    for (uint32_t l = 0; l < 4; ++l) out[nh + l] = r[l];
+    for (uint32_t l = 0; l < nf; ++l) __builtin_prefetch(at(r[l]));
+    return int(nh + nf);
+  }
   // Whether a sphere of cell c but skip blocks the segment: its own spheres
   // read in one run, then those reaching in from other cells.
   bool cell_occluded(size_t c, const float o[3], const float d[3], float tmax, uint32_t skip) const {
