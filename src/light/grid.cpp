@@ -261,9 +261,8 @@ bool sphere_grid::occluded(const float o[3], const float d[3], float tmax, uint3
 // of a long walk overlap instead of following one another (unbounded rays
 // through 10^6 spheres: half the time). The cells' spheres are tested from
 // one list (listed()), not in a loop over each cell's two runs, whose
-// lengths the walk cannot predict: the dense cloud's unbounded AO rays
-// took a tenth less time (a quarter less where its grid stays in the
-// cache, 10^5 spheres).
+// lengths the walk cannot predict (light/README.md: a sixth less time where
+// the grid stays in the cache, 10^5 spheres; a twentieth at 10^6).
 bool sphere_grid::far_occluded(walk& w, const float o[3], const float d[3], float tmax, uint32_t skip) const {
   constexpr int ahead = 8, room = 64;
   uint32_t list[room];
