@@ -264,13 +264,8 @@ bool sphere_grid::occluded(const float o[3], const float d[3], float tmax, uint3
 // lengths the walk cannot predict (light/README.md: a sixth less time where
 // the grid stays in the cache, 10^5 spheres; a twentieth at 10^6).
 bool sphere_grid::far_occluded(walk& w, const float o[3], const float d[3], float tmax, uint32_t skip) const {
-  constexpr int ahead = 8, room = 64;
-  uint32_t list[room];
-  const auto test = [&](int n) {
-    for (int i = 0; i < n; ++i)
-      if (list[i] != skip && blocks(list[i], o, d, tmax)) return true;
-    return false;
-  };
+  constexpr int ahead = 8;
+  uint32_t list[ahead * 8];  // listed() writes 8 a cell
   for (bool more = true; more;) {
     size_t found[ahead];
     int m = 0;
@@ -289,15 +284,12 @@ bool sphere_grid::far_occluded(walk& w, const float o[3], const float d[3], floa
     }
     int n = 0;
     for (int i = 0; i < m; ++i) {
-      if (n + 8 > room) {
-        if (test(n)) return true;
-        n = 0;
-      }
       const int k = listed(found[i], list + n);
       if (k >= 0) n += k;
       else if (cell_occluded(found[i], o, d, tmax, skip)) return true;  // a long run: tested where it lies
     }
-    if (test(n)) return true;
+    for (int i = 0; i < n; ++i)
+      if (list[i] != skip && blocks(list[i], o, d, tmax)) return true;
   }
   return false;
 }
