@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -281,12 +282,13 @@ TEST(Light, GridWalkFindsWhatTestingEverySphereFindsInACoarseGrid) {
 // ray by ray, what testing every sphere finds: from a point on each sphere,
 // eight cosine-weighted directions about a random normal (in every third
 // group some along an axis, their other components +0, -0 or below the
-// normal floats), most groups short enough to walk in vector lanes (at most
-// 4 cells), some longer (one ray at a time), a group of fewer than eight now
-// and then; on the three grids above. Each verdict is also the same ray's
+// normal floats), most groups short (at most 4 cells: each lane's cells
+// tested as it enters them), some longer and every fifth unbounded (each
+// lane's cells gathered and tested together), a group of fewer than eight
+// now and then; on the three grids above. Each verdict is also the same ray's
 // walked alone.
 struct group_count {
-  size_t groups = 0, in_lanes = 0, rays = 0, blocked = 0, mismatches = 0, differ_from_lone = 0;
+  size_t groups = 0, in_lanes = 0, long_in_lanes = 0, rays = 0, blocked = 0, mismatches = 0, differ_from_lone = 0;
 };
 group_count groups_against_every_sphere(const sphere_grid& g, uint32_t seed) {
   std::mt19937 rng(seed);
@@ -309,9 +311,11 @@ group_count groups_against_every_sphere(const sphere_grid& g, uint32_t seed) {
       if (k % 3 == 1 && l % 4 == 2)  // along an axis, the others below the normal floats
         for (int a = 0; a < 3; ++a) d[l][a] = std::abs(d[l][a]) == 1.0f ? d[l][a] : a % 2 ? 1e-40f : -3e-41f;
     }
-    const float tmax = float(u(rng) * 5) * g.cell_side();
+    const bool unbounded = k % 5 == 0;
+    const float tmax = unbounded ? std::numeric_limits<float>::infinity() : float(u(rng) * 5) * g.cell_side();
     ++w.groups;
-    w.in_lanes += g.walks_in_lanes(tmax);
+    w.in_lanes += g.walks_in_lanes();
+    w.long_in_lanes += g.walks_in_lanes() && tmax > 4 * g.cell_side();
     const uint32_t got = g.occluded(o, d, m, tmax, k);
     for (int l = 0; l < m; ++l) {
       const bool want = blocked_by_any(g, o, d[l], tmax, k);
@@ -332,6 +336,7 @@ TEST(Light, AHitsRaysWalkedTogetherFindWhatTestingEverySphereFinds) {
     EXPECT_EQ(w.mismatches, 0u) << "of " << w.rays << " rays among " << g.size() << " spheres";
     EXPECT_EQ(w.differ_from_lone, 0u) << "verdicts unlike the same ray's walked alone";
     EXPECT_GT(w.in_lanes, w.groups * 7 / 10) << "most groups should walk in lanes";
+    EXPECT_GT(w.long_in_lanes, w.groups / 10) << "long groups should walk in lanes too";
     EXPECT_GT(w.blocked, w.rays / 10);
     EXPECT_LT(w.blocked, w.rays * 9 / 10);
   }

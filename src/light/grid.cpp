@@ -1,6 +1,7 @@
 #include "light/grid.h"
 
 #include "light/key_sort.h"
+#include "light/lanes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -256,16 +257,10 @@ bool sphere_grid::occluded(const float o[3], const float d[3], float tmax, uint3
 }
 
 // A walk of more than a few cells: the occupied cells ahead gathered 8 at a
-// time, their lists, then their own spheres and references, then the
-// referenced spheres prefetched before any is tested, so that the misses
-// of a long walk overlap instead of following one another (unbounded rays
-// through 10^6 spheres: half the time). The cells' spheres are tested from
-// one list (listed()), not in a loop over each cell's two runs, whose
-// lengths the walk cannot predict (light/README.md: a sixth less time where
-// the grid stays in the cache, 10^5 spheres; a twentieth at 10^6).
+// time, then tested together (cells_occluded), so that the misses of a long
+// walk overlap instead of following one another (unbounded rays through
+// 10^6 spheres: half the time).
 bool sphere_grid::far_occluded(walk& w, const float o[3], const float d[3], float tmax, uint32_t skip) const {
-  constexpr int ahead = 8;
-  uint32_t list[ahead * 8];  // listed() writes 8 a cell
   for (bool more = true; more;) {
     size_t found[ahead];
     int m = 0;
@@ -278,18 +273,58 @@ bool sphere_grid::far_occluded(walk& w, const float o[3], const float d[3], floa
       }
       more = w.step();
     }
-    for (int i = 0; i < m; ++i) {
-      __builtin_prefetch(spheres_.data() + size_t(home_[found[i]]) * 4);
-      __builtin_prefetch(refs_.data() + first_[found[i]]);
-    }
-    int n = 0;
-    for (int i = 0; i < m; ++i) {
-      const int k = listed(found[i], list + n);
-      if (k >= 0) n += k;
-      else if (cell_occluded(found[i], o, d, tmax, skip)) return true;  // a long run: tested where it lies
-    }
-    for (int i = 0; i < n; ++i)
-      if (list[i] != skip && blocks(list[i], o, d, tmax)) return true;
+    read_ahead(found, m);
+    if (m > 0 && cells_occluded(found, m, o, d, tmax, skip)) return true;
+  }
+  return false;
+}
+
+// Whether a sphere of the occupied cells found[0 .. m) (m <= ahead, their
+// home_ and first_ entries prefetched) but skip blocks the segment: their
+// lists, then their own spheres and references, then the referenced
+// spheres prefetched before any is tested. The cells' spheres are tested
+// from one list (listed()), not in a loop over each cell's two runs, whose
+// lengths the walk cannot predict (light/README.md: a sixth less time where
+// the grid stays in the cache, 10^5 spheres; a twentieth at 10^6).
+void sphere_grid::read_ahead(const size_t* found, int m) const {
+  for (int i = 0; i < m; ++i) {
+    __builtin_prefetch(spheres_.data() + size_t(home_[found[i]]) * 4);
+    __builtin_prefetch(refs_.data() + first_[found[i]]);
+  }
+}
+
+bool sphere_grid::cells_occluded(const size_t* found, int m, const float o[3], const float d[3], float tmax,
+                                 uint32_t skip) const {
+  uint32_t list[2 * ahead * 8 + lanes::width];  // listed() writes 8 a cell; any_blocks() pads
+  int n = 0;
+  for (int i = 0; i < m; ++i) {
+    const int k = listed(found[i], list + n);
+    if (k >= 0) n += k;
+    else if (cell_occluded(found[i], o, d, tmax, skip)) return true;  // a long run: tested where it lies
+  }
+  return n > 0 && any_blocks(list, n, o, d, tmax, skip);
+}
+
+// Whether any sphere at positions list[0 .. n) but skip blocks the segment:
+// blocks() four spheres at a time, one a vector lane (light/lanes.h), the
+// same float operations in the same order lane by lane, so the same bits.
+// list has room for n rounded up to 4; the tail repeats list[n - 1].
+bool sphere_grid::any_blocks(uint32_t* list, int n, const float o[3], const float d[3], float tmax, uint32_t skip) const {
+  using lanes::fvec;
+  using lanes::ivec;
+  for (int i = n; i % lanes::width != 0; ++i) list[i] = list[n - 1];
+  for (int i = 0; i < n; i += lanes::width) {
+    const float *s0 = at(list[i]), *s1 = at(list[i + 1]), *s2 = at(list[i + 2]), *s3 = at(list[i + 3]);
+    const fvec ox = o[0] - fvec{s0[0], s1[0], s2[0], s3[0]}, oy = o[1] - fvec{s0[1], s1[1], s2[1], s3[1]},
+               oz = o[2] - fvec{s0[2], s1[2], s2[2], s3[2]}, r = fvec{s0[3], s1[3], s2[3], s3[3]};
+    const fvec r2 = r * r;
+    const fvec b = (ox * d[0] + oy * d[1]) + oz * d[2];
+    const fvec vx = ox - b * d[0], vy = oy - b * d[1], vz = oz - b * d[2];
+    const fvec m2 = (vx * vx + vy * vy) + vz * vz, gap = r2 - m2;
+    const fvec near = -b - lanes::sqrt(lanes::pick(ivec(gap > 0.0f), gap, fvec{}));
+    const ivec hit = ivec((ox * ox + oy * oy) + oz * oz <= r2) | (ivec(b < 0.0f) & ivec(m2 <= r2) & ivec(near <= tmax));
+    const ivec other = {list[i] != skip, list[i + 1] != skip, list[i + 2] != skip, list[i + 3] != skip};
+    if (lanes::bits_of(hit & -other) != 0) return true;
   }
   return false;
 }

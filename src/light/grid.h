@@ -57,13 +57,14 @@ class sphere_grid {
   // it. Grid units: world * 2^-scale_exp.
   bool occluded(const float o[3], const float d[3], float tmax, uint32_t skip) const;
   // occluded() for m <= 8 rays from one origin (a hit's AO rays): bit a of
-  // the result is occluded(o, d[a], tmax, skip). Short rays from inside the
+  // the result is occluded(o, d[a], tmax, skip). Rays from inside the
   // grid's box walk together, one a vector lane (light/README.md), so that
-  // no branch waits on which face each ray leaves its cell by.
+  // no branch waits on which face each ray leaves its cell by, and long
+  // rays' cache misses overlap.
   static constexpr int group = 8;
   uint32_t occluded(const float o[3], const float (*d)[3], int m, float tmax, uint32_t skip) const;
-  // Whether a group's rays of length tmax from inside the box walk in lanes.
-  bool walks_in_lanes(float tmax) const { return tmax <= 4 * h_ && h_ <= 0.5f && cells() < size_t(1) << 31; }
+  // Whether a group's rays from inside the box walk in lanes.
+  bool walks_in_lanes() const { return h_ <= 0.5f && cells() < size_t(1) << 31; }
 
   // Sphere k's (its index in the scene) centre (grid frame) and radius (grid
   // units), x y z r. The spheres are stored in the order of the cells their
@@ -137,7 +138,13 @@ class sphere_grid {
   bool occupied(size_t c) const { return occupied_[c >> 6] >> (c & 63) & 1u; }
   struct walk;
   struct lanes_walk;
+  uint32_t near_lanes(lanes_walk& w, const float o[3], const float (*d)[3], int k, float tmax, uint32_t skip) const;
+  uint32_t far_lanes(lanes_walk& w, const float o[3], const float (*d)[3], int k, float tmax, uint32_t skip) const;
+  bool any_blocks(uint32_t* list, int n, const float o[3], const float d[3], float tmax, uint32_t skip) const;
+  static constexpr int ahead = 8;  // occupied cells a long walk gathers before it tests them
   bool far_occluded(walk& w, const float o[3], const float d[3], float tmax, uint32_t skip) const;
+  void read_ahead(const size_t* found, int m) const;
+  bool cells_occluded(const size_t* found, int m, const float o[3], const float d[3], float tmax, uint32_t skip) const;
 
   float lo_[3] = {0, 0, 0}, hi_[3] = {0, 0, 0};
   float h_ = 1, inv_h_ = 1;  // the cell's side, and 1 / it

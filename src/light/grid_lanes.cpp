@@ -1,19 +1,27 @@
-// A hit's short AO rays walked together: sphere_grid's DDA (grid.cpp) with
-// each ray in a vector lane. A ray walked alone chooses at each
-// step which face it leaves its cell by, a branch its random direction
-// makes unpredictable; in lanes that choice is a mask. Each lane's cells are
-// then tested as the lone walk tests them (cell_occluded).
+// A hit's AO rays walked together: sphere_grid's DDA (grid.cpp) with each
+// ray in a vector lane. A ray walked alone chooses at each step which face
+// it leaves its cell by, a branch its random direction makes
+// unpredictable; in lanes that choice is a mask. Short rays (at most 4
+// cells) test each lane's cells as the lone walk does, as the lane enters
+// them (cell_occluded); long ones gather each lane's occupied cells and
+// test them as the lone long walk does (cells_occluded), every lane's cells
+// read ahead before any lane's are tested, so that four rays' cache misses
+// overlap.
 //
-// The lanes' boundaries are floats, the lone walk's doubles. A boundary's
-// place (lo + k h - o, coordinates below 2 in grid units) is off by at most
-// 2 float ulps of 2, 4.8e-7, and its t, after at most 12 steps of sums, by
-// 27 ulps of itself; at most 4 cells of at most half a grid unit, that is
-// 27 * 2^-24 * 2 = 3.2e-6 along the ray: below 2^-17 together, a quarter of
-// the spheres' widening (grid.cpp). So where the two walks part (a ray
-// within that of a cell's edge) each cell one visits and the other not is
-// one the segment passes within 2^-17 of, and lists every sphere the
-// segment can meet there: a ray's verdict is the lone walk's. Four rays at
-// a time (light/lanes.h).
+// The lanes' boundaries are floats, the lone walk's doubles, and the
+// boundary after k steps on an axis is first + k delta (a product, not a
+// running sum, so that its error does not grow with the steps). In grid
+// units (coordinates below 2, the segment within the grid's box, t below
+// 4): the first boundary's place (lo + c h - o) is off by at most 2 float
+// ulps of 2, 4.8e-7, and its t, divided by the direction's component, by
+// that over the component and 2 ulps of t; k delta by 3 ulps of itself
+// and the sum by 1: the ray at the computed t is off the boundary's plane
+// by at most 4.8e-7 + 6 * 2^-24 * 4 = 1.9e-6, below 2^-17 (7.6e-6), a
+// quarter of the spheres' widening (grid.cpp). So where the lanes' walk
+// and the lone walk part (a ray within that of a cell's face) each cell
+// one visits and the other not is one the segment passes within 2^-17 of,
+// and lists every sphere the segment can meet there: a ray's verdict is
+// the lone walk's, whatever its length. Four rays at a time (light/lanes.h).
 #include <algorithm>
 #include <cstdint>
 #include <limits>
@@ -30,11 +38,13 @@ using lanes::pick;
 using lanes::bits_of;
 constexpr int width = lanes::width;
 
-// The walk's state, lane by lane: the t of the next boundary on each axis,
-// the t between two, the steps left on each axis before the grid ends, the
+// The walk's state, lane by lane: the t of the first boundary on each
+// axis, the t between two, the steps taken on each axis and the t of the
+// next boundary (first + steps delta; infinity on an axis the ray does not
+// move along), the steps left on each axis before the grid ends, the
 // step's change of cell index on each axis and the cell's index.
 struct sphere_grid::lanes_walk {
-  fvec next[3], delta[3];
+  fvec first[3], delta[3], steps[3] = {}, next[3];
   ivec left[3];
   uvec move[3], cell = {};  // unsigned: a lane that has ended may step on past the grid
 
@@ -48,14 +58,14 @@ struct sphere_grid::lanes_walk {
       for (int l = 0; l < m; ++l) da[l] = d[l][a];
       // A component below the normal floats walks as 0 (its 1 / d would be
       // infinite): it moves the ray by less than 2^-125 over the walk.
-      const ivec ahead = ivec(da > 0.0f), still = ivec(pick(ivec(da < 0.0f), -da, da) < std::numeric_limits<float>::min());
+      const ivec forward = ivec(da > 0.0f), still = ivec(pick(ivec(da < 0.0f), -da, da) < std::numeric_limits<float>::min());
       const fvec inv = 1.0f / da;
-      const fvec boundary = (g.lo_[a] + __builtin_convertvector(ivec{} + c + (ahead & 1), fvec) * g.h_) - o[a];
+      const fvec boundary = (g.lo_[a] + __builtin_convertvector(ivec{} + c + (forward & 1), fvec) * g.h_) - o[a];
       const fvec inf = fvec{} + std::numeric_limits<float>::infinity();
-      next[a] = pick(still, inf, boundary * inv);
-      delta[a] = pick(still, inf, g.h_ * pick(ivec(inv < 0.0f), -inv, inv));
-      left[a] = (ahead & (g.dims_[a] - 1 - c)) | (~ahead & c);
-      move[a] = uvec((ahead & stride[a]) | (~ahead & -stride[a]));
+      first[a] = next[a] = pick(still, inf, boundary * inv);
+      delta[a] = pick(still, fvec{}, g.h_ * pick(ivec(inv < 0.0f), -inv, inv));
+      left[a] = (forward & (g.dims_[a] - 1 - c)) | (~forward & c);
+      move[a] = uvec((forward & stride[a]) | (~forward & -stride[a]));
       cell += uint32_t(c) * uint32_t(stride[a]);
     }
   }
@@ -69,37 +79,82 @@ struct sphere_grid::lanes_walk {
     for (int a = 0; a < 3; ++a) {
       left[a] += along[a];  // -1 on the axis stepped along
       cell += uvec(along[a]) & move[a];
-      next[a] += fvec(along[a] & ivec(delta[a]));
+      steps[a] += fvec(along[a] & ivec(fvec{} + 1.0f));
+      next[a] = first[a] + steps[a] * delta[a];
     }
     return bits_of(ivec(t > end) | ((left[0] | left[1] | left[2]) < 0));
   }
 };
 
+// A group's short rays: each lane's cells tested as it enters them.
+uint32_t sphere_grid::near_lanes(lanes_walk& w, const float o[3], const float (*d)[3], int k, float tmax,
+                                 uint32_t skip) const {
+  const size_t first = w.cell[0];
+  uint32_t hit = 0;
+  if (occupied(first))
+    for (int l = 0; l < k; ++l) hit |= uint32_t(cell_occluded(first, o, d[l], tmax, skip)) << l;
+  for (uint32_t live = ((1u << k) - 1) & ~hit; live != 0;) {
+    live &= ~w.step(tmax);
+    for (uint32_t b = live; b != 0; b &= b - 1) {
+      const int l = __builtin_ctz(b);
+      const size_t c = w.cell[l];
+      if (occupied(c) && cell_occluded(c, o, d[l], tmax, skip)) hit |= 1u << l, live &= ~(1u << l);
+    }
+  }
+  return hit;
+}
+
+// A group's long rays: each lane gathers its occupied cells until one has
+// `ahead` (each has room for twice that, as the lanes step together), then
+// every lane's cells are read ahead before any lane's are tested
+// (cells_occluded), so that the lanes' misses overlap.
+uint32_t sphere_grid::far_lanes(lanes_walk& w, const float o[3], const float (*d)[3], int k, float tmax,
+                                uint32_t skip) const {
+  size_t found[width][2 * ahead];
+  int count[width] = {};
+  uint32_t hit = 0, live = (1u << k) - 1;
+  const auto gather = [&](int l, size_t c) {
+    found[l][count[l]] = c;
+    count[l] += int(occupied(c));
+    __builtin_prefetch(&home_[c]);
+    __builtin_prefetch(&first_[c]);
+  };
+  for (int l = 0; l < k; ++l) gather(l, w.cell[0]);
+  for (uint32_t walking = live; live != 0;) {
+    bool full = false;
+    while (walking != 0 && !full) {
+      walking &= ~w.step(tmax);
+      for (uint32_t b = walking; b != 0; b &= b - 1) {
+        const int l = __builtin_ctz(b);
+        gather(l, w.cell[l]);
+        full |= count[l] >= ahead;
+      }
+    }
+    for (uint32_t b = live; b != 0; b &= b - 1) read_ahead(found[__builtin_ctz(b)], count[__builtin_ctz(b)]);
+    for (uint32_t b = live; b != 0; b &= b - 1) {
+      const int l = __builtin_ctz(b);
+      if (count[l] > 0 && cells_occluded(found[l], count[l], o, d[l], tmax, skip)) hit |= 1u << l;
+      count[l] = 0;
+    }
+    live &= walking & ~hit;
+    walking &= live;
+  }
+  return hit;
+}
+
 uint32_t sphere_grid::occluded(const float o[3], const float (*d)[3], int m, float tmax, uint32_t skip_index) const {
   bool inside = !home_.empty();
   for (int a = 0; a < 3; ++a) inside = inside && o[a] >= lo_[a] && o[a] < hi_[a];
   uint32_t blocked = 0;
-  if (!inside || !walks_in_lanes(tmax)) {  // from outside, long, or coarse: one at a time (grid.cpp)
+  if (!inside || !walks_in_lanes()) {  // from outside, or coarse: one at a time (grid.cpp)
     for (int l = 0; l < m; ++l) blocked |= uint32_t(occluded(o, d[l], tmax, skip_index)) << l;
     return blocked;
   }
   const uint32_t skip = skip_index < size() ? position(skip_index) : skip_index;
   for (int l0 = 0; l0 < m; l0 += width) {
     const int k = std::min(width, m - l0);
-    const float(*dk)[3] = d + l0;
-    lanes_walk w(*this, o, dk, k);
-    const size_t first = w.cell[0];
-    uint32_t hit = 0;
-    if (occupied(first))
-      for (int l = 0; l < k; ++l) hit |= uint32_t(cell_occluded(first, o, dk[l], tmax, skip)) << l;
-    for (uint32_t live = ((1u << k) - 1) & ~hit; live != 0;) {
-      live &= ~w.step(tmax);
-      for (uint32_t b = live; b != 0; b &= b - 1) {
-        const int l = __builtin_ctz(b);
-        const size_t c = w.cell[l];
-        if (occupied(c) && cell_occluded(c, o, dk[l], tmax, skip)) hit |= 1u << l, live &= ~(1u << l);
-      }
-    }
+    lanes_walk w(*this, o, d + l0, k);
+    const uint32_t hit = tmax <= 4 * h_ ? near_lanes(w, o, d + l0, k, tmax, skip) : far_lanes(w, o, d + l0, k, tmax, skip);
     blocked |= hit << l0;
   }
   return blocked;

@@ -19,6 +19,11 @@ typedef uint32_t uvec __attribute__((vector_size(width * sizeof(float))));
 
 // a where m is set, b elsewhere.
 inline fvec pick(ivec m, fvec a, fvec b) { return fvec((ivec(a) & m) | (ivec(b) & ~m)); }
+// Each lane's square root (sqrtps on SSE2: correctly rounded, as std::sqrt).
+inline fvec sqrt(fvec x) {
+  for (int l = 0; l < width; ++l) x[l] = __builtin_sqrtf(x[l]);
+  return x;
+}
 // Bit l set where lane l of m is: SSE2's movmskps (the lanes' sign bits),
 // elsewhere each lane's weight summed.
 inline uint32_t bits_of(ivec m) {

@@ -60,10 +60,7 @@ lanes::ivec whole_of(lanes::fvec x) { return __builtin_convertvector(x, lanes::i
 float float_of(int i) { return float(i); }
 lanes::fvec float_of(lanes::ivec i) { return __builtin_convertvector(i, lanes::fvec); }
 float sqrt_of(float x) { return std::sqrt(x); }
-lanes::fvec sqrt_of(lanes::fvec x) {
-  for (int l = 0; l < lanes::width; ++l) x[l] = std::sqrt(x[l]);
-  return x;
-}
+lanes::fvec sqrt_of(lanes::fvec x) { return lanes::sqrt(x); }
 
 // unit_circle of a float or of a vector's lanes. u = (i + f) / 256: the
 // table's turn i / 256, and a small angle d = 2 pi f / 256 < 0.0246 (f
