@@ -269,6 +269,19 @@ scene huge_among_small() {
   return make_scene(p);
 }
 
+// Small spheres over a box, and as many again in a clump in its middle, a
+// few cells across: those cells list hundreds of spheres each, so a walk
+// through them tests lists longer than any buffer of its own.
+scene clumped() {
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  scene_params p;
+  for (int k = 0; k < 3000; ++k)
+    p.spheres.push_back(k % 2 ? sphere{point3(u(rng) * 4 - 2, u(rng) * 4 - 2, u(rng) * 4 - 10), 0.01}
+                              : sphere{point3(u(rng) * 0.3 - 0.15, u(rng) * 0.3 - 0.15, u(rng) * 0.3 - 8.15), 0.005});
+  return make_scene(p);
+}
+
 TEST(Light, GridWalkFindsWhatTestingEverySphereFindsInACoarseGrid) {
   const sphere_grid g(huge_among_small());
   ASSERT_LT(g.cells() * 4, g.size()) << "the grid should have been made coarser";
@@ -285,7 +298,7 @@ TEST(Light, GridWalkFindsWhatTestingEverySphereFindsInACoarseGrid) {
 // normal floats), most groups short (at most 4 cells: each lane's cells
 // tested as it enters them), some longer and every fifth unbounded (each
 // lane's cells gathered and tested together), a group of fewer than eight
-// now and then; on the three grids above. Each verdict is also the same ray's
+// now and then; on the four grids above. Each verdict is also the same ray's
 // walked alone.
 struct group_count {
   size_t groups = 0, in_lanes = 0, long_in_lanes = 0, rays = 0, blocked = 0, mismatches = 0, differ_from_lone = 0;
@@ -330,7 +343,7 @@ group_count groups_against_every_sphere(const sphere_grid& g, uint32_t seed) {
 
 TEST(Light, AHitsRaysWalkedTogetherFindWhatTestingEverySphereFinds) {
   const sphere_grid grids[] = {sphere_grid(mixed_sizes()), sphere_grid(make_scene(particle_box(2000))),
-                               sphere_grid(huge_among_small())};
+                               sphere_grid(huge_among_small()), sphere_grid(clumped())};
   for (const sphere_grid& g : grids) {
     const group_count w = groups_against_every_sphere(g, 11);
     EXPECT_EQ(w.mismatches, 0u) << "of " << w.rays << " rays among " << g.size() << " spheres";

@@ -288,7 +288,9 @@ bool sphere_grid::far_occluded(walk& w, const float o[3], const float d[3], floa
 // the grid stays in the cache, 10^5 spheres; a twentieth at 10^6).
 void sphere_grid::read_ahead(const size_t* found, int m) const {
   for (int i = 0; i < m; ++i) {
-    __builtin_prefetch(spheres_.data() + size_t(home_[found[i]]) * 4);
+    const uint32_t h0 = home_[found[i]], h1 = home_[found[i] + 1];
+    __builtin_prefetch(at(h0));
+    __builtin_prefetch(at(std::max(h0, std::min(h1, h0 + 8) - 1)));  // a run of up to 8: its last line too
     __builtin_prefetch(refs_.data() + first_[found[i]]);
   }
 }
@@ -300,8 +302,27 @@ bool sphere_grid::cells_occluded(const size_t* found, int m, const float o[3], c
   for (int i = 0; i < m; ++i) {
     const int k = listed(found[i], list + n);
     if (k >= 0) n += k;
-    else if (cell_occluded(found[i], o, d, tmax, skip)) return true;  // a long run: tested where it lies
+    else if (long_cell_occluded(found[i], o, d, tmax, skip)) return true;  // a long run: tested where it lies
   }
+  return n > 0 && any_blocks(list, n, o, d, tmax, skip);
+}
+
+// cell_occluded() for a cell with a run of more than 4 spheres: its
+// spheres listed, 64 at a time, and tested four at a time (any_blocks).
+bool sphere_grid::long_cell_occluded(size_t c, const float o[3], const float d[3], float tmax, uint32_t skip) const {
+  constexpr int most = 64;
+  uint32_t list[most + lanes::width];
+  int n = 0;
+  const auto add = [&](uint32_t p) {
+    list[n++] = p;
+    if (n < most) return false;
+    n = 0;
+    return any_blocks(list, most, o, d, tmax, skip);
+  };
+  for (uint32_t p = home_[c]; p < home_[c + 1]; ++p)
+    if (add(p)) return true;
+  for (uint32_t e = first_[c]; e < first_[c + 1]; ++e)
+    if (add(refs_[e])) return true;
   return n > 0 && any_blocks(list, n, o, d, tmax, skip);
 }
 

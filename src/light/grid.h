@@ -144,6 +144,7 @@ class sphere_grid {
   static constexpr int ahead = 8;  // occupied cells a long walk gathers before it tests them
   bool far_occluded(walk& w, const float o[3], const float d[3], float tmax, uint32_t skip) const;
   void read_ahead(const size_t* found, int m) const;
+  bool long_cell_occluded(size_t c, const float o[3], const float d[3], float tmax, uint32_t skip) const;
   bool cells_occluded(const size_t* found, int m, const float o[3], const float d[3], float tmax, uint32_t skip) const;
 
   float lo_[3] = {0, 0, 0}, hi_[3] = {0, 0, 0};
