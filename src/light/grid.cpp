@@ -279,13 +279,8 @@ bool sphere_grid::far_occluded(walk& w, const float o[3], const float d[3], floa
   return false;
 }
 
-// Whether a sphere of the occupied cells found[0 .. m) (m <= ahead, their
-// home_ and first_ entries prefetched) but skip blocks the segment: their
-// lists, then their own spheres and references, then the referenced
-// spheres prefetched before any is tested. The cells' spheres are tested
-// from one list (listed()), not in a loop over each cell's two runs, whose
-// lengths the walk cannot predict (light/README.md: a sixth less time where
-// the grid stays in the cache, 10^5 spheres; a twentieth at 10^6).
+// Prefetches the spheres and references of the occupied cells found[0 ..
+// m), whose home_ and first_ entries were prefetched as they were found.
 void sphere_grid::read_ahead(const size_t* found, int m) const {
   for (int i = 0; i < m; ++i) {
     const uint32_t h0 = home_[found[i]], h1 = home_[found[i] + 1];
@@ -295,14 +290,20 @@ void sphere_grid::read_ahead(const size_t* found, int m) const {
   }
 }
 
+// Whether a sphere of the occupied cells found[0 .. m) (m <= ahead, read
+// ahead) but skip blocks the segment. The cells' spheres are tested from
+// one list (listed()), not in a loop over each cell's two runs, whose
+// lengths the walk cannot predict (light/README.md: a sixth less time where
+// the grid stays in the cache, 10^5 spheres; a twentieth at 10^6), four at
+// a time (any_blocks).
 bool sphere_grid::cells_occluded(const size_t* found, int m, const float o[3], const float d[3], float tmax,
                                  uint32_t skip) const {
-  uint32_t list[2 * ahead * 8 + lanes::width];  // listed() writes 8 a cell; any_blocks() pads
+  uint32_t list[2 * ahead * 8 + lanes::width];  // listed() writes 8 a cell (twice the room m needs); any_blocks() pads
   int n = 0;
   for (int i = 0; i < m; ++i) {
     const int k = listed(found[i], list + n);
     if (k >= 0) n += k;
-    else if (long_cell_occluded(found[i], o, d, tmax, skip)) return true;  // a long run: tested where it lies
+    else if (long_cell_occluded(found[i], o, d, tmax, skip)) return true;  // a longer run: listed alone
   }
   return n > 0 && any_blocks(list, n, o, d, tmax, skip);
 }

@@ -105,8 +105,9 @@ uint32_t sphere_grid::near_lanes(lanes_walk& w, const float o[3], const float (*
 }
 
 // A group's long rays: each lane gathers its occupied cells until one has
-// `ahead` (each has room for twice that, as the lanes step together), then
-// every lane's cells are read ahead before any lane's are tested
+// `ahead` (a round ends at the step that fills one lane, and a step adds at
+// most one cell a lane, so none has more; each has room for twice that),
+// then every lane's cells are read ahead before any lane's are tested
 // (cells_occluded), so that the lanes' misses overlap.
 uint32_t sphere_grid::far_lanes(lanes_walk& w, const float o[3], const float (*d)[3], int k, float tmax,
                                 uint32_t skip) const {
