@@ -29,6 +29,7 @@ struct family {
 };
 const family families[] = {
     {"box", [](int64_t n) { return raycast_test::particle_box(n); }, {0.3, 1.0, 0.6}, true},
+    {"box-random", [](int64_t n) { return raycast_test::particle_box_random(n); }, {0.3, 1.0, 0.6}, true},
     {"dense", [](int64_t n) { return raycast_test::particle_cloud(n, 3.0); }, {-0.5, 1.0, 0.3}, false},
     {"cloud", [](int64_t n) { return raycast_test::particle_cloud(n, 1.5); }, {-0.5, 1.0, 0.3}, false},
 };

@@ -66,7 +66,7 @@ struct options {
   int summary_threads = 1;
   std::string aa_reference_dir = default_cache_dir();
   int64_t write_cloud = 0;  // > 0: print the particle cloud of that many spheres as a scene file
-  std::string write_family = "cloud";  // which: cloud, dense, box or box-ortho (--write-<family>)
+  std::string write_family = "cloud";  // which: cloud, dense, box, box-ortho or box-random (--write-<family>)
 };
 
 struct size2 {
@@ -271,8 +271,9 @@ void print_help() {
       "                          (default %s; '' : not cached)\n"
       "  --write-cloud N         print the scale rows' particle cloud of N spheres as a\n"
       "                          scene file (for raycast --scene FILE --stats) and exit\n"
-      "  --write-dense N, --write-box N, --write-box-ortho N   the same for the dense\n"
-      "                          cloud, the packed box, and the box seen orthographically\n"
+      "  --write-dense N, --write-box N, --write-box-ortho N, --write-box-random N\n"
+      "                          the same for the dense cloud, the packed box, the box\n"
+      "                          seen orthographically, and the box of random centres\n"
       "The summaries are %s's, from the run's JSON\n"
       "(python3 %s RUN.json --help). Google Benchmark's flags:\n",
       default_cache_dir().c_str(), report_script().c_str(), report_script().c_str());
@@ -288,7 +289,7 @@ void print_help() {
 // The family of a --write-cloud, --write-dense or --write-box flag (with or
 // without its =N), or null.
 const char* write_flag(const char* arg) {
-  for (const char* family : {"cloud", "dense", "box", "box-ortho"}) {
+  for (const char* family : {"cloud", "dense", "box", "box-ortho", "box-random"}) {
     const std::string flag = std::string("--write-") + family;
     if (arg == flag || std::string(arg).rfind(flag + "=", 0) == 0) return family;
   }
@@ -429,6 +430,7 @@ int run(int argc, char** argv) {
     const std::string text = raycast_test::cloud_json(
         opt.write_family == "box-ortho" ? raycast_test::particle_box(n, true)
         : opt.write_family == "box"     ? raycast_test::particle_box(n)
+        : opt.write_family == "box-random" ? raycast_test::particle_box_random(n)
         : opt.write_family == "dense" ? raycast_test::particle_cloud(n, 3.0)
                                       : raycast_test::particle_cloud(n));
     const bool ok = std::fwrite(text.data(), 1, text.size(), stdout) == text.size() && std::fflush(stdout) == 0;

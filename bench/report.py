@@ -440,7 +440,7 @@ def print_light(rows, ctx):
         return
     print(f"\nLight (light/ rows): shadows, and shadows + 8 AO rays a hit, against Embree's rtcOccluded16; "
           f"{ctx.get('cpu_model', '?')}, {ctx.get('date', '')[:10]}, 1 thread unless said (ms)")
-    print(f"  {'family':6} {'N':>8} {'variant':12} {'ours prep+render (primary)':>28} {'Embree build+prim+shadow+AO':>30}"
+    print(f"  {'family':10} {'N':>8} {'variant':12} {'ours prep+render (primary)':>28} {'Embree build+prim+shadow+AO':>30}"
           f" {'Embree/ours':>11} {'2 thr/1':>8}")
     for (fam, n, var), c in sorted(cells.items()):
         o, e, o2 = c.get(("ours", "1")), c.get(("embree", "1")), c.get(("ours", "all"))
@@ -449,7 +449,7 @@ def print_light(rows, ctx):
                if e and "build_s" in e else "-")
         ratio = f"{(e.build_s + e.render_s) / (o.prepare_s + o.render_s):.2f}x" if o and e and "build_s" in e else "-"
         scale = f"{o.render_s / o2.render_s:.2f}x" if o and o2 else "-"
-        print(f"  {fam:6} {n:8d} {var:12} {ours:>28} {emb:>30} {ratio:>11} {scale:>8}")
+        print(f"  {fam:10} {n:8d} {var:12} {ours:>28} {emb:>30} {ratio:>11} {scale:>8}")
 
 
 # --- shortcuts, peers, scale, stiff cases --------------------------------------------------

@@ -342,8 +342,11 @@ group_count groups_against_every_sphere(const sphere_grid& g, uint32_t seed) {
 }
 
 TEST(Light, AHitsRaysWalkedTogetherFindWhatTestingEverySphereFinds) {
+  // The lattice box lists most spheres in one cell, the random one in several.
   const sphere_grid grids[] = {sphere_grid(mixed_sizes()), sphere_grid(make_scene(particle_box(2000))),
-                               sphere_grid(huge_among_small()), sphere_grid(clumped())};
+                               sphere_grid(make_scene(particle_box_random(2000))), sphere_grid(huge_among_small()),
+                               sphere_grid(clumped())};
+  ASSERT_GT(grids[2].references(), 4 * grids[2].size()) << "random centres should reach into several cells";
   for (const sphere_grid& g : grids) {
     const group_count w = groups_against_every_sphere(g, 11);
     EXPECT_EQ(w.mismatches, 0u) << "of " << w.rays << " rays among " << g.size() << " spheres";

@@ -67,7 +67,11 @@ scene_params particle_cloud(int64_t n, double coverage) {
   return p;
 }
 
-scene_params particle_box(int64_t n, bool orthographic) {
+namespace {
+
+// The packed box's camera (particle_box), and its spheres' radius: n equal
+// spheres filling 0.3 of the unit cube, rounded as the JSON writes it.
+scene_params box_view(int64_t n, bool orthographic) {
   scene_params p;
   p.camera.image_width = width;
   p.camera.image_height = height;
@@ -83,6 +87,21 @@ scene_params particle_box(int64_t n, bool orthographic) {
     p.camera.origin = point3(out, out, out);
   }
   p.camera.lookat = point3(0.5, 0.5, 0.5);
+  p.spheres.resize(size_t(n));
+  return p;
+}
+double box_radius(int64_t n) {
+  std::string text;
+  append(text, std::cbrt(0.3 * 3.0 / (4.0 * std::numbers::pi * double(n))), true);
+  double radius = 0;
+  std::from_chars(text.data(), text.data() + text.size(), radius);
+  return radius;
+}
+
+}  // namespace
+
+scene_params particle_box(int64_t n, bool orthographic) {
+  scene_params p = box_view(n, orthographic);
   int64_t m = 1;
   while (m * m * m < n) ++m;
   const double cell = 1.0 / double(m);
@@ -95,17 +114,27 @@ scene_params particle_box(int64_t n, bool orthographic) {
   std::vector<int64_t> cells(size_t(m * m * m));
   for (size_t k = 0; k < cells.size(); ++k) cells[k] = int64_t(k);
   for (size_t k = cells.size() - 1; k > 0; --k) std::swap(cells[k], cells[size_t(gen()) % (k + 1)]);
-  std::string text;
-  append(text, r, true);
-  double radius = r;
-  std::from_chars(text.data(), text.data() + text.size(), radius);
-  p.spheres.resize(size_t(n));
+  const double radius = box_radius(n);
   for (size_t k = 0; k < size_t(n); ++k) {
     const int64_t c = cells[k], x = c % m, y = c / m % m, z = c / (m * m);
     sphere& s = p.spheres[k];
     s.center = point3(micro((double(x) + 0.5) * cell + (2.0 * unit() - 1.0) * room),
                       micro((double(y) + 0.5) * cell + (2.0 * unit() - 1.0) * room),
                       micro((double(z) + 0.5) * cell + (2.0 * unit() - 1.0) * room));
+    s.radius = radius;
+  }
+  return p;
+}
+
+scene_params particle_box_random(int64_t n) {
+  scene_params p = box_view(n, false);
+  const double radius = box_radius(n), span = 1.0 - 2.0 * radius;
+  std::mt19937 gen(20261129u);
+  auto unit = [&gen] { return double(gen() >> 8) * 0x1p-24; };
+  auto micro = [](double x) { return std::round(x * 1e6) / 1e6; };
+  for (sphere& s : p.spheres) {
+    const double x = radius + unit() * span, y = radius + unit() * span, z = radius + unit() * span;
+    s.center = point3(micro(x), micro(y), micro(z));
     s.radius = radius;
   }
   return p;

@@ -38,6 +38,13 @@ double cloud_radius(int64_t n, double coverage = 1.5);
 // spheres' cells, 100 at 10^6).
 scene_params particle_box(int64_t n, bool orthographic = false);
 
+// The same cube, camera and radius with the centres uniform in it (spheres
+// may overlap: a gas's snapshot rather than a packing). The lattice box lists
+// each sphere in one cell of a grid of n cells (where m^3 = n, as at 10^6,
+// the lattice is such a grid); here a sphere reaches into several, as in
+// most particle data.
+scene_params particle_box_random(int64_t n);
+
 // p as scene-file text (scene/scene_file.h), about 85 bytes a sphere.
 std::string cloud_json(const scene_params& p);
 
