@@ -335,16 +335,12 @@ bool sphere_grid::any_blocks(uint32_t* list, int n, const float o[3], const floa
   using lanes::fvec;
   using lanes::ivec;
   for (int i = n; i % lanes::width != 0; ++i) list[i] = list[n - 1];
+  const fvec dir[3] = {lanes::splat(d[0]), lanes::splat(d[1]), lanes::splat(d[2])};
   for (int i = 0; i < n; i += lanes::width) {
     const float *s0 = at(list[i]), *s1 = at(list[i + 1]), *s2 = at(list[i + 2]), *s3 = at(list[i + 3]);
-    const fvec ox = o[0] - fvec{s0[0], s1[0], s2[0], s3[0]}, oy = o[1] - fvec{s0[1], s1[1], s2[1], s3[1]},
-               oz = o[2] - fvec{s0[2], s1[2], s2[2], s3[2]}, r = fvec{s0[3], s1[3], s2[3], s3[3]};
-    const fvec r2 = r * r;
-    const fvec b = (ox * d[0] + oy * d[1]) + oz * d[2];
-    const fvec vx = ox - b * d[0], vy = oy - b * d[1], vz = oz - b * d[2];
-    const fvec m2 = (vx * vx + vy * vy) + vz * vz, gap = r2 - m2;
-    const fvec near = -b - lanes::sqrt(lanes::pick(ivec(gap > 0.0f), gap, fvec{}));
-    const ivec hit = ivec((ox * ox + oy * oy) + oz * oz <= r2) | (ivec(b < 0.0f) & ivec(m2 <= r2) & ivec(near <= tmax));
+    const fvec s[4] = {fvec{s0[0], s1[0], s2[0], s3[0]}, fvec{s0[1], s1[1], s2[1], s3[1]},
+                       fvec{s0[2], s1[2], s2[2], s3[2]}, fvec{s0[3], s1[3], s2[3], s3[3]}};
+    const ivec hit = lanes::blocks_in_lanes(o, dir, s, tmax);
     const ivec other = {list[i] != skip, list[i + 1] != skip, list[i + 2] != skip, list[i + 3] != skip};
     if (lanes::bits_of(hit & -other) != 0) return true;
   }

@@ -1,7 +1,9 @@
 // A hit's AO rays walked together: sphere_grid's DDA (grid.cpp) with each
 // ray in a vector lane. A ray walked alone chooses at each step which face
 // it leaves its cell by, a branch its random direction makes
-// unpredictable; in lanes that choice is a mask. Short rays (at most 4
+// unpredictable; in lanes that choice is a mask. The cell the rays start
+// in is every lane's: its spheres are tested against all the rays at once
+// (first_cell_lanes). Past it, short rays (at most 4
 // cells) test each lane's cells as the lone walk does, as the lane enters
 // them (cell_occluded); long ones gather each lane's occupied cells and
 // test them as the lone long walk does (cells_occluded), every lane's cells
@@ -36,6 +38,7 @@ using lanes::ivec;
 using lanes::uvec;
 using lanes::pick;
 using lanes::bits_of;
+using lanes::blocks_in_lanes;
 constexpr int width = lanes::width;
 
 // The walk's state, lane by lane: the t of the first boundary on each
@@ -86,14 +89,34 @@ struct sphere_grid::lanes_walk {
   }
 };
 
-// A group's short rays: each lane's cells tested as it enters them.
-uint32_t sphere_grid::near_lanes(lanes_walk& w, const float o[3], const float (*d)[3], int k, float tmax,
-                                 uint32_t skip) const {
-  const size_t first = w.cell[0];
+// The cell a group starts in (every lane's: its rays share their origin):
+// each of its spheres read once and tested against the group's k rays
+// together, as blocks() tests it (lanes::blocks_in_lanes: the same bits),
+// not once a ray (a random packing lists half a dozen spheres in a cell:
+// the box's AO a quarter faster). Bit l: ray l is blocked.
+uint32_t sphere_grid::first_cell_lanes(size_t c, const float o[3], const float (*d)[3], int k, float tmax,
+                                       uint32_t skip) const {
+  if (!occupied(c)) return 0;
+  fvec dir[3] = {};
+  for (int a = 0; a < 3; ++a)
+    for (int l = 0; l < k; ++l) dir[a][l] = d[l][a];
   uint32_t hit = 0;
-  if (occupied(first))
-    for (int l = 0; l < k; ++l) hit |= uint32_t(cell_occluded(first, o, d[l], tmax, skip)) << l;
-  for (uint32_t live = ((1u << k) - 1) & ~hit; live != 0;) {
+  const auto test = [&](uint32_t p) {
+    const float* s = at(p);
+    const fvec sphere[4] = {lanes::splat(s[0]), lanes::splat(s[1]), lanes::splat(s[2]), lanes::splat(s[3])};
+    if (p != skip) hit |= bits_of(blocks_in_lanes(o, dir, sphere, tmax));
+  };
+  for (uint32_t p = home_[c]; p < home_[c + 1]; ++p) test(p);
+  for (uint32_t e = first_[c]; e < first_[c + 1]; ++e) test(refs_[e]);
+  return hit;
+}
+
+// A group's short rays (the lanes `live`, past the first cell): each lane's
+// cells tested as it enters them.
+uint32_t sphere_grid::near_lanes(lanes_walk& w, const float o[3], const float (*d)[3], uint32_t live, float tmax,
+                                 uint32_t skip) const {
+  uint32_t hit = 0;
+  while (live != 0) {
     live &= ~w.step(tmax);
     for (uint32_t b = live; b != 0; b &= b - 1) {
       const int l = __builtin_ctz(b);
@@ -109,18 +132,17 @@ uint32_t sphere_grid::near_lanes(lanes_walk& w, const float o[3], const float (*
 // most one cell a lane, so none has more; each has room for twice that),
 // then every lane's cells are read ahead before any lane's are tested
 // (cells_occluded), so that the lanes' misses overlap.
-uint32_t sphere_grid::far_lanes(lanes_walk& w, const float o[3], const float (*d)[3], int k, float tmax,
+uint32_t sphere_grid::far_lanes(lanes_walk& w, const float o[3], const float (*d)[3], uint32_t live, float tmax,
                                 uint32_t skip) const {
   size_t found[width][2 * ahead];
   int count[width] = {};
-  uint32_t hit = 0, live = (1u << k) - 1;
+  uint32_t hit = 0;
   const auto gather = [&](int l, size_t c) {
     found[l][count[l]] = c;
     count[l] += int(occupied(c));
     __builtin_prefetch(&home_[c]);
     __builtin_prefetch(&first_[c]);
   };
-  for (int l = 0; l < k; ++l) gather(l, w.cell[0]);
   for (uint32_t walking = live; live != 0;) {
     bool full = false;
     while (walking != 0 && !full) {
@@ -155,8 +177,10 @@ uint32_t sphere_grid::occluded(const float o[3], const float (*d)[3], int m, flo
   for (int l0 = 0; l0 < m; l0 += width) {
     const int k = std::min(width, m - l0);
     lanes_walk w(*this, o, d + l0, k);
-    const uint32_t hit = tmax <= 4 * h_ ? near_lanes(w, o, d + l0, k, tmax, skip) : far_lanes(w, o, d + l0, k, tmax, skip);
-    blocked |= hit << l0;
+    const uint32_t all = (1u << k) - 1, first = first_cell_lanes(size_t(w.cell[0]), o, d + l0, k, tmax, skip) & all;
+    const uint32_t rest = tmax <= 4 * h_ ? near_lanes(w, o, d + l0, all & ~first, tmax, skip)
+                                         : far_lanes(w, o, d + l0, all & ~first, tmax, skip);
+    blocked |= (first | rest) << l0;
   }
   return blocked;
 }

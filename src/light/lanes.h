@@ -19,6 +19,8 @@ typedef uint32_t uvec __attribute__((vector_size(width * sizeof(float))));
 
 // a where m is set, b elsewhere.
 inline fvec pick(ivec m, fvec a, fvec b) { return fvec((ivec(a) & m) | (ivec(b) & ~m)); }
+// x in every lane.
+inline fvec splat(float x) { return fvec{x, x, x, x}; }
 // Each lane's square root (sqrtps on SSE2: correctly rounded, as std::sqrt).
 inline fvec sqrt(fvec x) {
   for (int l = 0; l < width; ++l) x[l] = __builtin_sqrtf(x[l]);
@@ -34,6 +36,21 @@ inline uint32_t bits_of(ivec m) {
   const uvec w = uvec(m) & uvec{1, 2, 4, 8};
   return (w[0] | w[1]) | (w[2] | w[3]);
 #endif
+}
+
+// sphere_grid::blocks() in lanes: whether the segment o + t d[.][l], t in
+// [0, tmax], meets the solid ball of the sphere s[.][l] (centre x y z,
+// radius), lane by lane: the same float operations in the same order, so
+// the same bits as blocks() (a square root of a negative gap is never
+// taken: its lane's m2 > r2 fails first).
+inline ivec blocks_in_lanes(const float o[3], const fvec d[3], const fvec s[4], float tmax) {
+  const fvec ox = o[0] - s[0], oy = o[1] - s[1], oz = o[2] - s[2];
+  const fvec r2 = s[3] * s[3];
+  const fvec b = (ox * d[0] + oy * d[1]) + oz * d[2];
+  const fvec vx = ox - b * d[0], vy = oy - b * d[1], vz = oz - b * d[2];
+  const fvec m2 = (vx * vx + vy * vy) + vz * vz, gap = r2 - m2;
+  const fvec near = -b - sqrt(pick(ivec(gap > 0.0f), gap, fvec{}));
+  return ivec((ox * ox + oy * oy) + oz * oz <= r2) | (ivec(b < 0.0f) & ivec(m2 <= r2) & ivec(near <= tmax));
 }
 
 }  // namespace lanes
