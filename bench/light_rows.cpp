@@ -25,7 +25,7 @@ struct family {
   const char* name;
   scene_params (*make)(int64_t n);
   vec3 light;
-  bool bounded_ao;  // AO distance 5 radii (the packed box), else unbounded
+  bool bounded_ao;  // AO distance 5 radii (the boxes), else unbounded
 };
 const family families[] = {
     {"box", [](int64_t n) { return raycast_test::particle_box(n); }, {0.3, 1.0, 0.6}, true},

@@ -298,8 +298,9 @@ TEST(Light, GridWalkFindsWhatTestingEverySphereFindsInACoarseGrid) {
 // normal floats), most groups short (at most 4 cells: each lane's cells
 // tested as it enters them), some longer and every fifth unbounded (each
 // lane's cells gathered and tested together), a group of fewer than eight
-// now and then; on the four grids above. Each verdict is also the same ray's
-// walked alone.
+// now and then; on the grids of the test below (mixed sizes, the lattice
+// and random boxes, huge spheres among small ones, clumps). Each verdict is
+// also the same ray's walked alone.
 struct group_count {
   size_t groups = 0, in_lanes = 0, long_in_lanes = 0, rays = 0, blocked = 0, mismatches = 0, differ_from_lone = 0;
 };

@@ -92,22 +92,27 @@ struct sphere_grid::lanes_walk {
 // The cell a group starts in (every lane's: its rays share their origin):
 // each of its spheres read once and tested against the group's k rays
 // together, as blocks() tests it (lanes::blocks_in_lanes: the same bits),
-// not once a ray (a random packing lists half a dozen spheres in a cell:
-// the box's AO a quarter faster). Bit l: ray l is blocked.
+// not once a ray (a box of random centres lists half a dozen spheres in a
+// cell: its AO a quarter faster). Bit l: ray l is blocked; done once every
+// ray is.
 uint32_t sphere_grid::first_cell_lanes(size_t c, const float o[3], const float (*d)[3], int k, float tmax,
                                        uint32_t skip) const {
   if (!occupied(c)) return 0;
   fvec dir[3] = {};
   for (int a = 0; a < 3; ++a)
     for (int l = 0; l < k; ++l) dir[a][l] = d[l][a];
+  const uint32_t all = (1u << k) - 1;
   uint32_t hit = 0;
   const auto test = [&](uint32_t p) {
     const float* s = at(p);
     const fvec sphere[4] = {lanes::splat(s[0]), lanes::splat(s[1]), lanes::splat(s[2]), lanes::splat(s[3])};
-    if (p != skip) hit |= bits_of(blocks_in_lanes(o, dir, sphere, tmax));
+    if (p != skip) hit |= bits_of(blocks_in_lanes(o, dir, sphere, tmax)) & all;
+    return hit == all;
   };
-  for (uint32_t p = home_[c]; p < home_[c + 1]; ++p) test(p);
-  for (uint32_t e = first_[c]; e < first_[c + 1]; ++e) test(refs_[e]);
+  for (uint32_t p = home_[c]; p < home_[c + 1]; ++p)
+    if (test(p)) return hit;
+  for (uint32_t e = first_[c]; e < first_[c + 1]; ++e)
+    if (test(refs_[e])) return hit;
   return hit;
 }
 
@@ -177,7 +182,7 @@ uint32_t sphere_grid::occluded(const float o[3], const float (*d)[3], int m, flo
   for (int l0 = 0; l0 < m; l0 += width) {
     const int k = std::min(width, m - l0);
     lanes_walk w(*this, o, d + l0, k);
-    const uint32_t all = (1u << k) - 1, first = first_cell_lanes(size_t(w.cell[0]), o, d + l0, k, tmax, skip) & all;
+    const uint32_t all = (1u << k) - 1, first = first_cell_lanes(size_t(w.cell[0]), o, d + l0, k, tmax, skip);
     const uint32_t rest = tmax <= 4 * h_ ? near_lanes(w, o, d + l0, all & ~first, tmax, skip)
                                          : far_lanes(w, o, d + l0, all & ~first, tmax, skip);
     blocked |= (first | rest) << l0;

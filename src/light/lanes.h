@@ -41,8 +41,8 @@ inline uint32_t bits_of(ivec m) {
 // sphere_grid::blocks() in lanes: whether the segment o + t d[.][l], t in
 // [0, tmax], meets the solid ball of the sphere s[.][l] (centre x y z,
 // radius), lane by lane: the same float operations in the same order, so
-// the same bits as blocks() (a square root of a negative gap is never
-// taken: its lane's m2 > r2 fails first).
+// the same bits as blocks() (a negative gap's root is taken of 0 instead,
+// in a lane whose m2 <= r2 is false, so it cannot change the lane's result).
 inline ivec blocks_in_lanes(const float o[3], const fvec d[3], const fvec s[4], float tmax) {
   const fvec ox = o[0] - s[0], oy = o[1] - s[1], oz = o[2] - s[2];
   const fvec r2 = s[3] * s[3];

@@ -69,8 +69,9 @@ scene_params particle_cloud(int64_t n, double coverage) {
 
 namespace {
 
-// The packed box's camera (particle_box), and its spheres' radius: n equal
-// spheres filling 0.3 of the unit cube, rounded as the JSON writes it.
+// The packed box's camera (particle_box) and room for its n spheres; and
+// their radius: n equal spheres filling 0.3 of the unit cube, exact or
+// rounded as the JSON writes it.
 scene_params box_view(int64_t n, bool orthographic) {
   scene_params p;
   p.camera.image_width = width;
@@ -90,9 +91,10 @@ scene_params box_view(int64_t n, bool orthographic) {
   p.spheres.resize(size_t(n));
   return p;
 }
+double exact_box_radius(int64_t n) { return std::cbrt(0.3 * 3.0 / (4.0 * std::numbers::pi * double(n))); }
 double box_radius(int64_t n) {
   std::string text;
-  append(text, std::cbrt(0.3 * 3.0 / (4.0 * std::numbers::pi * double(n))), true);
+  append(text, exact_box_radius(n), true);
   double radius = 0;
   std::from_chars(text.data(), text.data() + text.size(), radius);
   return radius;
@@ -105,7 +107,7 @@ scene_params particle_box(int64_t n, bool orthographic) {
   int64_t m = 1;
   while (m * m * m < n) ++m;
   const double cell = 1.0 / double(m);
-  const double r = std::cbrt(0.3 * 3.0 / (4.0 * std::numbers::pi * double(n)));
+  const double r = exact_box_radius(n);
   const double room = std::max(0.0, 0.5 * cell - r);  // how far a centre may stray in its cell
   std::mt19937 gen(20261125u);
   auto unit = [&gen] { return double(gen() >> 8) * 0x1p-24; };
