@@ -138,7 +138,7 @@ class sphere_grid {
   bool occupied(size_t c) const { return occupied_[c >> 6] >> (c & 63) & 1u; }
   struct walk;
   struct lanes_walk;
-  uint32_t first_cell_lanes(size_t c, const float o[3], const float (*d)[3], int k, float tmax, uint32_t skip) const;
+  uint32_t first_cell_lanes(const lanes_walk& w, const float o[3], int k, float tmax, uint32_t skip) const;
   uint32_t near_lanes(lanes_walk& w, const float o[3], const float (*d)[3], uint32_t live, float tmax, uint32_t skip) const;
   uint32_t far_lanes(lanes_walk& w, const float o[3], const float (*d)[3], uint32_t live, float tmax, uint32_t skip) const;
   bool any_blocks(uint32_t* list, int n, const float o[3], const float d[3], float tmax, uint32_t skip) const;

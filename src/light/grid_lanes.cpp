@@ -41,13 +41,13 @@ using lanes::bits_of;
 using lanes::blocks_in_lanes;
 constexpr int width = lanes::width;
 
-// The walk's state, lane by lane: the t of the first boundary on each
+// The walk's state, lane by lane: the ray's direction, the t of the first boundary on each
 // axis, the t between two, the steps taken on each axis and the t of the
 // next boundary (first + steps delta; infinity on an axis the ray does not
 // move along), the steps left on each axis before the grid ends, the
 // step's change of cell index on each axis and the cell's index.
 struct sphere_grid::lanes_walk {
-  fvec first[3], delta[3], steps[3] = {}, next[3];
+  fvec dir[3], first[3], delta[3], steps[3] = {}, next[3];  // dir: each lane's direction (0 past the group)
   ivec left[3];
   uvec move[3], cell = {};  // unsigned: a lane that has ended may step on past the grid
 
@@ -57,7 +57,8 @@ struct sphere_grid::lanes_walk {
     for (int a = 0; a < 3; ++a) {
       const float p = (o[a] - g.lo_[a]) * g.inv_h_;  // grid.cpp's walk at t0 = 0
       const int c = p <= 0.0f ? 0 : std::min(int(p), g.dims_[a] - 1);
-      fvec da = {};
+      fvec& da = dir[a];
+      da = fvec{};
       for (int l = 0; l < m; ++l) da[l] = d[l][a];
       // A component below the normal floats walks as 0 (its 1 / d would be
       // infinite): it moves the ray by less than 2^-125 over the walk.
@@ -95,18 +96,15 @@ struct sphere_grid::lanes_walk {
 // not once a ray (a box of random centres lists half a dozen spheres in a
 // cell: its AO a quarter faster). Bit l: ray l is blocked; done once every
 // ray is.
-uint32_t sphere_grid::first_cell_lanes(size_t c, const float o[3], const float (*d)[3], int k, float tmax,
-                                       uint32_t skip) const {
+uint32_t sphere_grid::first_cell_lanes(const lanes_walk& w, const float o[3], int k, float tmax, uint32_t skip) const {
+  const size_t c = w.cell[0];
   if (!occupied(c)) return 0;
-  fvec dir[3] = {};
-  for (int a = 0; a < 3; ++a)
-    for (int l = 0; l < k; ++l) dir[a][l] = d[l][a];
   const uint32_t all = (1u << k) - 1;
   uint32_t hit = 0;
   const auto test = [&](uint32_t p) {
     const float* s = at(p);
     const fvec sphere[4] = {lanes::splat(s[0]), lanes::splat(s[1]), lanes::splat(s[2]), lanes::splat(s[3])};
-    if (p != skip) hit |= bits_of(blocks_in_lanes(o, dir, sphere, tmax)) & all;
+    if (p != skip) hit |= bits_of(blocks_in_lanes(o, w.dir, sphere, tmax)) & all;
     return hit == all;
   };
   for (uint32_t p = home_[c]; p < home_[c + 1]; ++p)
@@ -182,7 +180,7 @@ uint32_t sphere_grid::occluded(const float o[3], const float (*d)[3], int m, flo
   for (int l0 = 0; l0 < m; l0 += width) {
     const int k = std::min(width, m - l0);
     lanes_walk w(*this, o, d + l0, k);
-    const uint32_t all = (1u << k) - 1, first = first_cell_lanes(size_t(w.cell[0]), o, d + l0, k, tmax, skip);
+    const uint32_t all = (1u << k) - 1, first = first_cell_lanes(w, o, k, tmax, skip);
     const uint32_t rest = tmax <= 4 * h_ ? near_lanes(w, o, d + l0, all & ~first, tmax, skip)
                                          : far_lanes(w, o, d + l0, all & ~first, tmax, skip);
     blocked |= (first | rest) << l0;
