@@ -19,6 +19,7 @@
 #include "light/secondary.h"
 #include "light/shadow_bins.h"
 #include "reference/hittable.h"
+#include "simd/cpu.h"
 #include "render_support.h"
 
 namespace raycast_test {
@@ -304,7 +305,7 @@ TEST(Light, GridWalkFindsWhatTestingEverySphereFindsInACoarseGrid) {
 struct group_count {
   size_t groups = 0, in_lanes = 0, long_in_lanes = 0, rays = 0, blocked = 0, mismatches = 0, differ_from_lone = 0;
 };
-group_count groups_against_every_sphere(const sphere_grid& g, uint32_t seed) {
+group_count groups_against_every_sphere(const sphere_grid& g, uint32_t seed, int lanes) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   group_count w;
@@ -330,7 +331,7 @@ group_count groups_against_every_sphere(const sphere_grid& g, uint32_t seed) {
     ++w.groups;
     w.in_lanes += g.walks_in_lanes();
     w.long_in_lanes += g.walks_in_lanes() && tmax > 4 * g.cell_side();
-    const uint32_t got = g.occluded(o, d, m, tmax, k);
+    const uint32_t got = g.occluded(o, d, m, tmax, k, lanes);
     for (int l = 0; l < m; ++l) {
       const bool want = blocked_by_any(g, o, d[l], tmax, k);
       ++w.rays;
@@ -348,15 +349,29 @@ TEST(Light, AHitsRaysWalkedTogetherFindWhatTestingEverySphereFinds) {
                                sphere_grid(make_scene(particle_box_random(2000))), sphere_grid(huge_among_small()),
                                sphere_grid(clumped())};
   ASSERT_GT(grids[2].references(), 4 * grids[2].size()) << "random centres should reach into several cells";
-  for (const sphere_grid& g : grids) {
-    const group_count w = groups_against_every_sphere(g, 11);
-    EXPECT_EQ(w.mismatches, 0u) << "of " << w.rays << " rays among " << g.size() << " spheres";
-    EXPECT_EQ(w.differ_from_lone, 0u) << "verdicts unlike the same ray's walked alone";
-    EXPECT_GT(w.in_lanes, w.groups * 7 / 10) << "most groups should walk in lanes";
-    EXPECT_GT(w.long_in_lanes, w.groups / 10) << "long groups should walk in lanes too";
-    EXPECT_GT(w.blocked, w.rays / 10);
-    EXPECT_LT(w.blocked, w.rays * 9 / 10);
+  for (const int lanes : sphere_grid::lane_widths()) {
+    for (const sphere_grid& g : grids) {
+      SCOPED_TRACE(std::to_string(lanes) + " lanes");
+      const group_count w = groups_against_every_sphere(g, 11, lanes);
+      EXPECT_EQ(w.mismatches, 0u) << "of " << w.rays << " rays among " << g.size() << " spheres";
+      EXPECT_EQ(w.differ_from_lone, 0u) << "verdicts unlike the same ray's walked alone";
+      EXPECT_GT(w.in_lanes, w.groups * 7 / 10) << "most groups should walk in lanes";
+      EXPECT_GT(w.long_in_lanes, w.groups / 10) << "long groups should walk in lanes too";
+      EXPECT_GT(w.blocked, w.rays / 10);
+      EXPECT_LT(w.blocked, w.rays * 9 / 10);
+    }
   }
+}
+
+// The walk in eight lanes is there wherever the CPU runs AVX2 on x86-64 (and
+// RAYCAST_MAX_ISA does not cap it below avx2), and taken by default.
+TEST(Light, AHitsRaysWalkInTheWidestLanesThisCpuRuns) {
+  std::vector<int> want{4};
+#if defined(__x86_64__)
+  if (cpu().avx2) want.push_back(8);
+#endif
+  EXPECT_EQ(sphere_grid::lane_widths(), want);
+  if (want.back() == 4) GTEST_SKIP() << "no AVX2 here: only the 4-lane walk ran";
 }
 
 // The point C + r n of sphere k in the grid's frame (n a unit vector).

@@ -2,6 +2,7 @@
 
 #include "light/key_sort.h"
 #include "light/lanes.h"
+#include "simd/cpu.h"
 
 #include <algorithm>
 #include <cmath>
@@ -254,6 +255,34 @@ bool sphere_grid::occluded(const float o[3], const float d[3], float tmax, uint3
       return true;
   } while (w.step());
   return false;
+}
+
+const std::vector<int>& sphere_grid::lane_widths() {
+  static const std::vector<int> widths = [] {
+    std::vector<int> w{4};
+#if defined(RAYCAST_LIGHT_W8)
+    if (cpu().avx2) w.push_back(8);
+#endif
+    return w;
+  }();
+  return widths;
+}
+
+uint32_t sphere_grid::occluded(const float o[3], const float (*d)[3], int m, float tmax, uint32_t skip_index,
+                               int lanes) const {
+  bool inside = !home_.empty();
+  for (int a = 0; a < 3; ++a) inside = inside && o[a] >= lo_[a] && o[a] < hi_[a];
+  uint32_t blocked = 0;
+  if (!inside || !walks_in_lanes()) {  // from outside, or coarse: one at a time
+    for (int l = 0; l < m; ++l) blocked |= uint32_t(occluded(o, d[l], tmax, skip_index)) << l;
+    return blocked;
+  }
+  const uint32_t skip = skip_index < size() ? position(skip_index) : skip_index;
+  if (lanes == 0) lanes = lane_widths().back();
+#if defined(RAYCAST_LIGHT_W8)
+  if (lanes == 8) return lanes_occluded<8>(o, d, m, tmax, skip);
+#endif
+  return lanes_occluded<4>(o, d, m, tmax, skip);
 }
 
 // A walk of more than a few cells: the occupied cells ahead gathered 8 at a

@@ -61,10 +61,16 @@ class sphere_grid {
   // grid's box walk together, one a vector lane (light/README.md), so that
   // no branch waits on which face each ray leaves its cell by, and long
   // rays' cache misses overlap.
+  // The lanes are `lanes` floats wide: 4 (the build's baseline: SSE2, NEON)
+  // or 8 (AVX2, on x86-64), one of lane_widths(); 0 takes the widest. Every
+  // width gives the same bits.
   static constexpr int group = 8;
-  uint32_t occluded(const float o[3], const float (*d)[3], int m, float tmax, uint32_t skip) const;
+  uint32_t occluded(const float o[3], const float (*d)[3], int m, float tmax, uint32_t skip, int lanes = 0) const;
   // Whether a group's rays from inside the box walk in lanes.
   bool walks_in_lanes() const { return h_ <= 0.5f && cells() < size_t(1) << 31; }
+  // The lane widths this build has and this CPU runs (RAYCAST_MAX_ISA
+  // below avx2 leaves 4 alone), narrowest first.
+  static const std::vector<int>& lane_widths();
 
   // Sphere k's (its index in the scene) centre (grid frame) and radius (grid
   // units), x y z r. The spheres are stored in the order of the cells their
@@ -137,10 +143,20 @@ class sphere_grid {
   }
   bool occupied(size_t c) const { return occupied_[c >> 6] >> (c & 63) & 1u; }
   struct walk;
+  // grid_lanes.cpp, compiled once a width (light/lanes.h): each compilation
+  // instantiates these for its own W alone.
+  template <int W>
   struct lanes_walk;
-  uint32_t first_cell_lanes(const lanes_walk& w, const float o[3], int k, float tmax, uint32_t skip) const;
-  uint32_t near_lanes(lanes_walk& w, const float o[3], const float (*d)[3], uint32_t live, float tmax, uint32_t skip) const;
-  uint32_t far_lanes(lanes_walk& w, const float o[3], const float (*d)[3], uint32_t live, float tmax, uint32_t skip) const;
+  template <int W>
+  uint32_t lanes_occluded(const float o[3], const float (*d)[3], int m, float tmax, uint32_t skip) const;
+  template <int W>
+  uint32_t first_cell_lanes(const lanes_walk<W>& w, const float o[3], int k, float tmax, uint32_t skip) const;
+  template <int W>
+  uint32_t near_lanes(lanes_walk<W>& w, const float o[3], const float (*d)[3], uint32_t live, float tmax,
+                      uint32_t skip) const;
+  template <int W>
+  uint32_t far_lanes(lanes_walk<W>& w, const float o[3], const float (*d)[3], uint32_t live, float tmax,
+                     uint32_t skip) const;
   bool any_blocks(uint32_t* list, int n, const float o[3], const float d[3], float tmax, uint32_t skip) const;
   static constexpr int ahead = 8;  // occupied cells a long walk gathers before it tests them
   bool far_occluded(walk& w, const float o[3], const float d[3], float tmax, uint32_t skip) const;
@@ -164,5 +180,11 @@ class sphere_grid {
   out_of_order_array<uint32_t> refs_;
   out_of_order_array<uint64_t> occupied_;  // bit c: cell c lists a sphere (a sparse scene's walk reads 1 bit an empty cell)
 };
+
+// grid_lanes.cpp's walks, one compilation a width (light/lanes.h).
+template <>
+uint32_t sphere_grid::lanes_occluded<4>(const float o[3], const float (*d)[3], int m, float tmax, uint32_t skip) const;
+template <>
+uint32_t sphere_grid::lanes_occluded<8>(const float o[3], const float (*d)[3], int m, float tmax, uint32_t skip) const;
 
 }  // namespace raycast

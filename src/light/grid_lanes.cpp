@@ -23,7 +23,10 @@
 // and the lone walk part (a ray within that of a cell's face) each cell
 // one visits and the other not is one the segment passes within 2^-17 of,
 // and lists every sphere the segment can meet there: a ray's verdict is
-// the lone walk's, whatever its length. Four rays at a time (light/lanes.h).
+// the lone walk's, whatever its length. Four rays at a time (light/lanes.h),
+// or eight where this file is compiled a second time, for AVX2: `width`
+// below is that compilation's lanes::width, and it defines the walk for that
+// width alone.
 #include <algorithm>
 #include <cstdint>
 #include <limits>
@@ -46,7 +49,8 @@ constexpr int width = lanes::width;
 // next boundary (first + steps delta; infinity on an axis the ray does not
 // move along), the steps left on each axis before the grid ends, the
 // step's change of cell index on each axis and the cell's index.
-struct sphere_grid::lanes_walk {
+template <>
+struct sphere_grid::lanes_walk<width> {
   fvec dir[3], first[3], delta[3], steps[3] = {}, next[3];  // dir: each lane's direction (0 past the group)
   ivec left[3];
   uvec move[3], cell = {};  // unsigned: a lane that has ended may step on past the grid
@@ -96,7 +100,9 @@ struct sphere_grid::lanes_walk {
 // not once a ray (a box of random centres lists half a dozen spheres in a
 // cell: its AO a quarter faster). Bit l: ray l is blocked; done once every
 // ray is.
-uint32_t sphere_grid::first_cell_lanes(const lanes_walk& w, const float o[3], int k, float tmax, uint32_t skip) const {
+template <>
+uint32_t sphere_grid::first_cell_lanes<width>(const lanes_walk<width>& w, const float o[3], int k, float tmax,
+                                              uint32_t skip) const {
   const size_t c = w.cell[0];
   if (!occupied(c)) return 0;
   const uint32_t all = (1u << k) - 1;
@@ -116,8 +122,9 @@ uint32_t sphere_grid::first_cell_lanes(const lanes_walk& w, const float o[3], in
 
 // A group's short rays (the lanes `live`, past the first cell): each lane's
 // cells tested as it enters them.
-uint32_t sphere_grid::near_lanes(lanes_walk& w, const float o[3], const float (*d)[3], uint32_t live, float tmax,
-                                 uint32_t skip) const {
+template <>
+uint32_t sphere_grid::near_lanes<width>(lanes_walk<width>& w, const float o[3], const float (*d)[3], uint32_t live,
+                                        float tmax, uint32_t skip) const {
   uint32_t hit = 0;
   while (live != 0) {
     live &= ~w.step(tmax);
@@ -135,8 +142,9 @@ uint32_t sphere_grid::near_lanes(lanes_walk& w, const float o[3], const float (*
 // most one cell a lane, so none has more; each has room for twice that),
 // then every lane's cells are read ahead before any lane's are tested
 // (cells_occluded), so that the lanes' misses overlap.
-uint32_t sphere_grid::far_lanes(lanes_walk& w, const float o[3], const float (*d)[3], uint32_t live, float tmax,
-                                uint32_t skip) const {
+template <>
+uint32_t sphere_grid::far_lanes<width>(lanes_walk<width>& w, const float o[3], const float (*d)[3], uint32_t live,
+                                       float tmax, uint32_t skip) const {
   size_t found[width][2 * ahead];
   int count[width] = {};
   uint32_t hit = 0;
@@ -168,18 +176,15 @@ uint32_t sphere_grid::far_lanes(lanes_walk& w, const float o[3], const float (*d
   return hit;
 }
 
-uint32_t sphere_grid::occluded(const float o[3], const float (*d)[3], int m, float tmax, uint32_t skip_index) const {
-  bool inside = !home_.empty();
-  for (int a = 0; a < 3; ++a) inside = inside && o[a] >= lo_[a] && o[a] < hi_[a];
+// occluded()'s group (rays from inside the box, in a grid that walks in
+// lanes), `width` rays a walk.
+template <>
+uint32_t sphere_grid::lanes_occluded<width>(const float o[3], const float (*d)[3], int m, float tmax,
+                                            uint32_t skip) const {
   uint32_t blocked = 0;
-  if (!inside || !walks_in_lanes()) {  // from outside, or coarse: one at a time (grid.cpp)
-    for (int l = 0; l < m; ++l) blocked |= uint32_t(occluded(o, d[l], tmax, skip_index)) << l;
-    return blocked;
-  }
-  const uint32_t skip = skip_index < size() ? position(skip_index) : skip_index;
   for (int l0 = 0; l0 < m; l0 += width) {
     const int k = std::min(width, m - l0);
-    lanes_walk w(*this, o, d + l0, k);
+    lanes_walk<width> w(*this, o, d + l0, k);
     const uint32_t all = (1u << k) - 1, first = first_cell_lanes(w, o, k, tmax, skip);
     const uint32_t rest = tmax <= 4 * h_ ? near_lanes(w, o, d + l0, all & ~first, tmax, skip)
                                          : far_lanes(w, o, d + l0, all & ~first, tmax, skip);

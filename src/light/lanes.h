@@ -3,16 +3,33 @@
 // these are SSE2 registers on x86-64 and NEON ones on AArch64, with the
 // same float operations lane by lane as one at a time (no FMA: the rooms
 // build with -ffp-contract=off), so a lane's result is the scalar code's bits.
+//
+// On x86-64 the grid's walk in lanes (grid_lanes.cpp) is compiled a second
+// time, with -mavx2 and RAYCAST_LIGHT_LANES=8: eight lanes, a hit's eight AO
+// rays in one vector, taken where the CPU runs AVX2 (sphere_grid::occluded).
+// The same float operations lane by lane again, so the same bits. Each
+// width's vocabulary lives in its own inline namespace (w4, w8), so that the
+// two compilations share no function: a helper the AVX2 one leaves out of
+// line cannot stand in for the baseline's.
 #pragma once
 #include <cstdint>
 #if defined(__SSE2__)
-#include <xmmintrin.h>
+#include <immintrin.h>
+#endif
+
+#if defined(RAYCAST_LIGHT_LANES) && RAYCAST_LIGHT_LANES == 8
+#define RAYCAST_LANES_NAMESPACE w8
+#define RAYCAST_LANES_WIDTH 8
+#else
+#define RAYCAST_LANES_NAMESPACE w4
+#define RAYCAST_LANES_WIDTH 4
 #endif
 
 namespace raycast {
 namespace lanes {
+inline namespace RAYCAST_LANES_NAMESPACE {
 
-constexpr int width = 4;
+constexpr int width = RAYCAST_LANES_WIDTH;
 typedef float fvec __attribute__((vector_size(width * sizeof(float))));
 typedef int32_t ivec __attribute__((vector_size(width * sizeof(float))));  // also masks: 0 or -1 a lane
 typedef uint32_t uvec __attribute__((vector_size(width * sizeof(float))));
@@ -20,19 +37,21 @@ typedef uint32_t uvec __attribute__((vector_size(width * sizeof(float))));
 // a where m is set, b elsewhere.
 inline fvec pick(ivec m, fvec a, fvec b) { return fvec((ivec(a) & m) | (ivec(b) & ~m)); }
 // x in every lane.
-inline fvec splat(float x) { return fvec{x, x, x, x}; }
+inline fvec splat(float x) { return fvec{} + x; }
 // Each lane's square root (sqrtps on SSE2: correctly rounded, as std::sqrt).
 inline fvec sqrt(fvec x) {
   for (int l = 0; l < width; ++l) x[l] = __builtin_sqrtf(x[l]);
   return x;
 }
-// Bit l set where lane l of m is: SSE2's movmskps (the lanes' sign bits),
-// elsewhere each lane's weight summed.
+// Bit l set where lane l of m is: SSE2's and AVX's movmskps (the lanes'
+// sign bits), elsewhere each lane's weight summed.
 inline uint32_t bits_of(ivec m) {
-  static_assert(width == 4, "one weight a lane below");
-#if defined(__SSE2__)
+#if defined(__AVX__) && RAYCAST_LANES_WIDTH == 8
+  return uint32_t(_mm256_movemask_ps(__m256(m)));
+#elif defined(__SSE2__) && RAYCAST_LANES_WIDTH == 4
   return uint32_t(_mm_movemask_ps(__m128(m)));
 #else
+  static_assert(width == 4, "one weight a lane below");
   const uvec w = uvec(m) & uvec{1, 2, 4, 8};
   return (w[0] | w[1]) | (w[2] | w[3]);
 #endif
@@ -53,5 +72,6 @@ inline ivec blocks_in_lanes(const float o[3], const fvec d[3], const fvec s[4], 
   return ivec((ox * ox + oy * oy) + oz * oz <= r2) | (ivec(b < 0.0f) & ivec(m2 <= r2) & ivec(near <= tmax));
 }
 
+}  // inline namespace RAYCAST_LANES_NAMESPACE
 }  // namespace lanes
 }  // namespace raycast
