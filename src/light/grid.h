@@ -29,6 +29,7 @@
 
 #include "scene/huge_pages.h"
 #include "scene/scene.h"
+#include "simd/inline.h"
 
 namespace raycast {
 
@@ -78,7 +79,7 @@ class sphere_grid {
   // together in memory), at position(k); at(p) reads position p.
   const float* sphere(uint32_t k) const { return at(position(k)); }
   uint32_t position(uint32_t k) const { return rank_.empty() ? k : rank_[k]; }
-  const float* at(uint32_t p) const { return &spheres_[size_t(p) * 4]; }
+  RAYCAST_INLINE const float* at(uint32_t p) const { return &spheres_[size_t(p) * 4]; }
   size_t size() const { return spheres_.size() / 4; }
   // The median radius of up to 4096 spheres spread over the scene: the
   // structures' cells are no smaller than its diameter, so that a packed
@@ -90,7 +91,7 @@ class sphere_grid {
   // or the near root of a sphere ahead within tmax, from Hearn and Baker's
   // squared distance of the line from the centre (no cancellation against
   // |o - c|^2).
-  bool blocks(uint32_t p, const float o[3], const float d[3], float tmax) const {
+  RAYCAST_INLINE bool blocks(uint32_t p, const float o[3], const float d[3], float tmax) const {
     const float* s = at(p);
     const float ox = o[0] - s[0], oy = o[1] - s[1], oz = o[2] - s[2];
     const float r2 = s[3] * s[3];
@@ -134,17 +135,20 @@ class sphere_grid {
   }
   // Whether a sphere of cell c but skip blocks the segment: its own spheres
   // read in one run, then those reaching in from other cells.
-  bool cell_occluded(size_t c, const float o[3], const float d[3], float tmax, uint32_t skip) const {
+  RAYCAST_INLINE bool cell_occluded(size_t c, const float o[3], const float d[3], float tmax, uint32_t skip) const {
     for (uint32_t p = home_[c]; p < home_[c + 1]; ++p)
       if (p != skip && blocks(p, o, d, tmax)) return true;
     for (uint32_t e = first_[c]; e < first_[c + 1]; ++e)
       if (refs_[e] != skip && blocks(refs_[e], o, d, tmax)) return true;
     return false;
   }
-  bool occupied(size_t c) const { return occupied_[c >> 6] >> (c & 63) & 1u; }
+  RAYCAST_INLINE bool occupied(size_t c) const { return occupied_[c >> 6] >> (c & 63) & 1u; }
   struct walk;
   // grid_lanes.cpp, compiled once a width (light/lanes.h): each compilation
-  // instantiates these for its own W alone.
+  // instantiates these for its own W alone. What it calls of the members
+  // above is forced inline (at, blocks, cell_occluded, occupied): a copy the
+  // AVX2 compilation left out of line could stand in for everyone's
+  // (Build.TargetObjectsShareNoWeakSymbols).
   template <int W>
   struct lanes_walk;
   template <int W>

@@ -56,7 +56,7 @@ struct sphere_grid::lanes_walk<width> {
   uvec move[3], cell = {};  // unsigned: a lane that has ended may step on past the grid
 
   // From o, in the cell that holds it (o inside the grid's box).
-  lanes_walk(const sphere_grid& g, const float o[3], const float (*d)[3], int m) {
+  RAYCAST_INLINE lanes_walk(const sphere_grid& g, const float o[3], const float (*d)[3], int m) {
     const int stride[3] = {1, g.dims_[0], g.dims_[0] * g.dims_[1]};
     for (int a = 0; a < 3; ++a) {
       const float p = (o[a] - g.lo_[a]) * g.inv_h_;  // grid.cpp's walk at t0 = 0
@@ -80,7 +80,7 @@ struct sphere_grid::lanes_walk<width> {
   // Every lane to its next cell (the axis whose boundary is nearest, ties
   // as walk::step breaks them): bit l of the result is set where lane l's
   // segment (ending at `end`) or the grid ended first.
-  uint32_t step(const float end) {
+  RAYCAST_INLINE uint32_t step(const float end) {
     const ivec lt01 = ivec(next[0] < next[1]), lt02 = ivec(next[0] < next[2]), lt12 = ivec(next[1] < next[2]);
     const ivec along[3] = {lt01 & lt02, ~lt01 & lt12, ~((lt01 & lt02) | (~lt01 & lt12))};
     const fvec t = pick(along[0], next[0], pick(along[1], next[1], next[2]));
