@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cli_runner.h"
+#include "cloud.h"
 #include "simd/cpu.h"
 
 namespace {
@@ -85,6 +86,34 @@ TEST(Dispatch, EveryCapGivesTheSameImage) {
   std::string first;
   for (const std::string& cap : caps) {
     ASSERT_EQ(box.run({"-w", "203", "-o", cap + ".ppm"}, capped(cap)).exit_code, 0) << cap;
+    const std::string bytes = raycast_test::read_file(box.work() / (cap + ".ppm"));
+    if (first.empty()) first = bytes;
+    EXPECT_EQ(bytes, first) << "cap " << cap;
+  }
+}
+
+// A hit's AO rays walk four or eight to a vector, by what the CPU runs
+// (light/lanes.h): a cap below avx2 leaves four. With the backend held
+// fixed, the lane width is all that differs, and the picture is the same
+// bytes (a random box: spheres listed in several cells each).
+TEST(Dispatch, AoRaysWalkedInEitherLaneWidthGiveTheSameImage) {
+  if (!raycast::cpu().avx2) GTEST_SKIP() << "no AVX2 here: the four-lane walk alone";
+  cli_sandbox box;
+  raycast::scene_params p = raycast_test::particle_box_random(3000);
+  p.camera.image_width = 240;
+  p.camera.image_height = 135;
+  std::string text = raycast_test::cloud_json(p);
+  const std::string lit = "\"lit\", \"color\": [0.8, 0.6, 0.4]";
+  for (size_t at = 0; (at = text.find("\"normal\"", at)) != std::string::npos; at += lit.size())
+    text.replace(at, 8, lit);
+  raycast_test::write_file(box.work() / "box.json", text);
+  const std::string distance = std::to_string(5 * p.spheres[0].radius);
+  std::string first;
+  for (const std::string& cap : {std::string("sse2"), std::string("avx2")}) {
+    const run_result r = box.run({"--scene", "box.json", "--backend", "sse2", "--light", "0.3,1,0.6", "--shadows",
+                                  "--ao", "8", "--ao-distance", distance, "-o", cap + ".ppm"},
+                                 capped(cap));
+    ASSERT_EQ(r.exit_code, 0) << cap << ": " << r.err;
     const std::string bytes = raycast_test::read_file(box.work() / (cap + ".ppm"));
     if (first.empty()) first = bytes;
     EXPECT_EQ(bytes, first) << "cap " << cap;

@@ -278,9 +278,11 @@ uint32_t sphere_grid::occluded(const float o[3], const float (*d)[3], int m, flo
     return blocked;
   }
   const uint32_t skip = skip_index < size() ? position(skip_index) : skip_index;
-  if (lanes == 0) lanes = lane_widths().back();
 #if defined(RAYCAST_LIGHT_W8)
-  if (lanes == 8) return lanes_occluded<8>(o, d, m, tmax, skip);
+  static const int widest = lane_widths().back();  // 8 only where the CPU runs AVX2
+  if (widest == 8 && lanes != 4) return lanes_occluded<8>(o, d, m, tmax, skip);
+#else
+  (void)lanes;  // four lanes alone in this build
 #endif
   return lanes_occluded<4>(o, d, m, tmax, skip);
 }

@@ -63,8 +63,9 @@ class sphere_grid {
   // no branch waits on which face each ray leaves its cell by, and long
   // rays' cache misses overlap.
   // The lanes are `lanes` floats wide: 4 (the build's baseline: SSE2, NEON)
-  // or 8 (AVX2, on x86-64), one of lane_widths(); 0 takes the widest. Every
-  // width gives the same bits.
+  // or 8 (AVX2, on x86-64, where the CPU runs it); 0 (or 8 where the CPU
+  // does not) takes the widest of lane_widths(). Every width gives the same
+  // bits.
   static constexpr int group = 8;
   uint32_t occluded(const float o[3], const float (*d)[3], int m, float tmax, uint32_t skip, int lanes = 0) const;
   // Whether a group's rays from inside the box walk in lanes.
@@ -100,7 +101,7 @@ class sphere_grid {
     if (b >= 0.0f) return false;  // outside, and moving away
     const float vx = ox - b * d[0], vy = oy - b * d[1], vz = oz - b * d[2];
     const float m2 = (vx * vx + vy * vy) + vz * vz;
-    return m2 <= r2 && -b - std::sqrt(r2 - m2) <= tmax;
+    return m2 <= r2 && -b - __builtin_sqrtf(r2 - m2) <= tmax;  // std::sqrt's, with no call left out of line
   }
   double origin[3] = {0, 0, 0};
   int scale_exp = 0;  // grid units = world units * 2^-scale_exp

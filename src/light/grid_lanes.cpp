@@ -7,8 +7,8 @@
 // cells) test each lane's cells as the lone walk does, as the lane enters
 // them (cell_occluded); long ones gather each lane's occupied cells and
 // test them as the lone long walk does (cells_occluded), every lane's cells
-// read ahead before any lane's are tested, so that four rays' cache misses
-// overlap.
+// read ahead before any lane's are tested, so that four (or eight) rays'
+// cache misses overlap.
 //
 // The lanes' boundaries are floats, the lone walk's doubles, and the
 // boundary after k steps on an axis is first + k delta (a product, not a
@@ -26,10 +26,11 @@
 // the lone walk's, whatever its length. Four rays at a time (light/lanes.h),
 // or eight where this file is compiled a second time, for AVX2: `width`
 // below is that compilation's lanes::width, and it defines the walk for that
-// width alone.
-#include <algorithm>
+// width alone. It calls nothing a compiler could leave out of line but what
+// grid.h forces inline, and no std:: function: <cmath>'s and <algorithm>'s
+// helpers, out of line in an unoptimised build, would be AVX2 copies any
+// caller might get.
 #include <cstdint>
-#include <limits>
 
 #include "light/grid.h"
 #include "light/lanes.h"
@@ -60,16 +61,16 @@ struct sphere_grid::lanes_walk<width> {
     const int stride[3] = {1, g.dims_[0], g.dims_[0] * g.dims_[1]};
     for (int a = 0; a < 3; ++a) {
       const float p = (o[a] - g.lo_[a]) * g.inv_h_;  // grid.cpp's walk at t0 = 0
-      const int c = p <= 0.0f ? 0 : std::min(int(p), g.dims_[a] - 1);
+      const int c = p <= 0.0f ? 0 : int(p) < g.dims_[a] - 1 ? int(p) : g.dims_[a] - 1;
       fvec& da = dir[a];
       da = fvec{};
       for (int l = 0; l < m; ++l) da[l] = d[l][a];
       // A component below the normal floats walks as 0 (its 1 / d would be
       // infinite): it moves the ray by less than 2^-125 over the walk.
-      const ivec forward = ivec(da > 0.0f), still = ivec(pick(ivec(da < 0.0f), -da, da) < std::numeric_limits<float>::min());
+      const ivec forward = ivec(da > 0.0f), still = ivec(pick(ivec(da < 0.0f), -da, da) < __FLT_MIN__);
       const fvec inv = 1.0f / da;
       const fvec boundary = (g.lo_[a] + __builtin_convertvector(ivec{} + c + (forward & 1), fvec) * g.h_) - o[a];
-      const fvec inf = fvec{} + std::numeric_limits<float>::infinity();
+      const fvec inf = fvec{} + __builtin_inff();
       first[a] = next[a] = pick(still, inf, boundary * inv);
       delta[a] = pick(still, fvec{}, g.h_ * pick(ivec(inv < 0.0f), -inv, inv));
       left[a] = (forward & (g.dims_[a] - 1 - c)) | (~forward & c);
@@ -183,7 +184,7 @@ uint32_t sphere_grid::lanes_occluded<width>(const float o[3], const float (*d)[3
                                             uint32_t skip) const {
   uint32_t blocked = 0;
   for (int l0 = 0; l0 < m; l0 += width) {
-    const int k = std::min(width, m - l0);
+    const int k = m - l0 < width ? m - l0 : width;
     lanes_walk<width> w(*this, o, d + l0, k);
     const uint32_t all = (1u << k) - 1, first = first_cell_lanes(w, o, k, tmax, skip);
     const uint32_t rest = tmax <= 4 * h_ ? near_lanes(w, o, d + l0, all & ~first, tmax, skip)

@@ -1,8 +1,8 @@
-// The vector of light/: four floats (or int32s) a lane each, in GCC's and
-// clang's vector types. light/ is compiled once, for the build's baseline:
-// these are SSE2 registers on x86-64 and NEON ones on AArch64, with the
-// same float operations lane by lane as one at a time (no FMA: the rooms
-// build with -ffp-contract=off), so a lane's result is the scalar code's bits.
+// The vector of light/: four floats (or int32s), a lane each, in GCC's and
+// clang's vector types. light/ is compiled for the build's baseline: these
+// are SSE2 registers on x86-64 and NEON ones on AArch64, with the same float
+// operations lane by lane as one at a time (no FMA: the rooms build with
+// -ffp-contract=off), so a lane's result is the scalar code's bits.
 //
 // On x86-64 the grid's walk in lanes (grid_lanes.cpp) is compiled a second
 // time, with -mavx2 and RAYCAST_LIGHT_LANES=8: eight lanes, a hit's eight AO
@@ -13,16 +13,19 @@
 // line cannot stand in for the baseline's.
 #pragma once
 #include <cstdint>
-#if defined(__SSE2__)
-#include <immintrin.h>
-#endif
 
-#if defined(RAYCAST_LIGHT_LANES) && RAYCAST_LIGHT_LANES == 8
-#define RAYCAST_LANES_NAMESPACE w8
-#define RAYCAST_LANES_WIDTH 8
-#else
+#if !defined(RAYCAST_LIGHT_LANES) || RAYCAST_LIGHT_LANES == 4
 #define RAYCAST_LANES_NAMESPACE w4
 #define RAYCAST_LANES_WIDTH 4
+#if defined(__SSE2__)
+#include <xmmintrin.h>
+#endif
+#elif RAYCAST_LIGHT_LANES == 8 && defined(__AVX__)
+#define RAYCAST_LANES_NAMESPACE w8
+#define RAYCAST_LANES_WIDTH 8
+#include <immintrin.h>
+#else
+#error "RAYCAST_LIGHT_LANES: 4, or 8 with AVX2"
 #endif
 
 namespace raycast {
@@ -37,8 +40,8 @@ typedef uint32_t uvec __attribute__((vector_size(width * sizeof(float))));
 // a where m is set, b elsewhere.
 inline fvec pick(ivec m, fvec a, fvec b) { return fvec((ivec(a) & m) | (ivec(b) & ~m)); }
 // x in every lane.
-inline fvec splat(float x) { return fvec{} + x; }
-// Each lane's square root (sqrtps on SSE2: correctly rounded, as std::sqrt).
+inline fvec splat(float x) { return x - fvec{}; }  // x - +0 is x, -0 included
+// Each lane's square root (sqrtps: correctly rounded, as std::sqrt).
 inline fvec sqrt(fvec x) {
   for (int l = 0; l < width; ++l) x[l] = __builtin_sqrtf(x[l]);
   return x;
@@ -46,7 +49,7 @@ inline fvec sqrt(fvec x) {
 // Bit l set where lane l of m is: SSE2's and AVX's movmskps (the lanes'
 // sign bits), elsewhere each lane's weight summed.
 inline uint32_t bits_of(ivec m) {
-#if defined(__AVX__) && RAYCAST_LANES_WIDTH == 8
+#if RAYCAST_LANES_WIDTH == 8
   return uint32_t(_mm256_movemask_ps(__m256(m)));
 #elif defined(__SSE2__) && RAYCAST_LANES_WIDTH == 4
   return uint32_t(_mm_movemask_ps(__m128(m)));
