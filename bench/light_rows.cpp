@@ -193,7 +193,7 @@ void register_light_rows(bool quick) {
   register_ao_rows(quick);
   const int64_t w = quick ? 640 : 1920, h = quick ? 360 : 1080;
   for (const family& f : families)
-    for (int64_t n : quick ? std::vector<int64_t>{1000} : std::vector<int64_t>{10'000, 100'000, 1'000'000}) {
+    for (int64_t n : quick ? std::vector<int64_t>{1000} : std::vector<int64_t>{10'000, 100'000, 1'000'000, 10'000'000}) {
       if (quick && f.name != std::string("box")) continue;
       for (const variant& v : variants) {
         const std::string base = strf("light/%s/%%s/%lld/%s/%%s", f.name, static_cast<long long>(n), v.name);
