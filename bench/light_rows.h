@@ -1,7 +1,7 @@
 // raycast-bench's light section: lit particle scenes (tests/support/cloud.h's
 // families, every sphere lit, a directional light) with hard shadows, and
 // with shadows and 8 ambient-occlusion rays a hit (the packed box: AO
-// distance 5 radii; the clouds: unbounded), 1920x1080, N = 10^4 .. 10^6
+// distance 5 radii; the clouds: unbounded), 1920x1080, N = 10^4 .. 10^7
 // (--quick: the box of 10^3 at 640x360). Per iteration:
 //   light/FAMILY/ours/N/VARIANT/tT     the renderer's construction (the float
 //       scene, the row index and the sphere grid: prepare_s) and one frame
