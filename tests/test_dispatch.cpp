@@ -102,11 +102,11 @@ TEST(Dispatch, AoRaysWalkedInEitherLaneWidthGiveTheSameImage) {
   raycast::scene_params p = raycast_test::particle_box_random(3000);
   p.camera.image_width = 240;
   p.camera.image_height = 135;
-  std::string text = raycast_test::cloud_json(p);
-  const std::string lit = "\"lit\", \"color\": [0.8, 0.6, 0.4]";
-  for (size_t at = 0; (at = text.find("\"normal\"", at)) != std::string::npos; at += lit.size())
-    text.replace(at, 8, lit);
-  raycast_test::write_file(box.work() / "box.json", text);
+  for (raycast::sphere& s : p.spheres) {
+    s.shade = raycast::shading::lit;
+    s.flat_color = raycast::color(0.8, 0.6, 0.4);
+  }
+  raycast_test::write_file(box.work() / "box.json", raycast_test::cloud_json(p));
   const std::string distance = std::to_string(5 * p.spheres[0].radius);
   std::string first;
   for (const std::string& cap : {std::string("sse2"), std::string("avx2")}) {

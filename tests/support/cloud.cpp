@@ -142,6 +142,18 @@ scene_params particle_box_random(int64_t n) {
   return p;
 }
 
+namespace {
+// `, "name": [x, y, z]` onto out.
+void vector_of(std::string& out, const char* name, const vec3& v) {
+  out += std::string(", \"") + name + "\": [";
+  for (int c = 0; c < 3; ++c) {
+    if (c) out += ", ";
+    append(out, v[c], false);
+  }
+  out += "]";
+}
+}  // namespace
+
 std::string cloud_json(const scene_params& p) {
   std::string out = "{\"camera\": {\"width\": " + std::to_string(p.camera.image_width) +
                     ", \"height\": " + std::to_string(p.camera.image_height.value_or(0));
@@ -149,17 +161,9 @@ std::string cloud_json(const scene_params& p) {
     out += ", \"projection\": \"orthographic\", \"viewport_height\": " + std::to_string(p.camera.viewport_height);
   else
     out += ", \"vfov\": " + std::to_string(p.camera.vfov_degrees.value_or(90.0));
-  const auto vector = [&out](const char* name, const point3& v) {
-    out += std::string(", \"") + name + "\": [";
-    for (int c = 0; c < 3; ++c) {
-      if (c) out += ", ";
-      append(out, v[c], false);
-    }
-    out += "]";
-  };
   if (p.camera.lookat) {
-    vector("lookfrom", p.camera.origin);
-    vector("lookat", *p.camera.lookat);
+    vector_of(out, "lookfrom", p.camera.origin);
+    vector_of(out, "lookat", *p.camera.lookat);
   }
   out += "},\n \"spheres\": [";
   out.reserve(out.size() + p.spheres.size() * 90 + 8);
@@ -172,7 +176,13 @@ std::string cloud_json(const scene_params& p) {
     }
     out += "], \"radius\": ";
     append(out, s.radius, true);
-    out += ", \"shade\": \"normal\"}";
+    if (s.shade == shading::normal) {
+      out += ", \"shade\": \"normal\"}";
+      continue;
+    }
+    out += s.shade == shading::lit ? ", \"shade\": \"lit\"" : ", \"shade\": \"flat\"";
+    vector_of(out, "color", s.flat_color);
+    out += "}";
   }
   return out + "]}\n";
 }
