@@ -118,6 +118,11 @@ TEST(Dispatch, AoRaysWalkedInEitherLaneWidthGiveTheSameImage) {
     if (first.empty()) first = bytes;
     EXPECT_EQ(bytes, first) << "cap " << cap;
   }
+  // The spheres are lit and their AO rays were cast: without them the picture differs.
+  const run_result r = box.run({"--scene", "box.json", "--backend", "sse2", "--light", "0.3,1,0.6", "--shadows",
+                                "-o", "no-ao.ppm"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(raycast_test::read_file(box.work() / "no-ao.ppm") != first) << "no AO ray changed the picture";
 }
 
 }  // namespace
