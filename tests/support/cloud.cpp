@@ -176,12 +176,9 @@ std::string cloud_json(const scene_params& p) {
     }
     out += "], \"radius\": ";
     append(out, s.radius, true);
-    if (s.shade == shading::normal) {
-      out += ", \"shade\": \"normal\"}";
-      continue;
-    }
-    out += s.shade == shading::lit ? ", \"shade\": \"lit\"" : ", \"shade\": \"flat\"";
-    vector_of(out, "color", s.flat_color);
+    const char* shade = s.shade == shading::lit ? "lit" : s.shade == shading::flat ? "flat" : "normal";
+    out += std::string(", \"shade\": \"") + shade + "\"";
+    if (s.shade != shading::normal) vector_of(out, "color", s.flat_color);
     out += "}";
   }
   return out + "]}\n";
