@@ -96,27 +96,21 @@ TEST(Ply, EveryEncodingRendersTheJsonScenesBytesOnEveryBackend) {
 
 // A binary file is read in place: the view's columns point into the body
 // with the file's row stride, byte-swapped for big-endian.
-// A particle file's spheres lie in huge pages, and the float scene is
-// prepared from them in its own order (read out of order, written front to
-// back; or, with the hint off, the other way as a JSON scene's): the same
-// bytes as the JSON scene's in the scene's order, row order and depth order.
+// A particle file's spheres are arrays, and the float scene is prepared from
+// them in its own order (read out of order, written front to back; a JSON
+// scene's the other way): the same bytes as the JSON scene's in the scene's
+// order, row order and depth order.
 TEST(Ply, EveryOrderOfPreparationGivesTheSameBytes) {
   const std::vector<particle> ps = random_particles(40000, 9);  // two threads' chunks from 2^15 spheres
   const scene_params from_json = std::get<scene_params>(parse_scene_file(json_of(ps)));
   for (enc e : {enc::little, enc::ascii}) {
     scene_params p = read_ok(ply_of(ps, e));
     ASSERT_TRUE(p.arrays);
-    EXPECT_TRUE(p.arrays->huge_pages);
-    // Gathered (spheres in huge pages) and scattered (not): the hint only
-    // chooses the way.
-    for (bool huge : {true, false}) {
-      p.arrays->huge_pages = huge;
-      for (sphere_order order : {sphere_order::scene, sphere_order::rows, sphere_order::depth}) {
-        const difference d =
-            compare(rendered(p, backend::automatic, order), rendered(from_json, backend::automatic, order));
-        EXPECT_EQ(d.max, 0) << format_names[int(e)] << " order " << int(order) << " huge " << huge << ": " << d.where();
-        EXPECT_EQ(compare(rendered(p, backend::automatic, order), rendered(from_json, backend::automatic)).max, 0);
-      }
+    for (sphere_order order : {sphere_order::scene, sphere_order::rows, sphere_order::depth}) {
+      const difference d =
+          compare(rendered(p, backend::automatic, order), rendered(from_json, backend::automatic, order));
+      EXPECT_EQ(d.max, 0) << format_names[int(e)] << " order " << int(order) << ": " << d.where();
+      EXPECT_EQ(compare(rendered(p, backend::automatic, order), rendered(from_json, backend::automatic)).max, 0);
     }
   }
 }

@@ -459,9 +459,9 @@ class occlusion {
   double h_[3], c_[3], v_[3];
   std::vector<double> su_;         // per column (kernels/scalar.h)
   // Per pixel, rows top-down; from a megabyte on, in huge pages where they
-  // fault in faster (scene/huge_pages.h: a 4 KiB page's first touch costs
+  // fault in faster (memory/pages.h: a 4 KiB page's first touch costs
   // 10 us on some hosts: 500 of them for a 1920 x 1080 frame).
-  std::vector<uint8_t, huge_page_allocator<uint8_t>> covered_;
+  filled_array<uint8_t> covered_;
   std::vector<uint8_t> open_;     // per tile: its pixels not covered yet
   std::vector<float> far_;        // per tile: the farthest first covering hit
   std::vector<float> depth_;      // per tile: far_ once every pixel is covered, else infinity
@@ -517,7 +517,7 @@ struct placed_box {
   uint32_t sphere;
   frame_box box;
 };
-using placed_boxes = std::vector<placed_box, huge_page_allocator<placed_box>>;
+using placed_boxes = filled_array<placed_box>;
 
 // Spheres [k0, k1)'s boxes (box_of), with up to `team` threads, appended to
 // out where they are in some row.

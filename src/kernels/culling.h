@@ -28,7 +28,7 @@
 #include <vector>
 
 #include "kernels/float_scene.h"
-#include "scene/huge_pages.h"
+#include "memory/arrays.h"
 
 namespace raycast {
 
@@ -80,7 +80,7 @@ struct row_entry {
 // ray passes behind is in no row.
 struct row_index {
   std::vector<uint64_t> first;  // list[first[r] .. first[r + 1]) for row r
-  std::vector<row_entry, huge_page_allocator<row_entry>> list;  // 8 bytes per entry
+  filled_array<row_entry> list;  // 8 bytes per entry
   size_t most = 0;                // the longest row's count
   size_t hidden = 0;              // spheres left out as hidden by nearer ones (occlusion)
   int shift = 0;                  // the entries' column unit, 2^shift

@@ -361,16 +361,16 @@ struct placement {
 };
 
 // Writes every sphere's record (and colour, and index) in its place; whether
-// some record's camera is inside its sphere. Where the caller's spheres lie
-// in huge pages (a particle file's), each place first gets its sphere's
-// index (4 bytes written out of order), then the places are filled front to
-// back from spheres read out of order: one cache miss a sphere instead of
-// one for each of the arrays a record spans.
+// some record's camera is inside its sphere. Where the spheres are arrays
+// (a particle file's, a caller's), each place first gets its sphere's index
+// (4 bytes written out of order), then the places are filled front to back
+// from spheres read out of order: one cache miss a sphere's column instead
+// of one for each of the arrays a record spans.
 bool fill_spheres(float_scene& f, const scene& s, const placement& p) {
   float_spheres& sp = f.spheres;
   const size_t n = s.sphere_count(), keys = p.keys;
   const camera& c = s.cam;
-  const bool gather = p.reorder && s.arrays && s.arrays->huge_pages, depth = p.indexed;
+  const bool gather = p.reorder && s.arrays, depth = p.indexed;
   out_of_order_array<uint32_t> placed(gather && !p.indexed ? n : 0);  // written out of order
   uint32_t* perm = p.indexed ? sp.order.data() : placed.data();
   const auto depth_of = [&](size_t k) { return depth ? uint16_t(p.key[k]) : uint16_t(0); };

@@ -90,7 +90,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "scene/huge_pages.h"
+#include "memory/arrays.h"
 #include "simd/inline.h"
 
 namespace raycast {
@@ -120,7 +120,7 @@ struct alignas(32) sphere_record {
 // One record per sphere in the float scene's order, and what shading reads of a hit.
 struct float_spheres {
   template <class T>
-  using array = std::vector<T, huge_page_allocator<T>>;  // scene/huge_pages.h
+  using array = std::vector<T, page_allocator<T>>;  // memory/arrays.h
   array<sphere_record> rec;
   // Empty when every sphere is normal-shaded (!any_flat && !any_lit): the
   // colour (0 for normal-shaded spheres) and shading_kind of each sphere;
@@ -136,7 +136,7 @@ struct float_spheres {
   // the order they are tested in). Empty: ties go to the later in the float
   // scene's order, which is the scene's for a scene in its own order, and
   // keeps it among coincident spheres (the same key) in row order.
-  out_of_order_array<uint32_t> order;  // written out of order (scene/huge_pages.h)
+  out_of_order_array<uint32_t> order;  // written out of order (memory/pages.h)
   // A depth-ordered scene's (float_scene.h): the spheres sorted by their
   // nearest distance from the camera, |O - C| - r, in depth_buckets buckets;
   // depth_key[b] is at most every distance in bucket b times (1 - 2^-15), in

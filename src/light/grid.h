@@ -27,7 +27,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "scene/huge_pages.h"
+#include "memory/arrays.h"
 #include "scene/scene.h"
 #include "simd/inline.h"
 

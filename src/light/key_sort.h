@@ -18,7 +18,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "scene/huge_pages.h"
+#include "memory/arrays.h"
 
 namespace raycast {
 

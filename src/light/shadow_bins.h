@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "light/grid.h"
-#include "scene/huge_pages.h"
+#include "memory/arrays.h"
 
 namespace raycast {
 

@@ -5,7 +5,7 @@
 #include <new>
 #include <string>
 
-#include "scene/huge_pages.h"
+#include "memory/arrays.h"
 
 namespace raycast {
 
@@ -31,7 +31,7 @@ band_timings render_to_sink(const renderer& r, const pixel_rect& reg, pixel_form
   const int64_t band_rows = std::clamp<int64_t>(pixels / W, 1, H);
 
   // Written whole by the render before it is read: in huge pages where
-  // small pages are dear (scene/huge_pages.h; a band of 3 MB took 8 ms of
+  // small pages are dear (memory/pages.h; a band of 3 MB took 8 ms of
   // faults on such a host, a third of the render of a box of 10^6).
   filled_later_array<unsigned char> buffer;
   try {

@@ -113,7 +113,6 @@ scene_params to_internal(const scene& s) {
     if (a.colors.data) v.colors = to_internal(a.colors, 3);
     v.shade = to_internal(a.shade, "shade");
     v.owner = a.owner;
-    v.huge_pages = a.huge_pages;
     if (a.shades) {
       // Read in place: the two enumerations agree value for value.
       for (size_t k = 0; k < a.count; ++k) {
@@ -160,7 +159,6 @@ scene from_internal(const scene_params& p) {
     if (v.colors.data) a.colors = from_internal(v.colors);
     a.shade = from_internal(v.shade);
     a.owner = v.owner;  // a view's per-sphere shades are a caller's: none come back this way
-    a.huge_pages = v.huge_pages;
     s.arrays = a;
   }
   return s;

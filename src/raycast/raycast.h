@@ -97,9 +97,6 @@ struct sphere_arrays {
   // Keeps the arrays alive where the scene owns them (load_scene's particle
   // file); null for a caller's arrays.
   std::shared_ptr<const void> owner;
-  // The arrays lie in huge pages (load_scene's): preparation reads them out
-  // of order, cheaply. A hint; any value gives the same image.
-  bool huge_pages = false;
 };
 
 struct scene {

@@ -11,7 +11,7 @@
 #include <unordered_set>
 #include <vector>
 
-#include "scene/huge_pages.h"
+#include "memory/arrays.h"
 #include "scene/names.h"
 #include "scene/regular_file.h"
 
@@ -643,7 +643,6 @@ std::variant<scene_file_contents, scene_file_error> read_ply(const byte_source& 
   if (l.color_by) color_by(o, shown, *st, view);
   view.shade = view.colors.data ? shading::lit : shading::normal;
   view.owner = st;
-  view.huge_pages = true;  // the body, the decoded table and the colours: map_huge's and out_of_order_array's `always`
   scene_file_contents c;
   c.scene.arrays = view;
   return c;

@@ -59,10 +59,6 @@ struct sphere_view {
   // Keeps the arrays' memory alive where the view owns it (a particle file
   // read by scene/ply.h); null for a caller's arrays.
   std::shared_ptr<const void> owner;
-  // The arrays lie in huge pages (a particle file's): read out of order,
-  // they cost a cache miss a sphere rather than a TLB walk, and the float
-  // renderers' preparation reads them in the order it writes its own.
-  bool huge_pages = false;
 
   sphere at(size_t k) const {
     sphere s;

@@ -22,7 +22,7 @@
 #include <simdjson.h>
 
 #include "scene/builtin.h"
-#include "scene/huge_pages.h"
+#include "memory/arrays.h"
 #include "scene/names.h"
 #include "scene/ply.h"
 #include "scene/regular_file.h"

@@ -1,4 +1,4 @@
-#include "scene/huge_pages.h"
+#include "memory/pages.h"
 
 #include <sys/mman.h>
 
@@ -71,6 +71,19 @@ void advise_huge_pages(void* p, size_t n, bool always, bool prefault) {
   size_t at = 0;
   while (at < bytes && fault_backed(first + at)) at += huge;
   if (at < bytes) ::madvise(first + at, bytes - at, MADV_NOHUGEPAGE);
+}
+
+void* map_huge(size_t n, bool always) {
+  const size_t bytes = huge_mapping_bytes(n);
+  if (bytes < n) return nullptr;
+  void* raw = ::mmap(nullptr, bytes + huge_page_bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (raw == MAP_FAILED) return nullptr;
+  const uintptr_t start = reinterpret_cast<uintptr_t>(raw);
+  const uintptr_t aligned = (start + huge_page_bytes - 1) & ~uintptr_t(huge_page_bytes - 1);
+  if (aligned > start) ::munmap(raw, aligned - start);
+  if (const size_t tail = start + huge_page_bytes - aligned) ::munmap(reinterpret_cast<void*>(aligned + bytes), tail);
+  advise_huge_pages(reinterpret_cast<void*>(aligned), bytes, always, true);
+  return reinterpret_cast<void*>(aligned);
 }
 
 }  // namespace raycast

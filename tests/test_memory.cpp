@@ -1,7 +1,7 @@
-// The big arrays' memory (scene/huge_pages.h): whatever page size the
+// The big arrays' memory (memory/pages.h): whatever page size the
 // advice picks, memory keeps what it holds, maps zeroed and whole, and the
 // allocators act as a vector's.
-#include "scene/huge_pages.h"
+#include "memory/arrays.h"
 
 #include <gtest/gtest.h>
 
