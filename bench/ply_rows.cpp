@@ -21,7 +21,7 @@
 #include "errors.h"
 #include "render/render.h"
 #include "rows.h"
-#include "scene/ply.h"
+#include "formats/ply.h"
 
 extern char** environ;
 

@@ -15,7 +15,7 @@
 #include "embree_peer.h"
 #include "errors.h"
 #include "rows.h"
-#include "scene/scene_file.h"
+#include "formats/json.h"
 
 namespace raycast::bench {
 namespace {

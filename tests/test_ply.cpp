@@ -1,4 +1,4 @@
-// Particle files (--scene FILE.ply, scene/ply.h): the three encodings render
+// Particle files (--scene FILE.ply, formats/ply.h): the three encodings render
 // the bytes of the JSON scene holding the same spheres on every backend;
 // --radius and --color-by; and every kind of hostile file refused with the
 // part of the file and the byte where it goes wrong.
@@ -17,8 +17,8 @@
 #include "kernels/float_scene.h"
 #include "render/backend.h"
 #include "render_support.h"
-#include "scene/ply.h"
-#include "scene/scene_file.h"
+#include "formats/ply.h"
+#include "formats/json.h"
 #include "particles.h"
 
 namespace {

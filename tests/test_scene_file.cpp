@@ -1,4 +1,4 @@
-// Scene files (--scene FILE.json, scene/scene_file.h): every key, the
+// Scene files (--scene FILE.json, formats/json.h): every key, the
 // defaults, errors naming the JSON path, and a file of 100,000 spheres.
 #include <fcntl.h>
 #include <sys/socket.h>
@@ -18,7 +18,7 @@
 #include <variant>
 
 #include "render_support.h"
-#include "scene/scene_file.h"
+#include "formats/json.h"
 
 namespace {
 

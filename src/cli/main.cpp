@@ -20,7 +20,8 @@
 #include "io/signals.h"
 #include "io/timestamp.h"
 #include "options.h"
-#include "raycast/bands.h"
+#include "settings/names.h"
+#include "library/bands.h"
 #include "render/render.h"
 #include "simd/cpu.h"
 
@@ -76,7 +77,7 @@ int run(cli::job& j, run_stats& st) {
   st.spheres = j.sc.arrays ? j.sc.arrays->count : j.sc.spheres.size();
   std::vector<sphere>().swap(j.sc.spheres);
   // The output is the region (the whole image unless --region), rendered
-  // and written in bands of whole region rows (raycast/bands.h).
+  // and written in bands of whole region rows (library/bands.h).
   const cli::pixel_region& reg = j.region;
   const int64_t W = reg.width(), H = reg.height();
   auto sink = io::open_sink(j.output, j.format, W, H);
@@ -136,8 +137,8 @@ int main(int argc, char** argv) {
   // The environment is part of the command: a malformed value is refused
   // like a malformed option, before anything is touched -- RAYCAST_MAX_ISA
   // before anything is printed (--version names the backend it caps).
-  if (auto why = max_isa_error()) {
-    print_error("RAYCAST_MAX_ISA: " + *why);
+  if (auto isa = unknown_max_isa()) {
+    print_error("RAYCAST_MAX_ISA: " + not_one_of(*isa, "'" + *isa + "'", target_names()));
     return 2;
   }
   cli::parse_result parsed = cli::parse_args(argc, argv, std::cout, std::cerr);

@@ -1,9 +1,9 @@
 #include "options.h"
 
-#include "raycast/inputs.h"
+#include "settings/inputs.h"
 #include "scene/builtin.h"
-#include "scene/names.h"
-#include "scene/scene_file.h"
+#include "settings/names.h"
+#include "formats/json.h"
 
 #include <CLI/CLI.hpp>
 

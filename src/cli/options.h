@@ -1,7 +1,7 @@
 // Command-line arguments -> a validated job. Every usage error is one line
 // naming the option and why; the only file touched is a --scene file, read
-// by the scene room (scene/scene_file.h). The options are the input table's
-// (raycast/inputs.h), parsed by its parsers (scene/settings.h).
+// by the scene room (formats/json.h). The options are the input table's
+// (settings/inputs.h), parsed by its parsers (settings/settings.h).
 #pragma once
 #include <iosfwd>
 #include <optional>

@@ -16,8 +16,8 @@
 
 #include "io/module_loader.h"
 #include "raycast/raycast.h"
-#include "raycast/inputs.h"
-#include "scene/names.h"
+#include "settings/inputs.h"
+#include "settings/names.h"
 
 namespace py = pybind11;
 namespace rc = raycast::api;

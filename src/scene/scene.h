@@ -57,7 +57,7 @@ struct sphere_view {
   shading shade = shading::normal;   // every sphere's, unless shades is set
   const shading* shades = nullptr;   // N, one per sphere
   // Keeps the arrays' memory alive where the view owns it (a particle file
-  // read by scene/ply.h); null for a caller's arrays.
+  // read by formats/ply.h); null for a caller's arrays.
   std::shared_ptr<const void> owner;
 
   sphere at(size_t k) const {

@@ -1,6 +1,5 @@
 #include "simd/cpu.h"
 
-#include "scene/names.h"
 #include "simd/targets.h"
 
 #include <cstdlib>
@@ -85,16 +84,18 @@ cpu_features capped(cpu_features f) {
 
 }  // namespace
 
-std::optional<std::string> max_isa_error() {
+std::vector<std::string_view> target_names() {
+  std::vector<std::string_view> names;
+  for (const target_entry& t : targets) names.emplace_back(t.name);
+  return names;
+}
+
+std::optional<std::string> unknown_max_isa() {
   const char* cap = std::getenv("RAYCAST_MAX_ISA");
   if (!cap || !*cap) return std::nullopt;
-  const std::string c = cap;
-  std::vector<std::string_view> names;
-  for (const target_entry& t : targets) {
-    if (c == t.name) return std::nullopt;
-    names.emplace_back(t.name);
-  }
-  return not_one_of(c, "'" + c + "'", names);
+  for (const target_entry& t : targets)
+    if (std::string_view(cap) == t.name) return std::nullopt;
+  return std::string(cap);
 }
 
 const cpu_features& cpu() {

@@ -3,6 +3,8 @@
 #pragma once
 #include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 namespace raycast {
 
@@ -20,8 +22,10 @@ struct cpu_features {
 // in targets.h's list, of its architecture, are off (scalar: every vector one).
 const cpu_features& cpu();
 
-// Why RAYCAST_MAX_ISA's value is not one it knows, or nothing (unset, empty
-// or valid). An unknown value caps nothing; the CLI refuses it.
-std::optional<std::string> max_isa_error();
+// The targets' names, in targets.h's order: what RAYCAST_MAX_ISA takes.
+std::vector<std::string_view> target_names();
+// RAYCAST_MAX_ISA's value where it is not a target's name, or nothing (unset,
+// empty or valid). An unknown value caps nothing; the CLI refuses it.
+std::optional<std::string> unknown_max_isa();
 
 }  // namespace raycast

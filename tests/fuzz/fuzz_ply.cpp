@@ -1,4 +1,4 @@
-// libFuzzer target: particle files (scene/ply.h), from the header to pixels.
+// libFuzzer target: particle files (formats/ply.h), from the header to pixels.
 //
 // The input is a PLY file's bytes, read from memory by read_ply with
 // --radius or not and --color-by the third vertex property or not (two bits
@@ -24,7 +24,7 @@
 
 #include "render/backend.h"
 #include "render/render.h"
-#include "scene/ply.h"
+#include "formats/ply.h"
 
 namespace {
 

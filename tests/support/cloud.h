@@ -45,7 +45,7 @@ scene_params particle_box(int64_t n, bool orthographic = false);
 // most particle data.
 scene_params particle_box_random(int64_t n);
 
-// p as scene-file text (scene/scene_file.h), about 85 bytes a sphere: each
+// p as scene-file text (formats/json.h), about 85 bytes a sphere: each
 // sphere's shading, and the colour of a flat or lit one.
 std::string cloud_json(const scene_params& p);
 

@@ -1,4 +1,4 @@
-#include "scene/scene_file.h"
+#include "formats/json.h"
 
 #include <fcntl.h>
 #include <sys/mman.h>
@@ -23,9 +23,9 @@
 
 #include "scene/builtin.h"
 #include "memory/arrays.h"
-#include "scene/names.h"
-#include "scene/ply.h"
-#include "scene/regular_file.h"
+#include "settings/names.h"
+#include "formats/ply.h"
+#include "formats/regular_file.h"
 
 namespace raycast {
 namespace {
@@ -545,7 +545,7 @@ class reader {
   void read_spheres(od::value& v, std::vector<sphere>& out);
   sphere read_sphere(od::value& item, size_t k);
 
-  // The camera and sky keys as the input table parses them (scene/settings.h).
+  // The camera and sky keys as the input table parses them (settings/settings.h).
   void read_settings(od::value& v, std::string_view object_name, settings& out);
   void read_setting(od::value& v, const setting& row, given& g);
   std::string_view number_token(od::value& v, const std::string& path, const char* must_be);

@@ -13,7 +13,7 @@
 // ("spheres[3].radius"), with where in the text ("at line 4, column 17") and
 // a short quote of it (at most 32 bytes, "…" when cut). Text that is not JSON
 // is an error of the whole file (empty path), with the same place when known.
-// The camera and sky keys are the input table's (scene/settings.h), parsed by
+// The camera and sky keys are the input table's (settings/settings.h), parsed by
 // its parsers, so a value is spelled as on the command line ("aspect": "16:9"
 // or "1.5" or 1.5). read_scene_file returns them unapplied, for a caller to
 // merge its own settings over (the CLI's options) before resolve() checks
@@ -33,7 +33,7 @@
 #include <variant>
 
 #include "scene/scene.h"
-#include "scene/settings.h"
+#include "settings/settings.h"
 
 namespace raycast {
 
@@ -84,7 +84,7 @@ std::variant<scene_params, scene_file_error> load_scene_file(const std::string& 
 
 // The command line's --scene: a built-in scene's name (its spheres), a
 // .json scene file read by read_scene_file, or a .ply particle file read by
-// read_ply_file (scene/ply.h) with the particle options given (the others
+// read_ply_file (formats/ply.h) with the particle options given (the others
 // have no use for them: the caller refuses them); another name is an error
 // listing the built-in ones (and the nearest, when it looks like a slip). A
 // file's error is its reader's: the caller names the file.

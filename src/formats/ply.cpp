@@ -1,4 +1,4 @@
-#include "scene/ply.h"
+#include "formats/ply.h"
 
 #include <algorithm>
 #include <bit>
@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "memory/arrays.h"
-#include "scene/names.h"
-#include "scene/regular_file.h"
+#include "settings/names.h"
+#include "formats/regular_file.h"
 
 namespace raycast {
 namespace {

@@ -1,4 +1,4 @@
-#include "raycast/inputs.h"
+#include "settings/inputs.h"
 
 #include <memory>
 #include <string>
@@ -9,7 +9,7 @@
 #include "render/render.h"
 #include "scene/builtin.h"
 #include "scene/colormap.h"
-#include "scene/ply.h"
+#include "formats/ply.h"
 #include "scene/sampler.h"
 
 namespace raycast {

@@ -108,7 +108,7 @@ struct setting {
 };
 
 // The scene's rows (camera and sky), in the table's order; the run's rows
-// follow in the full table (raycast/inputs.h).
+// follow in the full table (settings/inputs.h).
 std::span<const setting> scene_settings();
 const setting* find_file_key(std::string_view file_key);
 

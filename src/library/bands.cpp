@@ -1,4 +1,4 @@
-#include "raycast/bands.h"
+#include "library/bands.h"
 
 #include <algorithm>
 #include <chrono>

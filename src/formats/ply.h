@@ -40,7 +40,7 @@
 #include <variant>
 
 #include "scene/colormap.h"
-#include "scene/scene_file.h"
+#include "formats/json.h"
 
 namespace raycast {
 

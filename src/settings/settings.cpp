@@ -1,6 +1,6 @@
-#include "scene/settings.h"
+#include "settings/settings.h"
 
-#include "scene/names.h"
+#include "settings/names.h"
 
 #include <algorithm>
 #include <cctype>

@@ -1,4 +1,4 @@
-// The whole input table (scene/settings.h): the scene's rows (camera and
+// The whole input table (settings/settings.h): the scene's rows (camera and
 // sky, also a scene file's keys), then the run's (output, format, backend,
 // samples, ...), whose names come from their own rooms: backends and
 // precisions from render/backend.h, samplers from scene/sampler.h, formats
@@ -10,8 +10,8 @@
 
 #include "raycast/raycast.h"
 #include "scene/invalid.h"
-#include "scene/ply.h"
-#include "scene/settings.h"
+#include "formats/ply.h"
+#include "settings/settings.h"
 
 namespace raycast {
 

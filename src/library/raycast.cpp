@@ -10,12 +10,12 @@
 #include "io/format.h"
 #include "io/image_sink.h"
 #include "io/module_loader.h"
-#include "raycast/bands.h"
-#include "raycast/inputs.h"
+#include "library/bands.h"
+#include "settings/inputs.h"
 #include "render/render.h"
 #include "scene/builtin.h"
-#include "scene/names.h"
-#include "scene/scene_file.h"
+#include "settings/names.h"
+#include "formats/json.h"
 
 namespace raycast::api {
 

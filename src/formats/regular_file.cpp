@@ -1,4 +1,4 @@
-#include "scene/regular_file.h"
+#include "formats/regular_file.h"
 
 #include <fcntl.h>
 #include <unistd.h>
