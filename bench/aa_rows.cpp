@@ -95,10 +95,10 @@ struct window {
 };
 
 void bench_region(benchmark::State& state, int64_t w, int64_t h, uint32_t samples, window win) {
-  camera_params cp;
-  cp.image_width = w;
-  cp.image_height = h;
-  const scene s = make_scene(scene_params{cp, {}, *builtin_spheres("world"), std::nullopt, {}});
+  api::camera cp;
+  cp.width = w;
+  cp.height = h;
+  const scene s = raycast::make_scene(api::scene{cp, {}, *builtin_spheres("world"), std::nullopt, {}});
   render_options o;
   o.which = best_backend();
   o.threads = 1;

@@ -16,7 +16,7 @@ struct book_ch6::world {
 
 book_ch6::book_ch6(const scene& s) : scene_(s), world_(std::make_unique<world>()) {
   for (const raycast::sphere& sp : s.spheres)
-    world_->list.add(std::make_shared<book::sphere>(sp.center, sp.radius));
+    world_->list.add(std::make_shared<book::sphere>(to_glm(sp.center), sp.radius));
 }
 
 book_ch6::~book_ch6() = default;

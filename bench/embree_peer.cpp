@@ -92,7 +92,7 @@ struct embree_peer::impl {
     rtcCommitScene(rtc_scene);
     for (const sphere& sp : s.spheres) {
       centers.push_back({float(sp.center.x), float(sp.center.y), float(sp.center.z)});
-      flat.push_back({float(sp.flat_color.r), float(sp.flat_color.g), float(sp.flat_color.b)});
+      flat.push_back({float(sp.color.x), float(sp.color.y), float(sp.color.z)});
       is_flat.push_back(sp.shade == shading::flat);
       is_lit.push_back(sp.shade == shading::lit);
     }
@@ -254,7 +254,7 @@ struct embree_peer::impl {
     }
     h.tnear = r * 0x1p-10f;
     if (s.light.direction) {
-      const vec3 l = unit_vector(*s.light.direction);
+      const vec3 l = unit_vector(to_glm(*s.light.direction));
       h.diffuse = std::max((h.n[0] * float(l.x) + h.n[1] * float(l.y)) + h.n[2] * float(l.z), 0.0f);
     } else {
       const float len = std::sqrt((d.x * d.x + d.y * d.y) + d.z * d.z);
@@ -356,7 +356,7 @@ embree_peer::light_seconds embree_peer::render_lit(const image_band& band, const
   // The lit hits, traced again (not timed: the peer's primary cost is the frame's above).
   std::vector<lit_hit> hits = m.lit_hits(band);
   const float inf = std::numeric_limits<float>::infinity();
-  const vec3 l = s.light.direction ? unit_vector(*s.light.direction) : vec3(0, 0, 1);
+  const vec3 l = s.light.direction ? unit_vector(to_glm(*s.light.direction)) : vec3(0, 0, 1);
   const float light[3] = {float(l.x), float(l.y), float(l.z)};
   t0 = std::chrono::steady_clock::now();
   if (s.light.shadows) {

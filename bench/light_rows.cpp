@@ -23,7 +23,7 @@ benchmark::Counter per_iteration(double v) { return {v, benchmark::Counter::kAvg
 // A family's scene, every sphere lit in one colour, under a directional light.
 struct family {
   const char* name;
-  scene_params (*make)(int64_t n);
+  api::scene (*make)(int64_t n);
   vec3 light;
   bool bounded_ao;  // AO distance 5 radii (the boxes), else unbounded
 };
@@ -41,12 +41,12 @@ struct variant {
 const variant variants[] = {{"shadows", 0}, {"shadows-ao8", 8}};
 
 scene lit_scene(const family& f, int64_t n, const variant& v, int64_t w, int64_t h, bool secondary = true) {
-  scene_params p = f.make(n);
-  p.camera.image_width = w;
-  p.camera.image_height = h;
+  api::scene p = f.make(n);
+  p.cam.width = w;
+  p.cam.height = h;
   for (sphere& s : p.spheres) {
     s.shade = shading::lit;
-    s.flat_color = color(0.85, 0.6, 0.35);
+    s.color = color(0.85, 0.6, 0.35);
   }
   p.light.direction = f.light;
   p.light.shadows = secondary;

@@ -224,10 +224,10 @@ void bench_sphere_stiff(benchmark::State& state, size_t case_index, std::string 
 void register_stiff_rows() {
   const std::vector<stiff_case> cases = stiff_cases();
   for (size_t k = 0; k < cases.size(); ++k) {
-    const camera_params& cam = cases[k].cam;
+    const api::camera& cam = cases[k].cam;
     const std::string fields = strf("kind=stiff case=%s index=%zu size=", cases[k].name.c_str(), k) +
-                               size_text(cam.image_width, cam.image_height.value_or(
-                                                              default_height(cam.image_width, cam.aspect_ratio)));
+                               size_text(cam.width, cam.height.value_or(
+                                                              default_height(cam.width, cam.aspect)));
     if (auto why = validate(cam)) {  // refused: one row, its error the reason
       const std::string msg = why->message;
       add_row("stiff/" + cases[k].name, fields, benchmark::kMillisecond,

@@ -57,7 +57,7 @@ const char* const ply_head = "ply\nformat binary_little_endian 1.0\nelement vert
 
 // The packed box's spheres as a PLY file: 19 bytes a sphere.
 std::string box_ply(int64_t n) {
-  const scene_params p = raycast_test::particle_box(n);
+  const api::scene p = raycast_test::particle_box(n);
   std::string s = strf(ply_head, static_cast<long long>(n));
   s.reserve(s.size() + size_t(n) * 19);
   for (const sphere& b : p.spheres) {
@@ -87,9 +87,9 @@ void bench_load_ply(benchmark::State& state, int64_t n) {
       state.SkipWithError(c ? "the file's spheres are not the box's" : std::get<scene_file_error>(got).message.c_str());
       return;
     }
-    c->scene.camera = raycast_test::particle_box(1).camera;
+    c->scene.cam = raycast_test::particle_box(1).cam;
     const steady::time_point t1 = steady::now();
-    auto r = std::make_unique<renderer>(make_scene(c->scene), render_options{});
+    auto r = std::make_unique<renderer>(raycast::make_scene(c->scene), render_options{});
     prep += seconds_since(t1);
     load += l;
     state.PauseTiming();

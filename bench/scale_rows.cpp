@@ -37,7 +37,7 @@ int threads_of(bool all) { return all ? available_cores() : 1; }
 // same box along an axis through an orthographic camera.
 struct family {
   const char* name;
-  scene_params (*make)(int64_t n);
+  api::scene (*make)(int64_t n);
   int64_t from;  // the smallest N of the family's rows
 };
 const family families[] = {
@@ -87,7 +87,7 @@ void time_frames(benchmark::State& state, const scene& s, const char* prepare, M
 }
 
 void bench_ours(benchmark::State& state, const family* f, int64_t n, bool all) {
-  const scene s = make_scene(f->make(n));
+  const scene s = raycast::make_scene(f->make(n));
   render_options o;
   o.threads = threads_of(all);
   time_frames(
@@ -96,7 +96,7 @@ void bench_ours(benchmark::State& state, const family* f, int64_t n, bool all) {
 }
 
 void bench_embree(benchmark::State& state, const family* f, int64_t n, bool all) {
-  const scene s = make_scene(f->make(n));
+  const scene s = raycast::make_scene(f->make(n));
   time_frames(
       state, s, "build_s",
       [&] {
@@ -133,7 +133,7 @@ double bare_parse(const simdjson::padded_string& text) {
 }
 
 void bench_load(benchmark::State& state, int64_t n) {
-  std::optional<scene_params> cloud = particle_cloud(n);
+  std::optional<api::scene> cloud = particle_cloud(n);
   const std::string text = cloud_json(*cloud);
   const sphere last = cloud->spheres.back();
   cloud.reset();
@@ -145,7 +145,7 @@ void bench_load(benchmark::State& state, int64_t n) {
     const steady::time_point t0 = steady::now();
     auto parsed = parse_scene_file(text);
     const double p = seconds_since(t0);
-    auto* params = std::get_if<scene_params>(&parsed);
+    auto* params = std::get_if<api::scene>(&parsed);
     if (!params || params->spheres.size() != size_t(n) || params->spheres.back().center != last.center ||
         params->spheres.back().radius != last.radius) {
       state.SkipWithError(params ? "the parsed cloud is not the generated one"
@@ -153,7 +153,7 @@ void bench_load(benchmark::State& state, int64_t n) {
       return;
     }
     const steady::time_point t1 = steady::now();
-    std::optional<scene> s = make_scene(std::move(*params));  // the spheres moved, as raycast does
+    std::optional<scene> s = raycast::make_scene(std::move(*params));  // the spheres moved, as raycast does
     parsed = scene_file_error{};  // the parsed spheres are not needed any more
     auto r = std::make_unique<renderer>(*s, one_thread);
     prep += seconds_since(t1);

@@ -133,7 +133,7 @@ TEST(Samplers, RandomOffsetsAreUniform) {
 struct aa_case {
   std::string name;
   std::vector<sphere> spheres;
-  camera_params cam;
+  api::camera cam;
 };
 
 // A dust of spheres far smaller than a pixel: most of them fall between the
@@ -156,10 +156,10 @@ const std::vector<aa_case>& aa_cases() {
     std::vector<aa_case> v;
     v.push_back({"world", *builtin_spheres("world"), {}});
     v.push_back({"sky", {}, {}});
-    camera_params tilted;
-    tilted.origin = {-2, 2, 1};
+    api::camera tilted;
+    tilted.lookfrom = {-2, 2, 1};
     tilted.lookat = vec3{0, 0, -1};
-    tilted.vfov_degrees = 40;
+    tilted.vfov = 40;
     v.push_back({"tilted_world", *builtin_spheres("world"), tilted});
     v.push_back({"camera_inside", {{{0.1, -0.2, 0.0}, 2.0, shading::normal}, {{0, 0, -1}, 0.5, shading::normal}}, {}});
     v.push_back({"dust", dust(), {}});
@@ -178,9 +178,9 @@ const std::vector<aa_case>& aa_cases() {
 }
 
 scene make(const aa_case& c, int64_t w, int64_t h) {
-  camera_params cp = c.cam;
-  cp.image_width = w;
-  cp.image_height = h;
+  api::camera cp = c.cam;
+  cp.width = w;
+  cp.height = h;
   return raycast_test::make_scene(cp, {}, c.spheres);
 }
 

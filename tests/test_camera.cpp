@@ -32,7 +32,7 @@ void expect_vec_eq(const vec3& got, const vec3& want) {
 // ---------------------------------------------------------------- camera
 
 TEST(Camera, DefaultsAreTheLessonsCamera) {
-  const camera_params p;
+  const api::camera p;
   ASSERT_FALSE(validate(p).has_value());
   const camera c = make_camera(p);
   EXPECT_EQ(c.image_width, 400);
@@ -48,12 +48,12 @@ TEST(Camera, DefaultsAreTheLessonsCamera) {
 }
 
 TEST(Camera, QuantitiesFollowTheParameters) {
-  camera_params p;
-  p.aspect_ratio = 2.5;
-  p.image_width = 250;
+  api::camera p;
+  p.aspect = 2.5;
+  p.width = 250;
   p.viewport_height = 3.0;
   p.focal_length = 0.5;
-  p.origin = point3(10, -20, 30);
+  p.lookfrom = point3(10, -20, 30);
   ASSERT_FALSE(validate(p).has_value());
   const camera c = make_camera(p);
   EXPECT_EQ(c.image_height, 100);
@@ -66,9 +66,9 @@ TEST(Camera, QuantitiesFollowTheParameters) {
 }
 
 TEST(Camera, ViewportWidthIsIdealAspectTimesViewportHeightNotPixelRatio) {
-  camera_params p;
-  p.image_width = 400;
-  p.image_height = 100;  // pixel ratio 4, aspect stays 16/9
+  api::camera p;
+  p.width = 400;
+  p.height = 100;  // pixel ratio 4, aspect stays 16/9
   const camera c = make_camera(p);
   EXPECT_EQ(c.image_height, 100);
   EXPECT_EQ(c.viewport_width, 16.0 / 9.0 * 2.0);
@@ -87,29 +87,29 @@ TEST(Camera, DefaultHeightNeverBelowOneForVeryWideAspects) {
   EXPECT_EQ(default_height(1, 2.0), 1);        // 0.5
   EXPECT_EQ(default_height(10, 1000.0), 1);    // 0.01
   EXPECT_EQ(default_height(400, 1e300), 1);
-  camera_params p;
-  p.image_width = 10;
-  p.aspect_ratio = 1000.0;
+  api::camera p;
+  p.width = 10;
+  p.aspect = 1000.0;
   ASSERT_FALSE(validate(p).has_value());
   EXPECT_EQ(make_camera(p).image_height, 1);
 }
 
 TEST(Camera, ExplicitHeightOverridesDefault) {
-  camera_params p;
-  p.image_height = 17;
+  api::camera p;
+  p.height = 17;
   EXPECT_EQ(make_camera(p).image_height, 17);
 }
 
 struct refusal {
   const char* name;
-  void (*change)(camera_params&);
+  void (*change)(api::camera&);
   const char* mentions;  // the message names the parameter
 };
 
 class CameraValidate : public ::testing::TestWithParam<refusal> {};
 
 TEST_P(CameraValidate, RefusesWithMessageNamingTheParameter) {
-  camera_params p;
+  api::camera p;
   GetParam().change(p);
   const auto why = validate(p);
   ASSERT_TRUE(why.has_value());
@@ -117,37 +117,37 @@ TEST_P(CameraValidate, RefusesWithMessageNamingTheParameter) {
 }
 
 const refusal refusals[] = {
-    {"aspect_nan", [](camera_params& p) { p.aspect_ratio = nan_v; }, "aspect"},
-    {"aspect_inf", [](camera_params& p) { p.aspect_ratio = inf_v; }, "aspect"},
-    {"aspect_zero", [](camera_params& p) { p.aspect_ratio = 0.0; }, "aspect"},
-    {"aspect_negative", [](camera_params& p) { p.aspect_ratio = -1.0; }, "aspect"},
-    {"viewport_nan", [](camera_params& p) { p.viewport_height = nan_v; }, "viewport height"},
-    {"viewport_inf", [](camera_params& p) { p.viewport_height = inf_v; }, "viewport height"},
-    {"viewport_zero", [](camera_params& p) { p.viewport_height = 0.0; }, "viewport height"},
-    {"viewport_negative", [](camera_params& p) { p.viewport_height = -2.0; }, "viewport height"},
-    {"focal_nan", [](camera_params& p) { p.focal_length = nan_v; }, "focal length"},
-    {"focal_inf", [](camera_params& p) { p.focal_length = -inf_v; }, "focal length"},
-    {"focal_zero", [](camera_params& p) { p.focal_length = 0.0; }, "focal length"},
-    {"focal_negative", [](camera_params& p) { p.focal_length = -1.0; }, "focal length"},
+    {"aspect_nan", [](api::camera& p) { p.aspect = nan_v; }, "aspect"},
+    {"aspect_inf", [](api::camera& p) { p.aspect = inf_v; }, "aspect"},
+    {"aspect_zero", [](api::camera& p) { p.aspect = 0.0; }, "aspect"},
+    {"aspect_negative", [](api::camera& p) { p.aspect = -1.0; }, "aspect"},
+    {"viewport_nan", [](api::camera& p) { p.viewport_height = nan_v; }, "viewport height"},
+    {"viewport_inf", [](api::camera& p) { p.viewport_height = inf_v; }, "viewport height"},
+    {"viewport_zero", [](api::camera& p) { p.viewport_height = 0.0; }, "viewport height"},
+    {"viewport_negative", [](api::camera& p) { p.viewport_height = -2.0; }, "viewport height"},
+    {"focal_nan", [](api::camera& p) { p.focal_length = nan_v; }, "focal length"},
+    {"focal_inf", [](api::camera& p) { p.focal_length = -inf_v; }, "focal length"},
+    {"focal_zero", [](api::camera& p) { p.focal_length = 0.0; }, "focal length"},
+    {"focal_negative", [](api::camera& p) { p.focal_length = -1.0; }, "focal length"},
     {"viewport_width_overflow",
-     [](camera_params& p) {
-       p.aspect_ratio = 1e200;
+     [](api::camera& p) {
+       p.aspect = 1e200;
        p.viewport_height = 1e200;
-       p.image_height = 1;
+       p.height = 1;
      },
      "viewport width"},
-    {"origin_nan", [](camera_params& p) { p.origin = point3(0, nan_v, 0); }, "origin"},
-    {"origin_inf", [](camera_params& p) { p.origin = point3(0, 0, inf_v); }, "origin"},
-    {"width_zero", [](camera_params& p) { p.image_width = 0; }, "width"},
-    {"width_negative", [](camera_params& p) { p.image_width = -5; }, "width"},
-    {"width_over_max", [](camera_params& p) { p.image_width = max_dimension + 1; }, "width"},
-    {"height_zero", [](camera_params& p) { p.image_height = 0; }, "height"},
-    {"height_negative", [](camera_params& p) { p.image_height = -3; }, "height"},
-    {"height_over_max", [](camera_params& p) { p.image_height = max_dimension + 1; }, "height"},
+    {"origin_nan", [](api::camera& p) { p.lookfrom = point3(0, nan_v, 0); }, "origin"},
+    {"origin_inf", [](api::camera& p) { p.lookfrom = point3(0, 0, inf_v); }, "origin"},
+    {"width_zero", [](api::camera& p) { p.width = 0; }, "width"},
+    {"width_negative", [](api::camera& p) { p.width = -5; }, "width"},
+    {"width_over_max", [](api::camera& p) { p.width = max_dimension + 1; }, "width"},
+    {"height_zero", [](api::camera& p) { p.height = 0; }, "height"},
+    {"height_negative", [](api::camera& p) { p.height = -3; }, "height"},
+    {"height_over_max", [](api::camera& p) { p.height = max_dimension + 1; }, "height"},
     {"default_height_over_max",
-     [](camera_params& p) {
-       p.image_width = max_dimension;
-       p.aspect_ratio = 0.5;  // height 2^25
+     [](api::camera& p) {
+       p.width = max_dimension;
+       p.aspect = 0.5;  // height 2^25
      },
      "height"},
 };
@@ -160,39 +160,39 @@ INSTANTIATE_TEST_SUITE_P(Refusals, CameraValidate, ::testing::ValuesIn(refusals)
 // height derived from width / aspect blames the aspect.
 TEST(SceneValidate, NamesTheFieldToBlame) {
   const auto field_of = [](auto change) {
-    scene_params p;
+    api::scene p;
     change(p);
     const auto e = validate(p);
     return e ? std::string(to_string(e->field)) : std::string("(valid)");
   };
-  EXPECT_EQ(field_of([](scene_params&) {}), "(valid)");
-  EXPECT_EQ(field_of([](scene_params& p) { p.camera.image_width = 0; }), "camera.width");
-  EXPECT_EQ(field_of([](scene_params& p) { p.camera.image_height = 0; }), "camera.height");
-  EXPECT_EQ(field_of([](scene_params& p) { p.camera.aspect_ratio = 1e-9; }), "camera.aspect");
-  EXPECT_EQ(field_of([](scene_params& p) { p.camera.vfov_degrees = 180.0; }), "camera.vfov");
-  EXPECT_EQ(field_of([](scene_params& p) { p.camera.lookat = p.camera.origin; }), "camera.lookat");
-  EXPECT_EQ(field_of([](scene_params& p) { p.camera.lookat = point3(0, 5, 0); }), "camera.vup");
-  EXPECT_EQ(field_of([](scene_params& p) { p.camera.origin.x = inf_v; }), "camera.lookfrom");
-  EXPECT_EQ(field_of([](scene_params& p) { p.sky.bottom.g = nan_v; }), "sky.bottom");
-  EXPECT_EQ(field_of([](scene_params& p) { p.sky.top.b = 1e31; }), "sky.top");
+  EXPECT_EQ(field_of([](api::scene&) {}), "(valid)");
+  EXPECT_EQ(field_of([](api::scene& p) { p.cam.width = 0; }), "camera.width");
+  EXPECT_EQ(field_of([](api::scene& p) { p.cam.height = 0; }), "camera.height");
+  EXPECT_EQ(field_of([](api::scene& p) { p.cam.aspect = 1e-9; }), "camera.aspect");
+  EXPECT_EQ(field_of([](api::scene& p) { p.cam.vfov = 180.0; }), "camera.vfov");
+  EXPECT_EQ(field_of([](api::scene& p) { p.cam.lookat = p.cam.lookfrom; }), "camera.lookat");
+  EXPECT_EQ(field_of([](api::scene& p) { p.cam.lookat = point3(0, 5, 0); }), "camera.vup");
+  EXPECT_EQ(field_of([](api::scene& p) { p.cam.lookfrom.x = inf_v; }), "camera.lookfrom");
+  EXPECT_EQ(field_of([](api::scene& p) { p.sky.bottom.y = nan_v; }), "sky.bottom");
+  EXPECT_EQ(field_of([](api::scene& p) { p.sky.top.z = 1e31; }), "sky.top");
 }
 
 TEST(Camera, ValidateAcceptsTheLimitsThemselves) {
-  camera_params p;
-  p.image_width = max_dimension;  // default height 9437184, under the limit
+  api::camera p;
+  p.width = max_dimension;  // default height 9437184, under the limit
   EXPECT_FALSE(validate(p).has_value());
-  p.image_width = 1;
-  p.image_height = max_dimension;
+  p.width = 1;
+  p.height = max_dimension;
   EXPECT_FALSE(validate(p).has_value());
-  camera_params tiny;
+  api::camera tiny;
   tiny.viewport_height = 1e-300;
   tiny.focal_length = 1e-300;
-  tiny.origin = point3(-1e300, 1e300, 0);
+  tiny.lookfrom = point3(-1e300, 1e300, 0);
   EXPECT_FALSE(validate(tiny).has_value());
 }
 
 TEST(Camera, PixelCoordinatesAreIOverWMinus1AndJOverHMinus1) {
-  const camera c = make_camera(camera_params{});
+  const camera c = make_camera(api::camera{});
   EXPECT_EQ(c.u_of(0), 0.0);
   EXPECT_EQ(c.u_of(399), 1.0);
   EXPECT_EQ(c.u_of(133), 133.0 / 399.0);
@@ -214,11 +214,11 @@ TEST(Ray, AtIsOriginPlusTTimesDirection) {
 }
 
 TEST(Ray, GetRayGoesThroughTheViewportPoint) {
-  camera_params p;
-  p.origin = point3(1, 2, 3);
+  api::camera p;
+  p.lookfrom = point3(1, 2, 3);
   const camera c = make_camera(p);
   const ray r = c.get_ray(0.25, 0.75);
-  expect_vec_eq(r.origin(), p.origin);
+  expect_vec_eq(r.origin(), to_glm(p.lookfrom));
   const point3 on_viewport = c.lower_left_corner + 0.25 * c.horizontal + 0.75 * c.vertical;
   const point3 hit = r.at(1.0);
   EXPECT_DOUBLE_EQ(hit.x, on_viewport.x);
@@ -322,8 +322,8 @@ TEST(CheckPixels, DirectionsAndTMatchSpec) {
 }
 
 TEST(CheckPixels, ExactCentreOfAnOddImage) {
-  camera_params p;
-  p.image_width = 401;  // default height int(401 / (16/9)) = 225
+  api::camera p;
+  p.width = 401;  // default height int(401 / (16/9)) = 225
   const scene s = make_scene(p);
   ASSERT_EQ(s.cam.image_height, 225);
   ASSERT_EQ(s.cam.u_of(200), 0.5);
@@ -344,15 +344,15 @@ TEST(CheckPixels, ExactCentreOfAnOddImage) {
 class OnePixelWideOrTall : public ::testing::TestWithParam<std::pair<int64_t, int64_t>> {};
 
 TEST_P(OnePixelWideOrTall, UsesTheCentreAndStaysFinite) {
-  camera_params p;
-  p.image_width = GetParam().first;
-  p.image_height = GetParam().second;
+  api::camera p;
+  p.width = GetParam().first;
+  p.height = GetParam().second;
   ASSERT_FALSE(validate(p).has_value());
   const scene s = make_scene(p);
-  if (p.image_width == 1) {
+  if (p.width == 1) {
     EXPECT_EQ(s.cam.u_of(0), 0.5);
   }
-  if (p.image_height == 1) {
+  if (p.height == 1) {
     EXPECT_EQ(s.cam.v_of(0), 0.5);
   }
 

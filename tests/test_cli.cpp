@@ -138,12 +138,12 @@ TEST_F(Cli, OptionsReachTheRender) {
                                 "--focal-length", "0.5", "--origin", "5,-5,2", "--sky-bottom",
                                 "0.9,0.8,0.7", "--sky-top", "0.1,0.2,0.3", "-o", "custom.ppm"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  camera_params cp;
-  cp.image_width = 64;
-  cp.aspect_ratio = 2.0;
+  api::camera cp;
+  cp.width = 64;
+  cp.aspect = 2.0;
   cp.viewport_height = 3;
   cp.focal_length = 0.5;
-  cp.origin = point3(5, -5, 2);
+  cp.lookfrom = point3(5, -5, 2);
   const scene s = raycast_test::make_scene(cp, sky{color(0.9, 0.8, 0.7), color(0.1, 0.2, 0.3)});
   ASSERT_EQ(s.cam.image_height, 32);
 
@@ -673,18 +673,38 @@ TEST_F(Cli, StatsPrintsTimingsRaysAndMemory) {
     value[label] = std::stod(number, &used);
     EXPECT_EQ(used, number.size()) << line;
   }
-  for (const char* label : {"load", "prepare", "render", "write", "total", "rays/s", "spheres", "peak RSS"})
+  for (const char* label : {"load", "prepare", "open", "render", "write", "total", "rays/s", "spheres", "peak RSS"})
     EXPECT_EQ(value.count(label), 1u) << label << " in:\n" << r.err;
-  EXPECT_LE(count_lines(r.err), 9u) << r.err;
+  EXPECT_LE(count_lines(r.err), 10u) << r.err;
   EXPECT_EQ(value["spheres"], 2.0);
   EXPECT_GT(value["rays/s"], 0.0);
   EXPECT_GT(value["peak RSS"], 0.0);
-  for (const char* label : {"load", "prepare", "render", "write"}) {
+  for (const char* label : {"load", "prepare", "open", "render", "write"}) {
     EXPECT_GE(value[label], 0.0) << label;
     EXPECT_LE(value[label], value["total"]) << label;
   }
   // 32 x 18 pixels, 4 samples each.
   EXPECT_NE(r.err.find("(2304 rays)"), std::string::npos) << r.err;
+}
+
+// The stages account for the run: a PNG's image library is loaded when the
+// output is opened, the run's dearest stage, and its own line says so.
+TEST_F(Cli, StatsStagesAddUpToTheTotal) {
+  const run_result r = box.run({"--scene", "world", "-q", "--stats", "-o", "a.png"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::map<std::string, double> value;
+  std::istringstream in(r.err);
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream fields(line);
+    std::string label;
+    double seconds = 0;
+    if (fields >> label >> seconds) value[label] = seconds;
+  }
+  const double stages = value["load"] + value["prepare"] + value["open"] + value["render"] + value["write"];
+  // What no line counts: the process's start, parsing the options, the
+  // camera's setup: a few milliseconds at most, next to the image library's load.
+  EXPECT_GE(stages, 0.9 * value["total"] - 0.005) << r.err;
+  EXPECT_GT(value["open"], value["render"]) << r.err;
 }
 
 // With shadows or AO, --stats adds what their structures took of prepare.

@@ -121,9 +121,9 @@ TEST(CliImagesFloat, ExrOfASizeOtherThanTheDefault) {
   ASSERT_EQ(f.error, "");
   ASSERT_EQ(f.img.width, 31);
   ASSERT_EQ(f.img.height, 17);
-  camera_params p;
-  p.image_width = 31;
-  p.image_height = 17;
+  api::camera p;
+  p.width = 31;
+  p.height = 17;
   const auto d = raycast_test::compare_to_reference_pixels(f.img, raycast_test::make_scene(p));
   EXPECT_LE(d.max, 1e-6) << d.where();
 }

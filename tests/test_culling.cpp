@@ -46,13 +46,13 @@ bool float_hit(const float_spheres& sp, size_t k, const float d[3]) {
 // Spheres of every kind culling handles: small ones in view, tall ones (the
 // exact test per row), some behind the camera, across the image's edges,
 // one around the camera, in a tilted view.
-scene_params mixed_scene(int64_t w, int64_t h, int n, unsigned seed) {
-  scene_params p;
-  p.camera.image_width = w;
-  p.camera.image_height = h;
-  p.camera.origin = vec3(0.3, -0.2, 0.1);
-  p.camera.lookat = vec3(1.0, 0.5, -4.0);
-  p.camera.vfov_degrees = 60.0;
+api::scene mixed_scene(int64_t w, int64_t h, int n, unsigned seed) {
+  api::scene p;
+  p.cam.width = w;
+  p.cam.height = h;
+  p.cam.lookfrom = vec3(0.3, -0.2, 0.1);
+  p.cam.lookat = vec3(1.0, 0.5, -4.0);
+  p.cam.vfov = 60.0;
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int k = 0; k < n; ++k) {
@@ -120,10 +120,10 @@ TEST(Culling, EveryHitIsListed) {
 // of columns, and every hit is still listed (a row of 66,001 columns seeing
 // spheres across its plane, tens of columns wide each).
 TEST(Culling, WideImagesRoundBoxesOutwards) {
-  scene_params p;
-  p.camera.image_width = 66001;
-  p.camera.image_height = 1;
-  p.camera.vfov_degrees = 0.005;  // one row: near the centre, 5 degrees of the view a thousand columns
+  api::scene p;
+  p.cam.width = 66001;
+  p.cam.height = 1;
+  p.cam.vfov = 0.005;  // one row: near the centre, 5 degrees of the view a thousand columns
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int k = 0; k < 60; ++k) {
@@ -145,9 +145,9 @@ TEST(Culling, WideImagesRoundBoxesOutwards) {
 // gets 8190 to 8193 one-batch entries among others, the rest of the row
 // random spans of one to three batches.
 TEST(Culling, BatchListsHoldEachEntryInItsBatchesInOrder) {
-  scene_params p;
-  p.camera.image_width = 64;
-  p.camera.image_height = 2;
+  api::scene p;
+  p.cam.width = 64;
+  p.cam.height = 2;
   const float_scene f = prepare_float_scene(make_scene(p));
   constexpr int batch = 8, batches = 8;
   std::mt19937 rng(11);
@@ -190,9 +190,9 @@ TEST(Culling, BatchListsHoldEachEntryInItsBatchesInOrder) {
 // The index culls: a sphere behind every ray is in no row, and a small sphere
 // in view is in a few rows only, with a column box.
 TEST(Culling, IndexLeavesOutWhatNoRayReaches) {
-  scene_params p;
-  p.camera.image_width = 200;
-  p.camera.image_height = 100;
+  api::scene p;
+  p.cam.width = 200;
+  p.cam.height = 100;
   sphere behind, small;
   behind.center = vec3(0.0, 0.0, 5.0);
   behind.radius = 1.0;
@@ -215,9 +215,9 @@ TEST(Culling, IndexLeavesOutWhatNoRayReaches) {
 // The index's bytes do not depend on the threads that build it (clouds past
 // the size where it goes parallel), nor does the prepared scene's.
 TEST(Culling, SameBytesForAnyThreadCount) {
-  scene_params p = raycast_test::particle_cloud(100000);
-  p.camera.image_width = 480;
-  p.camera.image_height = 270;
+  api::scene p = raycast_test::particle_cloud(100000);
+  p.cam.width = 480;
+  p.cam.height = 270;
   const scene s = make_scene(p);
   const float_scene one = prepare_float_scene(s, 1);
   const row_index want = row_index::build(one, 0.0, 1);
@@ -260,9 +260,9 @@ void expect_scalar_bytes(const scene& s, const char* what, size_t sort_from = so
 // A random cloud of 10^4 spheres: every backend bit-identical to the scalar
 // renderer, and within one 8-bit step of the double reference.
 TEST(Culling, CloudMatchesScalarAndReference) {
-  scene_params p = raycast_test::particle_cloud(10000);
-  p.camera.image_width = 192;
-  p.camera.image_height = 108;
+  api::scene p = raycast_test::particle_cloud(10000);
+  p.cam.width = 192;
+  p.cam.height = 108;
   const scene s = make_scene(p);
   expect_scalar_bytes(s, "cloud of 10^4");
   const image ref = raycast_test::render_with_reference(s, pixel_format::rgb8);
@@ -274,9 +274,9 @@ TEST(Culling, CloudMatchesScalarAndReference) {
 // spheres or more are): a reordering of the scene's spheres, bit-identical
 // across backends, threads and bands, within one 8-bit step of the reference.
 TEST(Culling, SortedCloudMatchesScalarAndReference) {
-  scene_params p = raycast_test::particle_cloud(3000);
-  p.camera.image_width = 192;
-  p.camera.image_height = 108;
+  api::scene p = raycast_test::particle_cloud(3000);
+  p.cam.width = 192;
+  p.cam.height = 108;
   const scene s = make_scene(p);
   const float_scene sorted = prepare_float_scene(s, 2, 0), as_given = prepare_float_scene(s, 1, size_t(-1));
   ASSERT_EQ(sorted.spheres.size(), as_given.spheres.size());
@@ -299,9 +299,9 @@ TEST(Culling, SortedCloudMatchesScalarAndReference) {
 // A large scene is sorted in chunks, one a thread: the order (and so every
 // record) is the one-thread order for any thread count.
 TEST(Culling, RowOrderIsTheSameForAnyThreadCount) {
-  scene_params p = raycast_test::particle_cloud(int64_t(sorted_from) + 4321);
-  p.camera.image_width = 96;
-  p.camera.image_height = 54;
+  api::scene p = raycast_test::particle_cloud(int64_t(sorted_from) + 4321);
+  p.cam.width = 96;
+  p.cam.height = 54;
   const scene s = make_scene(p);
   const float_scene one = prepare_float_scene(s, 1);
   const auto bytes = [](const float_scene& f) {
@@ -326,9 +326,9 @@ image render_sorted(const scene& s, backend b, sphere_order order) {
 // The row order is stable: of two coincident spheres the later in the scene
 // still wins the tie (float_spheres.h), however many spheres come between.
 TEST(Culling, SortingKeepsTheLaterOfCoincidentSpheres) {
-  scene_params p;
-  p.camera.image_width = 64;
-  p.camera.image_height = 36;
+  api::scene p;
+  p.cam.width = 64;
+  p.cam.height = 36;
   p.spheres = {flat(vec3(0.0, -0.2, -2.0), 0.3, color(1.0, 0.0, 0.0)),   // lower in the image
                flat(vec3(0.0, 0.3, -2.0), 0.2, color(1.0, 0.0, 0.0)),    // upper: sorted first
                flat(vec3(0.0, -0.2, -2.0), 0.3, color(0.0, 0.0, 1.0))};  // coincides with the first
@@ -346,9 +346,9 @@ TEST(Culling, SortingKeepsTheLaterOfCoincidentSpheres) {
 // lists exceed one run's memory (runs of fewer batches), and each row's
 // candidates the old per-run budget of 2^16 entries.
 TEST(Culling, ListsPastTheBudgetMatchScalar) {
-  scene_params p;
-  p.camera.image_width = 640;
-  p.camera.image_height = 24;
+  api::scene p;
+  p.cam.width = 640;
+  p.cam.height = 24;
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int k = 0; k < 4000; ++k) {
@@ -356,7 +356,7 @@ TEST(Culling, ListsPastTheBudgetMatchScalar) {
     s.center = vec3(0.3 * u(rng), 0.2 * u(rng), -40.0 + 10.0 * u(rng));
     s.radius = 30.0 + 3.0 * u(rng);  // each covers the whole frame
     s.shade = k % 3 == 0 ? shading::flat : shading::normal;
-    s.flat_color = color(0.5 + 0.5 * u(rng), 0.5, 0.2);
+    s.color = color(0.5 + 0.5 * u(rng), 0.5, 0.2);
     p.spheres.push_back(s);
   }
   const scene s = make_scene(p);
@@ -377,15 +377,15 @@ TEST(Culling, ListsPastTheBudgetMatchScalar) {
 // in every order, flat and lit, with the light's shadows and AO rays too.
 TEST(Shading, OneColourForAllIsKeptOnceAndRendersAsAColourASphere) {
   for (shading shade : {shading::flat, shading::lit}) {
-    scene_params p = raycast_test::particle_box(4000);
-    p.camera.image_width = 192;
-    p.camera.image_height = 108;
-    for (sphere& b : p.spheres) b.shade = shade, b.flat_color = color(0.85, 0.6, 0.35);
+    api::scene p = raycast_test::particle_box(4000);
+    p.cam.width = 192;
+    p.cam.height = 108;
+    for (sphere& b : p.spheres) b.shade = shade, b.color = color(0.85, 0.6, 0.35);
     if (shade == shading::lit) p.light = {vec3(0.3, 1.0, 0.6), true, 4, 5.0 * p.spheres[0].radius};
-    scene_params other = p;
+    api::scene other = p;
     sphere unseen = p.spheres[0];
-    unseen.center = p.camera.origin + (p.camera.origin - *p.camera.lookat);  // behind the camera
-    unseen.flat_color = color(0.1, 0.9, 0.2);
+    unseen.center = to_glm(p.cam.lookfrom) + (to_glm(p.cam.lookfrom) - to_glm(*p.cam.lookat));  // behind the camera
+    unseen.color = color(0.1, 0.9, 0.2);
     other.spheres.push_back(unseen);
     const scene one = make_scene(p), each = make_scene(other);
     for (sphere_order order : {sphere_order::scene, sphere_order::depth}) {
@@ -436,9 +436,9 @@ void expect_every_order_alike(const scene& s, const char* what) {
   }
 }
 
-scene small(scene_params p) {
-  p.camera.image_width = 192;
-  p.camera.image_height = 108;
+scene small(api::scene p) {
+  p.cam.width = 192;
+  p.cam.height = 108;
   return make_scene(p);
 }
 
@@ -463,9 +463,9 @@ TEST(DepthOrder, CloudsRenderTheSameInEveryOrder) {
 // changes -- in perspective and orthographic views, with one sample a pixel
 // and with four (whose rays stray across the pixel). Along the lattice's
 // axis, where gaps let every tile see through, nothing is hidden.
-scene medium(scene_params p, int64_t width = 160) {
-  p.camera.image_width = width;
-  p.camera.image_height = width * 9 / 16;
+scene medium(api::scene p, int64_t width = 160) {
+  p.cam.width = width;
+  p.cam.height = width * 9 / 16;
   return make_scene(p);
 }
 
@@ -495,9 +495,9 @@ size_t hidden_in(const scene& s, bool samples) {
 
 TEST(DepthOrder, OcclusionLeavesOutHiddenSpheresAndChangesNoPixel) {
   const auto ortho = [](int64_t n, int64_t width) {
-    scene_params p = raycast_test::particle_box(n, true);
-    p.camera.origin = point3(2.0, 1.7, 2.3);  // off the lattice's axes
-    p.camera.viewport_height = 1.8;
+    api::scene p = raycast_test::particle_box(n, true);
+    p.cam.lookfrom = point3(2.0, 1.7, 2.3);  // off the lattice's axes
+    p.cam.viewport_height = 1.8;
     return medium(p, width);
   };
   // Spheres a few pixels wide with one sample a pixel; wider with four,
@@ -515,9 +515,9 @@ TEST(DepthOrder, OcclusionLeavesOutHiddenSpheresAndChangesNoPixel) {
   }
   // Tiles cut by the image's edges, and one row.
   for (const auto& [w, h] : {std::pair<int64_t, int64_t>{161, 89}, {160, 1}}) {
-    scene_params p = raycast_test::particle_box(1000);
-    p.camera.image_width = w;
-    p.camera.image_height = h;
+    api::scene p = raycast_test::particle_box(1000);
+    p.cam.width = w;
+    p.cam.height = h;
     expect_depth_order_bytes(make_scene(p), 1, "box, odd sizes");
   }
   const scene along = medium(raycast_test::particle_box(1000, true));
@@ -531,10 +531,10 @@ TEST(DepthOrder, OcclusionLeavesOutHiddenSpheresAndChangesNoPixel) {
 // box. Scaled so that the first sphere's far side is within 1 % of the
 // second's nearest point: a hidden test loose by 1 % would drop it.
 TEST(DepthOrder, OcclusionKeepsASphereInFrontOfANearerOnesSurface) {
-  scene_params p;
-  p.camera.image_width = 180;
-  p.camera.image_height = 180;
-  p.camera.vfov_degrees = 2.0;
+  api::scene p;
+  p.cam.width = 180;
+  p.cam.height = 180;
+  p.cam.vfov = 2.0;
   p.spheres.push_back(flat(vec3(0.0, 0.0, -10.0), 0.05, color(1.0, 0.0, 0.0)));  // near 9.95, far 10.05
   // Its surface 0.025 off the axis is at depth 9.9567; this one's front is
   // at 9.953 there (after the first's 9.95 in depth order), in front of it.
@@ -562,9 +562,9 @@ TEST(DepthOrder, OcclusionKeepsASphereInFrontOfANearerOnesSurface) {
 // something nearer than the next sphere can be -- never before the later of
 // two equal hits, which wins as in the book's hittable_list.
 TEST(DepthOrder, ALaterSphereAtTheSameDistanceWinsAcrossAnEarlyStop) {
-  scene_params p;
-  p.camera.image_width = 65;  // the middle pixel's ray meets both spheres at their nearest point:
-  p.camera.image_height = 37;  // the hit is exactly as near as the next sphere's distance can be
+  api::scene p;
+  p.cam.width = 65;  // the middle pixel's ray meets both spheres at their nearest point:
+  p.cam.height = 37;  // the hit is exactly as near as the next sphere's distance can be
   p.spheres.push_back(flat(vec3(0.0, 0.0, -2.0), 0.3, color(1.0, 0.0, 0.0)));  // red, first
   for (int k = 0; k < 40; ++k)  // farther spheres, some lists' later entries
     p.spheres.push_back(flat(vec3(0.05 * (k % 7) - 0.15, 0.05 * (k / 7) - 0.15, -3.0 - 0.1 * k), 0.2, color(0.0, 1.0, 0.0)));

@@ -99,12 +99,12 @@ TEST(Dispatch, EveryCapGivesTheSameImage) {
 TEST(Dispatch, AoRaysWalkedInEitherLaneWidthGiveTheSameImage) {
   if (!raycast::cpu().avx2) GTEST_SKIP() << "no AVX2 here: the four-lane walk alone";
   cli_sandbox box;
-  raycast::scene_params p = raycast_test::particle_box_random(3000);
-  p.camera.image_width = 240;
-  p.camera.image_height = 135;
+  raycast::api::scene p = raycast_test::particle_box_random(3000);
+  p.cam.width = 240;
+  p.cam.height = 135;
   for (raycast::sphere& s : p.spheres) {
     s.shade = raycast::shading::lit;
-    s.flat_color = raycast::color(0.8, 0.6, 0.4);
+    s.color = raycast::color(0.8, 0.6, 0.4);
   }
   raycast_test::write_file(box.work() / "box.json", raycast_test::cloud_json(p));
   const std::string distance = std::to_string(5 * p.spheres[0].radius);

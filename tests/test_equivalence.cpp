@@ -28,7 +28,7 @@ const std::vector<scene_case>& cameras() {
   static const std::vector<scene_case> all = [] {
   std::vector<scene_case> v;
   v.push_back({"lesson", {}, {}});
-  camera_params p;
+  api::camera p;
   p.viewport_height = 0.37;
   v.push_back({"viewport_0_37", p, {}});
   p = {};
@@ -39,13 +39,13 @@ const std::vector<scene_case>& cameras() {
   p.focal_length = 6.5;
   v.push_back({"long_focal", p, {}});
   p = {};
-  p.origin = {3.0, -2.0, 7.5};
+  p.lookfrom = {3.0, -2.0, 7.5};
   v.push_back({"moved_origin", p, {}});
   p = {};
-  p.aspect_ratio = 4.0 / 3.0;
+  p.aspect = 4.0 / 3.0;
   v.push_back({"aspect_4_3", p, {}});
   p = {};
-  p.aspect_ratio = 0.5;
+  p.aspect = 0.5;
   v.push_back({"aspect_1_2", p, {}});
   v.push_back({"sky_black_to_white", {}, {{0, 0, 0}, {1, 1, 1}}});
   v.push_back({"sky_every_channel_varies", {}, {{0.9, 0.2, 0.05}, {0.1, 0.6, 0.95}}});
@@ -99,9 +99,9 @@ TEST_P(Equivalence, EveryWidthAndHeight) {
   for (int64_t h : heights) {
     for (int64_t w : widths()) {
       SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h));
-      camera_params cp = cc.cam;
-      cp.image_width = w;
-      cp.image_height = h;
+      api::camera cp = cc.cam;
+      cp.width = w;
+      cp.height = h;
       const scene s = raycast_test::make_scene(cp, cc.sky);
       const renderer r(s, {prm.which, prm.prec, 1});
       const image got8 = raycast_test::render_with(r, pixel_format::rgb8);
@@ -175,9 +175,9 @@ class Tails : public raycast_test::backend_test<backend> {};
 TEST_P(Tails, NoByteOutsideTheRowIsWritten) {
   for (pixel_format f : {pixel_format::rgb8, pixel_format::rgb_f32}) {
     for (int64_t w = 1; w <= 40; ++w) {
-      camera_params cp;
-      cp.image_width = w;
-      cp.image_height = 3;
+      api::camera cp;
+      cp.width = w;
+      cp.height = 3;
       const scene s = raycast_test::make_scene(cp);
       const size_t row = size_t(w) * bytes_per_pixel(f), pad = 64, stride = row + 2 * pad;
       std::vector<unsigned char> buf(stride * 3 + 2 * pad, 0xA5);

@@ -28,18 +28,18 @@ using namespace raycast;
 
 // A packed box of n lit spheres, w x h, under a light, with shadows and ao rays.
 scene lit_box(int64_t n, uint32_t ao, int64_t w = 192, int64_t h = 108) {
-  scene_params p = particle_box(n);
-  p.camera.image_width = w;
-  p.camera.image_height = h;
+  api::scene p = particle_box(n);
+  p.cam.width = w;
+  p.cam.height = h;
   for (sphere& s : p.spheres) {
     s.shade = shading::lit;
-    s.flat_color = color(0.9, 0.7, 0.4);
+    s.color = color(0.9, 0.7, 0.4);
   }
   p.light.direction = vec3(0.3, 1.0, 0.6);
   p.light.shadows = true;
   p.light.ao_samples = ao;
   p.light.ao_distance = 5 * p.spheres[0].radius;
-  return make_scene(p);
+  return raycast::make_scene(p);
 }
 
 image render(const scene& s, backend b, int threads = 1, uint32_t samples = 1) {
@@ -65,13 +65,13 @@ TEST_P(LightBackends, EveryBackendAndThreadCountGivesTheScalarBytes) {
 // where the packed box's, its AO cells built, walk those) gives the same
 // bytes too.
 TEST_P(LightBackends, ACloudsShadowsThroughTheBinsAreTheScalarBytes) {
-  scene_params p = particle_cloud(3000);
-  p.camera.image_width = 192;
-  p.camera.image_height = 108;
+  api::scene p = particle_cloud(3000);
+  p.cam.width = 192;
+  p.cam.height = 108;
   for (sphere& sp : p.spheres) sp.shade = shading::lit;
   p.light.direction = vec3(-0.5, 1.0, 0.3);
   p.light.shadows = true;
-  scene s = make_scene(p);
+  scene s = raycast::make_scene(p);
   ASSERT_GT(sphere_grid(s, false).free_path(), sphere_grid::short_free_path);
   const image want = render(s, backend::scalar);
   EXPECT_EQ(render(s, GetParam()).bytes, want.bytes);
@@ -111,7 +111,7 @@ TEST(Light, ShadowsWithNothingInTheWayAndTheHeadlightChangeNoByte) {
   s.light.shadows = false;
   EXPECT_EQ(render(s, backend::automatic).bytes, shadowed.bytes);
   scene head = lit_box(500, 0);
-  head.light = lighting{};
+  head.light = api::light{};
   const image today = render(head, backend::automatic);
   head.light.ao_distance = 1e30;  // ambient occlusion off: the distance means nothing
   EXPECT_EQ(render(head, backend::automatic).bytes, today.bytes);
@@ -136,8 +136,8 @@ double grazing(std::span<const sphere> world, const point3& o, const vec3& d, do
   double g = INFINITY;
   for (const sphere& s : world) {
     if (&s == skip) continue;
-    const double t = std::clamp(glm::dot(s.center - o, d), 0.0, tmax);
-    const double dist = glm::length(o + t * d - s.center);
+    const double t = std::clamp(glm::dot(to_glm(s.center) - o, d), 0.0, tmax);
+    const double dist = glm::length(o + t * d - to_glm(s.center));
     g = std::min(g, std::abs(dist - s.radius) / s.radius);
   }
   return g;
@@ -160,7 +160,7 @@ TEST(Light, GridVerdictsAgreeWithTheReferenceButForGrazingRays) {
       const vec3 n = unit_vector(vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5));
       const vec3 d = cosine_direction(n, u(rng), u(rng));
       const double tmax = q % 2 ? INFINITY : 5 * sp.radius;
-      const point3 p = sp.center + sp.radius * n;
+      const point3 p = to_glm(sp.center) + sp.radius * n;
       const bool want = blocked(s.spheres, p, d, tmax, &sp);
       const float* c = grid.sphere(k);
       const float nf[3] = {float(n.x), float(n.y), float(n.z)}, df[3] = {float(d.x), float(d.y), float(d.z)};
@@ -197,10 +197,10 @@ bool blocked_by_any(const sphere_grid& g, const float o[3], const float d[3], fl
 scene mixed_sizes() {
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  scene_params p;
+  api::scene p;
   for (int k = 0; k < 3000; ++k)
     p.spheres.push_back(sphere{point3(u(rng) * 4 - 2, u(rng) * 2 - 1, u(rng) * 3 - 8), 0.01 + 0.12 * u(rng) * u(rng)});
-  return make_scene(p);
+  return raycast::make_scene(p);
 }
 
 struct walk_count {
@@ -251,7 +251,7 @@ TEST(Light, GridWalkFindsWhatTestingEverySphereFinds) {
 // ... on a packed box jittered within lattice cells (its spheres hardly
 // reach into other cells) ...
 TEST(Light, GridWalkFindsWhatTestingEverySphereFindsInAPackedBox) {
-  const sphere_grid g(make_scene(particle_box(2000)));
+  const sphere_grid g(raycast::make_scene(particle_box(2000)));
   const walk_count w = walk_against_every_sphere(g, 7);
   EXPECT_GT(w.blocked, w.rays / 10);
   EXPECT_EQ(w.mismatches, 0u) << "of " << w.rays << " rays";
@@ -261,13 +261,13 @@ TEST(Light, GridWalkFindsWhatTestingEverySphereFindsInAPackedBox) {
 scene huge_among_small() {
   std::mt19937 rng(8);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  scene_params p;
+  api::scene p;
   for (int k = 0; k < 1000; ++k)  // small ones over a box, big ones' centres near its middle
     p.spheres.push_back(k % 5 ? sphere{point3(u(rng) * 4 - 2, u(rng) * 3 - 1.5, u(rng) * 3 - 9.5), 0.05}
                               : sphere{point3(u(rng) * 0.5 - 0.25, u(rng) * 0.5 - 0.25, u(rng) * 0.5 - 8.25),
                                        1.2 + 0.1 * u(rng)});
   for (sphere& sp : p.spheres) sp.shade = shading::lit;
-  return make_scene(p);
+  return raycast::make_scene(p);
 }
 
 // Small spheres over a box, and as many again in a clump in its middle, a
@@ -276,11 +276,11 @@ scene huge_among_small() {
 scene clumped() {
   std::mt19937 rng(12);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  scene_params p;
+  api::scene p;
   for (int k = 0; k < 3000; ++k)
     p.spheres.push_back(k % 2 ? sphere{point3(u(rng) * 4 - 2, u(rng) * 4 - 2, u(rng) * 4 - 10), 0.01}
                               : sphere{point3(u(rng) * 0.3 - 0.15, u(rng) * 0.3 - 0.15, u(rng) * 0.3 - 8.15), 0.005});
-  return make_scene(p);
+  return raycast::make_scene(p);
 }
 
 TEST(Light, GridWalkFindsWhatTestingEverySphereFindsInACoarseGrid) {
@@ -345,8 +345,8 @@ group_count groups_against_every_sphere(const sphere_grid& g, uint32_t seed, int
 
 TEST(Light, AHitsRaysWalkedTogetherFindWhatTestingEverySphereFinds) {
   // The lattice box lists most spheres in one cell, the random one in several.
-  const sphere_grid grids[] = {sphere_grid(mixed_sizes()), sphere_grid(make_scene(particle_box(2000))),
-                               sphere_grid(make_scene(particle_box_random(2000))), sphere_grid(huge_among_small()),
+  const sphere_grid grids[] = {sphere_grid(mixed_sizes()), sphere_grid(raycast::make_scene(particle_box(2000))),
+                               sphere_grid(raycast::make_scene(particle_box_random(2000))), sphere_grid(huge_among_small()),
                                sphere_grid(clumped())};
   ASSERT_GT(grids[2].references(), 4 * grids[2].size()) << "random centres should reach into several cells";
   for (const int lanes : sphere_grid::lane_widths()) {
@@ -389,22 +389,22 @@ void on_sphere(const sphere_grid& g, uint32_t k, const vec3& n, float p[3]) {
 scene column_along(const vec3& l) {
   std::mt19937 rng(15);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  scene_params p;
+  api::scene p;
   for (int k = 0; k < 1000; ++k) {
     const point3 c = k % 5 < 2 ? point3(u(rng) * 4 - 2, u(rng) * 4 - 2, u(rng) * 4 - 2)
                                : point3(0.02 * u(rng), 0.02 * u(rng), 0.02 * u(rng)) + (u(rng) * 8 - 4) * l;
     p.spheres.push_back(sphere{c, 0.01 + 0.02 * u(rng)});
   }
   for (sphere& sp : p.spheres) sp.shade = shading::lit;
-  return make_scene(p);
+  return raycast::make_scene(p);
 }
 
 TEST(Light, ShadowRaysGetTheSameVerdictsFromTheBinsAndTheCells) {
   const vec3 l = unit_vector(vec3(0.3, 1.0, 0.6));
   const scene box = lit_box(3000, 0), huge = huge_among_small(), column = column_along(l);
-  scene_params cp = particle_cloud(3000);
+  api::scene cp = particle_cloud(3000);
   for (sphere& sp : cp.spheres) sp.shade = shading::lit;
-  const scene cloud = make_scene(cp);
+  const scene cloud = raycast::make_scene(cp);
   const float lf[3] = {float(l.x), float(l.y), float(l.z)};
   std::mt19937 rng(12);
   std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -437,9 +437,9 @@ TEST(Light, ShadowRaysGetTheSameVerdictsFromTheBinsAndTheCells) {
 TEST(Light, GridAndBinsAreTheSameOnAnyNumberOfThreads) {
   const vec3 l = unit_vector(vec3(0.3, 1.0, 0.6));
   const float lf[3] = {float(l.x), float(l.y), float(l.z)};
-  scene_params cp = particle_cloud(5000);
+  api::scene cp = particle_cloud(5000);
   for (sphere& sp : cp.spheres) sp.shade = shading::lit;
-  const scene box = lit_box(5000, 0), cloud = make_scene(cp), column = column_along(l);
+  const scene box = lit_box(5000, 0), cloud = raycast::make_scene(cp), column = column_along(l);
   std::mt19937 rng(23);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   for (const scene* s : {&box, &cloud, &column}) {
@@ -644,7 +644,7 @@ TEST(Light, ShadowBinVerdictsAgreeWithTheReferenceButForGrazingRays) {
     const sphere& sp = s.spheres[k];
     for (int q = 0; q < 16; ++q) {
       const vec3 n = cosine_direction(l, u(rng), u(rng));  // a point on the lit side
-      const point3 p = sp.center + sp.radius * n;
+      const point3 p = to_glm(sp.center) + sp.radius * n;
       const bool want = blocked(s.spheres, p, l, INFINITY, &sp);
       float pf[3];
       on_sphere(grid, k, n, pf);
@@ -665,9 +665,9 @@ TEST(Light, ShadowBinVerdictsAgreeWithTheReferenceButForGrazingRays) {
 
 // Touching and overlapping spheres: no light passes between them.
 TEST(Light, NoLightPassesBetweenTouchingOrOverlappingSpheres) {
-  scene_params p;
+  api::scene p;
   p.spheres = {sphere{point3(0, 0, -5), 1.0}, sphere{point3(2, 0, -5), 1.0}, sphere{point3(0, 1.5, -5), 1.0}};
-  const scene s = make_scene(p);
+  const scene s = raycast::make_scene(p);
   const sphere_grid g(s);
   const double unit = std::ldexp(1.0, -g.scale_exp);
   const auto grid_point = [&](const point3& w, float out[3]) {
@@ -705,17 +705,17 @@ class LightStiff : public ::testing::TestWithParam<stiff_light> {};
 
 TEST_P(LightStiff, AHitIsNeverShadowedByItsOwnSphere) {
   const stiff_light& c = GetParam();
-  scene_params p;
-  p.camera.image_width = 96;
-  p.camera.image_height = 54;
-  p.camera.vfov_degrees = 2 * std::atan(1.5 / c.far) * 180 / M_PI;
+  api::scene p;
+  p.cam.width = 96;
+  p.cam.height = 54;
+  p.cam.vfov = 2 * std::atan(1.5 / c.far) * 180 / M_PI;
   const point3 centre(0, 0, -c.far * c.radius * c.scale);  // straight ahead of the camera at the origin
   p.spheres = {sphere{centre, c.radius * c.scale, shading::lit, color(1, 1, 1)}};
   p.light.direction = c.light;
-  const scene plain = make_scene(p);
+  const scene plain = raycast::make_scene(p);
   p.light.shadows = true;
   p.light.ao_samples = 16;
-  const scene shadowed = make_scene(p);
+  const scene shadowed = raycast::make_scene(p);
   for (backend b : {backend::scalar, backend::automatic}) {
     const image want = render(plain, b), got = render(shadowed, b);
     EXPECT_EQ(got.bytes, want.bytes) << to_string(b);
@@ -723,9 +723,9 @@ TEST_P(LightStiff, AHitIsNeverShadowedByItsOwnSphere) {
   // Beside a sphere of radius 1e4 (out of view, away from the light), its lit side stays lit.
   p.spheres.push_back(sphere{centre + vec3(-2e4, 0, 0) * c.scale, 1e4 * c.scale, shading::lit, color(1, 1, 1)});
   p.light.ao_samples = 0;
-  const scene beside = make_scene(p);
+  const scene beside = raycast::make_scene(p);
   p.light.shadows = false;
-  EXPECT_EQ(render(beside, backend::automatic).bytes, render(make_scene(p), backend::automatic).bytes);
+  EXPECT_EQ(render(beside, backend::automatic).bytes, render(raycast::make_scene(p), backend::automatic).bytes);
 }
 
 INSTANTIATE_TEST_SUITE_P(Light, LightStiff,

@@ -66,7 +66,7 @@ class Numerics : public raycast_test::backend_test<mode> {
   }
 };
 
-scene make(const camera_params& p, const raycast::sky& s = {}) { return raycast_test::make_scene(p, s); }
+scene make(const api::camera& p, const raycast::sky& s = {}) { return raycast_test::make_scene(p, s); }
 
 // ------------------------------------------------------------------ 1. sizes
 
@@ -79,10 +79,10 @@ TEST_P(Numerics, DegenerateSizesAreFiniteAndMatchTheReference) {
   for (const size_case& c : {size_case{1, 225, 16.0 / 9.0}, size_case{400, 1, 16.0 / 9.0},
                              size_case{1, 1, 16.0 / 9.0}, size_case{400, std::nullopt, 100000.0},
                              size_case{3, std::nullopt, 1.0 / 100000.0}}) {
-    camera_params p;
-    p.image_width = c.w;
-    p.image_height = c.h;
-    p.aspect_ratio = c.aspect;
+    api::camera p;
+    p.width = c.w;
+    p.height = c.h;
+    p.aspect = c.aspect;
     const scene s = make(p);
     SCOPED_TRACE(std::to_string(s.cam.image_width) + "x" + std::to_string(s.cam.image_height));
     ASSERT_GE(s.cam.image_height, 1);
@@ -93,13 +93,13 @@ TEST_P(Numerics, DegenerateSizesAreFiniteAndMatchTheReference) {
 // ------------------------------------------------------------------ 2. scale
 
 TEST_P(Numerics, ScaleDoesNotChangeTheSky) {
-  camera_params base;
-  base.image_width = 64;
-  base.image_height = 36;
+  api::camera base;
+  base.width = 64;
+  base.height = 36;
   const image want = raycast_test::render_with_reference(make(base), pixel_format::rgb8);
   for (double k : {1e-30, 1e-20, 1e-10, 1e-3, 1e3, 1e10, 1e20, 1e30}) {
     SCOPED_TRACE("scale " + std::to_string(k));
-    camera_params p = base;
+    api::camera p = base;
     p.viewport_height = 2.0 * k;
     p.focal_length = 1.0 * k;
     const scene s = make(p);
@@ -118,9 +118,9 @@ TEST_P(Numerics, MixedScalesMatchTheReferenceAndKeepTheirGradient) {
   for (const mixed& m : {mixed{1e30, 1e-30, true}, mixed{3e-38, 7e37, false},
                          mixed{1e-30, 1e30, false}, mixed{1e20, 1.0, true}}) {
     SCOPED_TRACE("viewport " + std::to_string(m.viewport) + " focal " + std::to_string(m.focal));
-    camera_params p;
-    p.image_width = 33;
-    p.image_height = 17;
+    api::camera p;
+    p.width = 33;
+    p.height = 17;
     p.viewport_height = m.viewport;
     p.focal_length = m.focal;
     const scene s = make(p);
@@ -137,15 +137,15 @@ TEST_P(Numerics, MixedScalesMatchTheReferenceAndKeepTheirGradient) {
 // ------------------------------------------------------------------ 3. far origin
 
 TEST_P(Numerics, FarOriginGivesTheSameImageAsOriginZero) {
-  camera_params p;
-  p.image_width = 97;
-  p.image_height = 41;
+  api::camera p;
+  p.width = 97;
+  p.height = 41;
   const scene at_zero = make(p);
   for (const point3& o : {point3(1e8, -1e8, 1e12), point3(3.4e38, 3.4e38, 3.4e38),
                           point3(-3.4e38, -3.4e38, -3.4e38), point3(1e300, 0, -1e300)}) {
     SCOPED_TRACE("origin " + std::to_string(o.x) + "," + std::to_string(o.z));
-    camera_params q = p;
-    q.origin = o;
+    api::camera q = p;
+    q.lookfrom = o;
     const scene far = make(q);
     for (pixel_format f : {pixel_format::rgb8, pixel_format::rgb_f32})
       EXPECT_EQ(render(far, f).bytes, render(at_zero, f).bytes);
@@ -158,9 +158,9 @@ TEST_P(Numerics, FarOriginGivesTheSameImageAsOriginZero) {
 // 3 x 3 image looks exactly up (top), horizontally (middle) and down (bottom)
 // once the direction is in float: t must be exactly 1, 0.5 and 0.
 TEST_P(Numerics, UpDownAndHorizontalGiveTheEndColoursExactly) {
-  camera_params p;
-  p.image_width = 3;
-  p.image_height = 3;
+  api::camera p;
+  p.width = 3;
+  p.height = 3;
   p.focal_length = 1e-30;
   for (const raycast::sky& sk : {raycast::sky{}, raycast::sky{{0.2, 0.9, 0.4}, {0.8, 0.1, 0.3}},
                                  raycast::sky{{4, -1, 0.5}, {0.25, 16, 2}}}) {
@@ -184,9 +184,9 @@ TEST_P(Numerics, UpDownAndHorizontalGiveTheEndColoursExactly) {
 // The lesson's int(255.999 c) maps 1.0 to 255; colours above 1 or below 0
 // clamp, so no byte wraps to 0 or 255 from the other end.
 TEST_P(Numerics, EightBitNeverWraps) {
-  camera_params p;
-  p.image_width = 40;
-  p.image_height = 30;
+  api::camera p;
+  p.width = 40;
+  p.height = 30;
   const scene white = make(p, {{1, 1, 1}, {1, 1, 1}});
   for (unsigned char v : render(white, pixel_format::rgb8).bytes) ASSERT_EQ(v, 255);
   const scene over = make(p, {{1.5, 2, 1e6}, {1.0000001, 3, 1e9}});
@@ -214,9 +214,9 @@ class mxcsr_guard {
 
 TEST_P(Numerics, FlushToZeroAndDenormalsAreZeroChangeNothing) {
   std::vector<scene> scenes;
-  camera_params p;
-  p.image_width = 41;
-  p.image_height = 23;
+  api::camera p;
+  p.width = 41;
+  p.height = 23;
   scenes.push_back(make(p));
   p.focal_length = 1e-30;  // z^2 underflows: denormal or zero
   scenes.push_back(make(p));
@@ -226,8 +226,8 @@ TEST_P(Numerics, FlushToZeroAndDenormalsAreZeroChangeNothing) {
   p.viewport_height = 3e-38;  // the viewport vanishes next to the focal length
   scenes.push_back(make(p));
   // Denormal and tiny sky colours (the lerp would otherwise produce denormals).
-  scenes.push_back(make(camera_params{}, {{1e-39, 0.5, 1e-40}, {1e-38, 2e-39, 0.75}}));
-  scenes.push_back(make(camera_params{}, {{3e-30, 1e-25, 0}, {-2e-30, 5e-26, 1e-21}}));
+  scenes.push_back(make(api::camera{}, {{1e-39, 0.5, 1e-40}, {1e-38, 2e-39, 0.75}}));
+  scenes.push_back(make(api::camera{}, {{3e-30, 1e-25, 0}, {-2e-30, 5e-26, 1e-21}}));
   for (const scene& s : scenes) {
     for (pixel_format f : {pixel_format::rgb8, pixel_format::rgb_f32}) {
       image off, on;
@@ -250,19 +250,19 @@ TEST_P(Numerics, FlushToZeroAndDenormalsAreZeroChangeNothing) {
 // W * H * 3 far above 2^32: a band of rows near the bottom of a huge virtual
 // image lands where 64-bit row and column arithmetic says it should.
 TEST_P(Numerics, HugeVirtualImageBandsUseSixtyFourBitIndexing) {
-  camera_params p;
-  p.image_width = 70001;
-  p.image_height = 40000;  // 70001 * 40000 * 3 = 8.4e9 bytes > 2^32
+  api::camera p;
+  p.width = 70001;
+  p.height = 40000;  // 70001 * 40000 * 3 = 8.4e9 bytes > 2^32
   const scene s = make(p);
-  for (int64_t r0 : {int64_t{0}, p.image_height.value() / 2 - 1, p.image_height.value() - 2}) {
-    image band(p.image_width, 2, pixel_format::rgb8);
+  for (int64_t r0 : {int64_t{0}, p.height.value() / 2 - 1, p.height.value() - 2}) {
+    image band(p.width, 2, pixel_format::rgb8);
     image_band b = band.band();
     b.row_begin = r0;
     b.row_end = r0 + 2;
     renderer(s, {GetParam().which, GetParam().prec, 1}).render(b);
     for (int64_t r = 0; r < 2; ++r) {
       const int64_t j = s.cam.image_height - 1 - (r0 + r);
-      for (int64_t i : {int64_t{0}, int64_t{1}, p.image_width / 2, p.image_width - 1}) {
+      for (int64_t i : {int64_t{0}, int64_t{1}, p.width / 2, p.width - 1}) {
         const color c = reference_pixel(s, i, j);
         for (int k = 0; k < 3; ++k)
           EXPECT_LE(std::abs(band.byte(r, i, k) - int(to_byte(c[k]))), 1)
@@ -275,9 +275,9 @@ TEST_P(Numerics, HugeVirtualImageBandsUseSixtyFourBitIndexing) {
 // ------------------------------------------------------------------ 8. HDR
 
 TEST_P(Numerics, HdrColoursReachFloatOutputUnclamped) {
-  camera_params p;
-  p.image_width = 50;
-  p.image_height = 30;
+  api::camera p;
+  p.width = 50;
+  p.height = 30;
   const raycast::sky hdr{{4.0, 2.0, 0.5}, {-1.0, 0.25, 16.0}};
   const scene s = make(p, hdr);
   expect_like_reference(s);
@@ -294,9 +294,9 @@ TEST_P(Numerics, HdrColoursReachFloatOutputUnclamped) {
 // The documented bounds (scalar.h, src/kernels/README.md) hold on the cases that
 // push the error hardest: the widest sky spans and many directions.
 TEST_P(Numerics, DocumentedErrorBoundsHoldAtTheirEdge) {
-  camera_params p;
-  p.image_width = 1031;
-  p.image_height = 517;
+  api::camera p;
+  p.width = 1031;
+  p.height = 517;
   p.viewport_height = 9.0;
   p.focal_length = 0.3;
   for (const raycast::sky& sk : {raycast::sky{}, raycast::sky{{0, 0, 0}, {1, 1, 1}},
@@ -305,9 +305,9 @@ TEST_P(Numerics, DocumentedErrorBoundsHoldAtTheirEdge) {
   }
   // A focal length tiny next to the viewport: every direction lies almost in
   // the viewport plane, and the pixels next to the centre are the hardest.
-  camera_params q;
-  q.image_width = 400;
-  q.image_height = 225;
+  api::camera q;
+  q.width = 400;
+  q.height = 225;
   q.viewport_height = 1e30;
   q.focal_length = 1e-30;
   for (const raycast::sky& sk : {raycast::sky{}, raycast::sky{{4.0, 2.0, 0.5}, {-1.0, 0.25, 16.0}}})
@@ -332,9 +332,9 @@ class DegenerateSizes : public raycast_test::backend_test<backend> {};
 TEST_P(DegenerateSizes, EveryBackendGivesTheScalarRenderersBits) {
   const backend b = GetParam();
   for (auto [w, h] : {std::pair<int64_t, int64_t>{1, 1}, {1, 225}, {400, 1}, {3, 300000}}) {
-    camera_params p;
-    p.image_width = w;
-    p.image_height = h;
+    api::camera p;
+    p.width = w;
+    p.height = h;
     const scene s = make(p);
     for (pixel_format f : {pixel_format::rgb8, pixel_format::rgb_f32})
       EXPECT_EQ(raycast_test::render_with(renderer(s, {b, precision::exact, 1}), f).bytes,
@@ -347,20 +347,20 @@ INSTANTIATE_TEST_SUITE_P(SimdBackends, DegenerateSizes, ::testing::ValuesIn(simd
                          raycast_test::backend_name);
 
 TEST(SizeLimits, WidthsAboveTwoToTheTwentyFourAreRefusedWithTheLimit) {
-  camera_params p;
-  p.image_width = max_dimension;
-  p.image_height = 1;
+  api::camera p;
+  p.width = max_dimension;
+  p.height = 1;
   EXPECT_FALSE(validate(p).has_value());
-  p.image_width = max_dimension + 1;
+  p.width = max_dimension + 1;
   const auto e = validate(p);
   ASSERT_TRUE(e.has_value());
   EXPECT_NE(e->message.find(std::to_string(max_dimension)), std::string::npos) << e->message;
 }
 
 TEST(SizeLimits, SkyColoursBeyondTheLimitAreRefused) {
-  EXPECT_FALSE(validate(raycast::sky{}).has_value());
-  EXPECT_TRUE(validate(raycast::sky{{1e31, 0, 0}, {1, 1, 1}}).has_value());
-  EXPECT_TRUE(validate(raycast::sky{{1, 1, 1}, {0, NAN, 0}}).has_value());
+  EXPECT_FALSE(validate(api::sky{}).has_value());
+  EXPECT_TRUE(validate(api::sky{{1e31, 0, 0}, {1, 1, 1}}).has_value());
+  EXPECT_TRUE(validate(api::sky{{1, 1, 1}, {0, NAN, 0}}).has_value());
 }
 
 }  // namespace

@@ -14,6 +14,8 @@
 #include <vector>
 
 #include "raycast/raycast.h"
+#include "scene/colormap.h"
+#include "formats/registry.h"
 #include "kernels/float_scene.h"
 #include "render/backend.h"
 #include "render_support.h"
@@ -36,7 +38,7 @@ byte_source memory(const std::string& bytes, bool unchanged = true) {
   return src;
 }
 
-scene_params read_ok(const std::string& bytes, const particle_options& o = {}) {
+api::scene read_ok(const std::string& bytes, const api::particles& o = {}) {
   auto r = read_ply(memory(bytes), o);
   if (auto* e = std::get_if<scene_file_error>(&r)) {
     ADD_FAILURE() << e->path << ": " << e->message;
@@ -45,25 +47,25 @@ scene_params read_ok(const std::string& bytes, const particle_options& o = {}) {
   return std::move(std::get<scene_file_contents>(r).scene);
 }
 
-scene_file_error refused(const std::string& bytes, const particle_options& o = {}) {
+scene_file_error refused(const std::string& bytes, const api::particles& o = {}) {
   auto r = read_ply(memory(bytes), o);
   if (auto* e = std::get_if<scene_file_error>(&r)) return *e;
   ADD_FAILURE() << "read without an error";
   return {};
 }
 
-camera_params test_camera() {
-  camera_params c;
-  c.image_width = 160;
-  c.image_height = 90;
-  c.origin = vec3(0.5, 1.0, 3.0);
+api::camera test_camera() {
+  api::camera c;
+  c.width = 160;
+  c.height = 90;
+  c.lookfrom = vec3(0.5, 1.0, 3.0);
   c.lookat = vec3(0.0, 0.0, -5.0);
-  c.vfov_degrees = 40.0;
+  c.vfov = 40.0;
   return c;
 }
 
-image rendered(scene_params p, backend b, sphere_order order = sphere_order::automatic) {
-  p.camera = test_camera();
+image rendered(api::scene p, backend b, sphere_order order = sphere_order::automatic) {
+  p.cam = test_camera();
   EXPECT_FALSE(validate(p));
   render_options o;
   o.which = b;
@@ -78,14 +80,14 @@ image rendered(scene_params p, backend b, sphere_order order = sphere_order::aut
 TEST(Ply, EveryEncodingRendersTheJsonScenesBytesOnEveryBackend) {
   const std::vector<particle> ps = random_particles(3000, 7);
   auto json = parse_scene_file(json_of(ps));
-  ASSERT_TRUE(std::holds_alternative<scene_params>(json));
-  const scene_params from_json = std::get<scene_params>(json);
+  ASSERT_TRUE(std::holds_alternative<api::scene>(json));
+  const api::scene from_json = std::get<api::scene>(json);
   for (backend b : all_backends) {
     if (backend_unavailable(b)) continue;
     const image want = rendered(from_json, b);
     for (enc e : {enc::ascii, enc::little, enc::big}) {
       const std::string bytes = ply_of(ps, e);
-      const scene_params p = read_ok(bytes);
+      const api::scene p = read_ok(bytes);
       ASSERT_TRUE(p.arrays);
       EXPECT_EQ(p.arrays->count, ps.size());
       const difference d = compare(rendered(p, b), want);
@@ -102,9 +104,9 @@ TEST(Ply, EveryEncodingRendersTheJsonScenesBytesOnEveryBackend) {
 // order, row order and depth order.
 TEST(Ply, EveryOrderOfPreparationGivesTheSameBytes) {
   const std::vector<particle> ps = random_particles(40000, 9);  // two threads' chunks from 2^15 spheres
-  const scene_params from_json = std::get<scene_params>(parse_scene_file(json_of(ps)));
+  const api::scene from_json = std::get<api::scene>(parse_scene_file(json_of(ps)));
   for (enc e : {enc::little, enc::ascii}) {
-    scene_params p = read_ok(ply_of(ps, e));
+    api::scene p = read_ok(ply_of(ps, e));
     ASSERT_TRUE(p.arrays);
     for (sphere_order order : {sphere_order::scene, sphere_order::rows, sphere_order::depth}) {
       const difference d =
@@ -118,18 +120,18 @@ TEST(Ply, EveryOrderOfPreparationGivesTheSameBytes) {
 TEST(Ply, BinaryBodiesAreReadInPlace) {
   const std::vector<particle> ps = random_particles(10, 3);
   for (enc e : {enc::little, enc::big}) {
-    const scene_params p = read_ok(ply_of(ps, e));
+    const api::scene p = read_ok(ply_of(ps, e));
     ASSERT_TRUE(p.arrays);
     EXPECT_EQ(p.arrays->centers.stride, 23);  // x y z radius (16) rgb (3) id (4)
     EXPECT_EQ(p.arrays->centers.component_stride, 4);
-    EXPECT_EQ(p.arrays->centers.swapped, e == enc::big);
-    EXPECT_EQ(p.arrays->colors.type, sphere_view::element::u8);
+    EXPECT_EQ(p.arrays->centers.byte_swapped, e == enc::big);
+    EXPECT_EQ(p.arrays->colors.type, api::element::u8);
     EXPECT_TRUE(p.arrays->owner);
     for (size_t k = 0; k < ps.size(); ++k) {
       const sphere s = p.arrays->at(k);
       EXPECT_EQ(s.center, vec3(ps[k].x, ps[k].y, ps[k].z));
       EXPECT_EQ(s.radius, double(ps[k].radius));
-      EXPECT_EQ(s.flat_color[1], ps[k].rgb[1] / 255.0);
+      EXPECT_EQ(s.color[1], ps[k].rgb[1] / 255.0);
       EXPECT_EQ(s.shade, shading::lit);
     }
   }
@@ -151,7 +153,7 @@ TEST(Ply, OtherElementsAreSkippedAndNoColoursMeansNormalShading) {
     std::string bytes = ply_of(ps, e, true, false, "element face 2\nproperty list uchar int vertex_indices\n");
     const size_t body = bytes.find("end_header\n") + 11;
     bytes.insert(body, faces);
-    const scene_params p = read_ok(bytes);
+    const api::scene p = read_ok(bytes);
     ASSERT_TRUE(p.arrays);
     EXPECT_EQ(p.arrays->shade, shading::normal);
     EXPECT_FALSE(p.arrays->colors.data);
@@ -162,9 +164,9 @@ TEST(Ply, OtherElementsAreSkippedAndNoColoursMeansNormalShading) {
 TEST(Ply, RadiusGivesEverySphereOne) {
   const std::vector<particle> ps = random_particles(50, 11);
   for (bool has_radius : {false, true}) {
-    particle_options o;
+    api::particles o;
     o.radius = 0.125;
-    const scene_params p = read_ok(ply_of(ps, enc::little, has_radius), o);
+    const api::scene p = read_ok(ply_of(ps, enc::little, has_radius), o);
     ASSERT_TRUE(p.arrays);
     for (size_t k = 0; k < ps.size(); ++k) EXPECT_EQ(p.arrays->at(k).radius, 0.125);
   }
@@ -176,10 +178,10 @@ TEST(Ply, RadiusGivesEverySphereOne) {
 TEST(Ply, ColorByMapsAPropertyThroughTheColormap) {
   const std::vector<particle> ps = random_particles(300, 13);  // ids 0 ... 299
   for (colormap m : {colormap::viridis, colormap::magma, colormap::gray}) {
-    particle_options o;
+    api::particles o;
     o.color_by = "id";
-    o.map = m;
-    const scene_params p = read_ok(ply_of(ps, enc::ascii), o);
+    o.colormap = colormap_names[size_t(m)];
+    const api::scene p = read_ok(ply_of(ps, enc::ascii), o);
     ASSERT_TRUE(p.arrays);
     EXPECT_EQ(p.arrays->shade, shading::lit);
     for (size_t k : {size_t(0), size_t(150), size_t(299)}) {
@@ -187,7 +189,7 @@ TEST(Ply, ColorByMapsAPropertyThroughTheColormap) {
       for (int c = 0; c < 3; ++c) EXPECT_EQ(p.arrays->colors.get(k, c), double(want[size_t(c)]));
     }
     o.color_range = std::array<double, 2>{100.0, 200.0};
-    const scene_params q = read_ok(ply_of(ps, enc::little), o);
+    const api::scene q = read_ok(ply_of(ps, enc::little), o);
     EXPECT_EQ(q.arrays->colors.get(0, 0), double(colormap_color(m, 100.0, 100.0, 200.0)[0]));
     EXPECT_EQ(q.arrays->colors.get(299, 1), double(colormap_color(m, 200.0, 100.0, 200.0)[1]));
   }
@@ -201,7 +203,7 @@ TEST(Ply, ColorByMapsAPropertyThroughTheColormap) {
   EXPECT_EQ(colormap_color(colormap::viridis, 1.7e308, -1.7e308, 1.7e308)[0], 0.993248f);
   EXPECT_EQ(colormap_color(colormap::viridis, -1.7e308, -1.7e308, 1.7e308)[0], 0.267004f);
   EXPECT_EQ(colormap_color(colormap::viridis, 0.0, -1.7e308, 1.7e308)[1], colormap_color(colormap::viridis, 0.5, 0.0, 1.0)[1]);
-  particle_options o;
+  api::particles o;
   o.color_by = "ids";
   const scene_file_error e = refused(ply_of(ps, enc::little), o);
   EXPECT_EQ(e.path, "vertex.ids");
@@ -289,7 +291,7 @@ std::vector<hostile> hostile_files() {
 // A count the file cannot hold is refused before --color-by's values are
 // allocated for it (4294967295 doubles: 34 GB).
 TEST(Ply, ACountIsCheckedBeforeAnythingIsAllocatedForIt) {
-  particle_options o;
+  api::particles o;
   o.color_by = "x";
   for (const char* format : {"binary_little_endian", "ascii"}) {
     const scene_file_error e = refused(head(format, "4294967295", xyzr) + "0 0 -1 1\n", o);
@@ -328,11 +330,11 @@ TEST(Ply, AFileThatChangesWhileReadIsRefused) {
 }
 
 TEST(Ply, OnlyNamesEndingInPlyAreParticleFiles) {
-  EXPECT_TRUE(is_ply_file_name("a.ply"));
-  EXPECT_TRUE(is_ply_file_name("dir/B.PLY"));
-  EXPECT_FALSE(is_ply_file_name(".ply"));
-  EXPECT_FALSE(is_ply_file_name("a.ply.json"));
-  EXPECT_TRUE(is_scene_file_name("a.ply"));
+  EXPECT_TRUE(formats::is_particle_file_name("a.ply"));
+  EXPECT_TRUE(formats::is_particle_file_name("dir/B.PLY"));
+  EXPECT_FALSE(formats::is_particle_file_name(".ply"));
+  EXPECT_FALSE(formats::is_particle_file_name("a.ply.json"));
+  EXPECT_TRUE(formats::is_scene_file_name("a.ply"));
 }
 
 // The library's load_scene reads a particle file with the command line's

@@ -69,16 +69,16 @@ std::vector<named_camera> cameras() {
   };
 }
 
-camera_params to_params(const book_camera& c, int64_t W, int64_t H) {
-  camera_params p;
-  p.image_width = W;
-  p.image_height = H;
-  p.aspect_ratio = c.aspect;
+api::camera to_params(const book_camera& c, int64_t W, int64_t H) {
+  api::camera p;
+  p.width = W;
+  p.height = H;
+  p.aspect = c.aspect;
   p.focal_length = c.focal;
-  p.origin = c.lookfrom;
+  p.lookfrom = c.lookfrom;
   p.lookat = c.lookat;
   p.vup = c.vup;
-  p.vfov_degrees = c.vfov_degrees;
+  p.vfov = c.vfov_degrees;
   return p;
 }
 
@@ -137,7 +137,7 @@ INSTANTIATE_TEST_SUITE_P(SimdBackends, TiltedCamera, ::testing::ValuesIn(simd_ba
 
 TEST(PositionableCamera, WithoutItsOptionsTheCameraIsTheLessons) {
   const camera lesson = make_camera({});
-  camera_params p;
+  api::camera p;
   p.lookat = point3(0, 0, -1);  // the lesson's own view, spelled out
   const camera spelled = make_camera(p);
   EXPECT_EQ(lesson.horizontal, spelled.horizontal);
@@ -147,15 +147,15 @@ TEST(PositionableCamera, WithoutItsOptionsTheCameraIsTheLessons) {
 }
 
 TEST(PositionableCamera, VfovSetsTheViewportHeight) {
-  camera_params p;
-  p.vfov_degrees = 90.0;
+  api::camera p;
+  p.vfov = 90.0;
   p.focal_length = 3.0;
   EXPECT_NEAR(make_camera(p).viewport_height, 6.0, 1e-12);  // 2 tan(45 deg) 3
 }
 
 TEST(PositionableCamera, FarLookfromIsTheSameImageAsNearOrigin) {
-  camera_params near = to_params(cameras()[5].cam, 64, 36), far = near;
-  near.origin = point3(0, 0, 0);
+  api::camera near = to_params(cameras()[5].cam, 64, 36), far = near;
+  near.lookfrom = point3(0, 0, 0);
   near.lookat = point3(0, 1, -1);
   for (backend b : target_backends) {
     if (backend_unavailable(b)) continue;
@@ -166,22 +166,22 @@ TEST(PositionableCamera, FarLookfromIsTheSameImageAsNearOrigin) {
 }
 
 TEST(PositionableCamera, DegenerateCamerasAreRefused) {
-  camera_params same;
+  api::camera same;
   same.lookat = point3(0, 0, 0);
   EXPECT_TRUE(validate(same).has_value());
-  camera_params parallel;
+  api::camera parallel;
   parallel.lookat = point3(0, 5, 0);  // looking straight up with vup = +y
   EXPECT_TRUE(validate(parallel).has_value());
-  camera_params zero_up;
+  api::camera zero_up;
   zero_up.lookat = point3(0, 0, -1);
   zero_up.vup = vec3(0);
   EXPECT_TRUE(validate(zero_up).has_value());
   for (double f : {0.0, -10.0, 180.0, 200.0, double(NAN)}) {
-    camera_params fov;
-    fov.vfov_degrees = f;
+    api::camera fov;
+    fov.vfov = f;
     EXPECT_TRUE(validate(fov).has_value()) << f;
   }
-  camera_params ok;
+  api::camera ok;
   ok.lookat = point3(0, 5, -0.001);
   EXPECT_FALSE(validate(ok).has_value());
 }

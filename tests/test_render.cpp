@@ -167,13 +167,13 @@ TEST_P(RendererTest, Rgb8IsWithinOneLsbOfTheReference) {
 // colours outside [0, 1] that 8-bit output clamps.
 using raycast_test::scene_case;
 
-camera_params with(double vh, double focal, point3 origin, int64_t w = 160, int64_t h = 90) {
-  camera_params p;
+api::camera with(double vh, double focal, point3 origin, int64_t w = 160, int64_t h = 90) {
+  api::camera p;
   p.viewport_height = vh;
   p.focal_length = focal;
-  p.origin = origin;
-  p.image_width = w;
-  p.image_height = h;
+  p.lookfrom = origin;
+  p.width = w;
+  p.height = h;
   return p;
 }
 

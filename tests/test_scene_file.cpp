@@ -24,16 +24,16 @@ namespace {
 
 using namespace raycast;
 
-scene_params parsed(const std::string& text) {
+api::scene parsed(const std::string& text) {
   auto r = parse_scene_file(text);
   if (auto* e = std::get_if<scene_file_error>(&r)) {
     ADD_FAILURE() << e->path << ": " << e->message;
     return {};
   }
-  return std::get<scene_params>(r);
+  return std::get<api::scene>(r);
 }
 
-scene_file_error error_of(const std::variant<scene_params, scene_file_error>& r) {
+scene_file_error error_of(const std::variant<api::scene, scene_file_error>& r) {
   if (auto* e = std::get_if<scene_file_error>(&r)) return *e;
   ADD_FAILURE() << "no error";
   return {};
@@ -43,32 +43,32 @@ std::string error_path(const std::string& text) {
   auto r = parse_scene_file(text);
   if (auto* e = std::get_if<scene_file_error>(&r)) return e->path.empty() ? "(file)" : e->path;
   // Camera and sky rules are checked after overrides, by validate().
-  if (auto e = validate(std::get<scene_params>(r))) return path(*e);
+  if (auto e = validate(std::get<api::scene>(r))) return path(*e);
   return "(none)";
 }
 
 TEST(SceneFile, EveryKey) {
-  const scene_params p = parsed(R"({
+  const api::scene p = parsed(R"({
     "camera": {"width": 320, "height": 200, "aspect": "16:10", "lookfrom": [-2, 2, 1],
                "lookat": [0, 0, -1], "vup": [0, 1, 0.5], "vfov": 40, "focal_length": 2},
     "sky": {"bottom": [1, 0.9, 0.8], "top": [0.1, 0.2, 0.3]},
     "spheres": [{"center": [0, 0, -1], "radius": 0.5},
                 {"center": [1, 2, 3], "radius": 4, "shade": "flat", "color": [0.25, 0.5, 1]},
                 {"center": [0, -100.5, -1], "radius": 100, "shade": "normal"}]})");
-  EXPECT_EQ(p.camera.image_width, 320);
-  EXPECT_EQ(p.camera.image_height, 200);
-  EXPECT_DOUBLE_EQ(p.camera.aspect_ratio, 1.6);
-  EXPECT_EQ(p.camera.origin, vec3(-2, 2, 1));
-  EXPECT_EQ(p.camera.lookat, vec3(0, 0, -1));
-  EXPECT_EQ(p.camera.vup, vec3(0, 1, 0.5));
-  EXPECT_EQ(p.camera.vfov_degrees, 40.0);
-  EXPECT_EQ(p.camera.focal_length, 2.0);
+  EXPECT_EQ(p.cam.width, 320);
+  EXPECT_EQ(p.cam.height, 200);
+  EXPECT_DOUBLE_EQ(p.cam.aspect, 1.6);
+  EXPECT_EQ(p.cam.lookfrom, vec3(-2, 2, 1));
+  EXPECT_EQ(p.cam.lookat, vec3(0, 0, -1));
+  EXPECT_EQ(p.cam.vup, vec3(0, 1, 0.5));
+  EXPECT_EQ(p.cam.vfov, 40.0);
+  EXPECT_EQ(p.cam.focal_length, 2.0);
   EXPECT_EQ(p.sky.bottom, color(1, 0.9, 0.8));
   EXPECT_EQ(p.sky.top, color(0.1, 0.2, 0.3));
   ASSERT_EQ(p.spheres.size(), 3u);
   EXPECT_EQ(p.spheres[0].shade, shading::normal);
   EXPECT_EQ(p.spheres[1].shade, shading::flat);
-  EXPECT_EQ(p.spheres[1].flat_color, color(0.25, 0.5, 1));
+  EXPECT_EQ(p.spheres[1].color, color(0.25, 0.5, 1));
   EXPECT_EQ(p.spheres[1].center, vec3(1, 2, 3));
   EXPECT_EQ(p.spheres[1].radius, 4.0);
   EXPECT_EQ(p.spheres[2].shade, shading::normal);
@@ -79,7 +79,7 @@ TEST(SceneFile, EveryKey) {
 // unescaping otherwise: both give the same shading, and a name that only
 // starts like one is refused.
 TEST(SceneFile, ShadeNamesPlainOrEscaped) {
-  const scene_params p = parsed(R"({"spheres": [
+  const api::scene p = parsed(R"({"spheres": [
       {"center": [0, 0, -1], "radius": 0.5, "shade": "lit", "color": [1, 0, 0]},
       {"center": [0, 0, -1], "radius": 0.5, "shade": "\u006cit", "color": [1, 0, 0]},
       {"center": [0, 0, -1], "radius": 0.5, "shade": "fl\u0061t", "color": [1, 0, 0]},
@@ -102,7 +102,7 @@ TEST(SceneFile, ShadeNamesPlainOrEscaped) {
 // holding W:H or a number.
 TEST(SceneFile, AnAspectIsANumberOrAStringTheCommandLineTakes) {
   for (const char* aspect : {"1.6", "\"1.6\"", "\"16:10\"", "\"8:5\"", "\"1.6e0\""})
-    EXPECT_DOUBLE_EQ(parsed(std::string(R"({"camera": {"aspect": )") + aspect + "}}").camera.aspect_ratio, 1.6)
+    EXPECT_DOUBLE_EQ(parsed(std::string(R"({"camera": {"aspect": )") + aspect + "}}").cam.aspect, 1.6)
         << aspect;
   for (const char* aspect : {"\"16:0\"", "\"wide\"", "\" 16:9\"", "\"-16:9\"", "true", "-1", "0"})
     EXPECT_EQ(error_path(std::string(R"({"camera": {"aspect": )") + aspect + "}}"), "camera.aspect") << aspect;
@@ -113,31 +113,33 @@ TEST(SceneFile, AnAspectIsANumberOrAStringTheCommandLineTakes) {
 
 // The table's defaults, as --help shows them, are the camera's and sky's.
 TEST(SceneFile, TheInputTablesDefaultsAreTheScenes) {
-  const scene_params lesson;
+  const api::scene lesson;
   settings s;
-  for (const setting& row : scene_settings()) {
+  for (const setting& row : input_table()) {
+    if (!is_scene_row(row)) continue;
     // Defaults that are no value: a derived height, no lookat, no directional
     // light, no shadows, unbounded ambient occlusion.
     if (row.default_text.empty() || row.id == setting_id::height || row.id == setting_id::lookat ||
         row.id == setting_id::light || row.id == setting_id::shadows || row.id == setting_id::ao_distance)
       continue;
     given g;
-    ASSERT_FALSE(parse_value(row, row.default_text, g)) << row.option;
+    ASSERT_FALSE(parse_value(row, row.default_text, g.v, g.tokens)) << row.option;
     s[row.id] = g;
   }
-  camera_params cp;
-  sky sk;
-  lighting li;
-  ASSERT_FALSE(resolve(s, cp, sk, li));
+  api::scene d;
+  ASSERT_FALSE(resolve_scene(s, d));
+  const api::camera& cp = d.cam;
+  const api::sky& sk = d.sky;
+  const api::light& li = d.light;
   EXPECT_FALSE(li.any());
-  EXPECT_EQ(cp.image_width, lesson.camera.image_width);
-  EXPECT_EQ(cp.aspect_ratio, lesson.camera.aspect_ratio);
-  EXPECT_EQ(cp.viewport_height, lesson.camera.viewport_height);
-  EXPECT_EQ(cp.focal_length, lesson.camera.focal_length);
-  EXPECT_EQ(cp.origin, lesson.camera.origin);
+  EXPECT_EQ(cp.width, lesson.cam.width);
+  EXPECT_EQ(cp.aspect, lesson.cam.aspect);
+  EXPECT_EQ(cp.viewport_height, lesson.cam.viewport_height);
+  EXPECT_EQ(cp.focal_length, lesson.cam.focal_length);
+  EXPECT_EQ(cp.lookfrom, lesson.cam.lookfrom);
   EXPECT_EQ(sk.bottom, lesson.sky.bottom);
   EXPECT_EQ(sk.top, lesson.sky.top);
-  for (const setting& row : scene_settings()) {
+  for (const setting& row : input_table()) {
     if (!row.file_key.empty()) {
       EXPECT_EQ(find_file_key(row.file_key), &row);
     }
@@ -145,10 +147,10 @@ TEST(SceneFile, TheInputTablesDefaultsAreTheScenes) {
 }
 
 TEST(SceneFile, EmptyObjectIsTheLesson) {
-  const scene_params p = parsed("{}");
-  const scene_params lesson;
-  EXPECT_EQ(p.camera.image_width, lesson.camera.image_width);
-  EXPECT_FALSE(p.camera.lookat);
+  const api::scene p = parsed("{}");
+  const api::scene lesson;
+  EXPECT_EQ(p.cam.width, lesson.cam.width);
+  EXPECT_FALSE(p.cam.lookat);
   EXPECT_TRUE(p.spheres.empty());
   EXPECT_EQ(p.sky.top, lesson.sky.top);
 }
@@ -284,10 +286,10 @@ TEST(SceneFile, ErrorsFarIntoABigFileSayTheirLine) {
     text += "  {\"center\": [" + std::to_string(k % 1000) + ", " + std::to_string(k / 1000) + ", -3], \"radius\": 0.25},\n";
   const std::string good = text.substr(0, text.size() - 2) + "\n],\n\"camera\": {\"width\": 40}}";
   ASSERT_GE(good.size(), windowed_from);
-  const scene_params p = parsed(good);
+  const api::scene p = parsed(good);
   ASSERT_EQ(p.spheres.size(), size_t(n));
   EXPECT_EQ(p.spheres.back().center, point3(999, (n - 1) / 1000, -3));
-  EXPECT_EQ(p.camera.image_width, 40);
+  EXPECT_EQ(p.cam.width, 40);
   // Line 1 is "{"spheres": [", sphere k is on line k + 2; the camera after them.
   std::string late_text = good.substr(0, good.size() - 4);
   late_text += "4.5}}";
@@ -310,7 +312,7 @@ bool same_contents(const scene_file_contents& a, const scene_file_contents& b) {
   if (a.scene.spheres.size() != b.scene.spheres.size()) return false;
   for (size_t k = 0; k < a.scene.spheres.size(); ++k) {
     const sphere &x = a.scene.spheres[k], &y = b.scene.spheres[k];
-    if (x.center != y.center || x.radius != y.radius || x.shade != y.shade || x.flat_color != y.flat_color) return false;
+    if (x.center != y.center || x.radius != y.radius || x.shade != y.shade || x.color != y.color) return false;
   }
   for (size_t id = 0; id < a.keys.at.size(); ++id) {
     const auto &x = a.keys.at[id], &y = b.keys.at[id];
@@ -435,8 +437,8 @@ class SceneFileLoad : public ::testing::Test {
 TEST_F(SceneFileLoad, ReadsARegularFile) {
   std::ofstream(at("s.json")) << R"({"spheres": [{"center": [0, 0, -1], "radius": 0.5}]})";
   const auto r = load_scene_file(at("s.json"));
-  ASSERT_TRUE(std::holds_alternative<scene_params>(r)) << std::get<scene_file_error>(r).message;
-  EXPECT_EQ(std::get<scene_params>(r).spheres.size(), 1u);
+  ASSERT_TRUE(std::holds_alternative<api::scene>(r)) << std::get<scene_file_error>(r).message;
+  EXPECT_EQ(std::get<api::scene>(r).spheres.size(), 1u);
   EXPECT_EQ(error_of(load_scene_file(at("missing.json"))).message, "No such file or directory");
 }
 
@@ -572,7 +574,7 @@ TEST(SceneFile, AHundredThousandSpheres) {
     text += k % 2 ? R"(, "shade": "flat", "color": [1, 0.5, 0]})" : "}";
   }
   text += "]}";
-  const scene_params p = parsed(text);
+  const api::scene p = parsed(text);
   ASSERT_EQ(p.spheres.size(), 100000u);
   ASSERT_FALSE(validate(p));
   const scene s = make_scene(p);

@@ -114,7 +114,7 @@ TEST_P(SphereStiffNumerics, ExactAwayFromSilhouettesAndNoWorseThanTheBookInFloat
   // rounded offset from a sphere's centre: a ray that grazes a large sphere
   // the plane cuts (the ground, seen from inside) loses some of its depth
   // to that rounding (src/kernels/README.md: within 10^-4; 5.4e-5 measured).
-  EXPECT_LE(ours.max_rel_distance_err, c.cam.proj == projection::orthographic ? 1e-4 : 7e-7);
+  EXPECT_LE(ours.max_rel_distance_err, c.cam.projection == projection::orthographic ? 1e-4 : 7e-7);
   if (yardstick) {
     EXPECT_LE(ours.max_rel_distance_err, std::max(naive.max_rel_distance_err, 0x1p-22));
   }
@@ -161,7 +161,7 @@ TEST(SphereStiffCases, TangentRaysAreAtSilhouettes) {
   ASSERT_EQ(s.cam.image_width, 161);
   ASSERT_EQ(s.cam.image_height, 161);
   const sphere& front = it->spheres[0];
-  const double dist = glm::length(front.center - s.cam.origin);
+  const double dist = glm::length(to_glm(front.center) - s.cam.origin);
   const double rho = front.radius / std::sqrt(dist * dist - front.radius * front.radius);
   EXPECT_NEAR(rho * 80.0, 65.0, 1e-12);  // tan of the half-angle, in steps of 1/80
   const raycast_test::traced_image ref = raycast_test::trace_reference(s);

@@ -31,9 +31,9 @@ using namespace raycast;
 using raycast_test::image;
 
 scene builtin(const std::string& name, int64_t w = 400, std::optional<int64_t> h = std::nullopt) {
-  camera_params p;
-  p.image_width = w;
-  p.image_height = h;
+  api::camera p;
+  p.width = w;
+  p.height = h;
   return raycast_test::make_scene(p, {}, *builtin_spheres(name));
 }
 
@@ -156,7 +156,7 @@ TEST(BookChapters, NamedPixels) {
 struct sphere_case {
   std::string name;
   std::vector<sphere> spheres;
-  camera_params cam;
+  api::camera cam;
 };
 
 const std::vector<sphere_case>& sphere_cases() {
@@ -179,10 +179,10 @@ const std::vector<sphere_case>& sphere_cases() {
                {{{0.1, -0.2, 0.0}, 2.0, shading::lit, {0.5, 0.8, 1.0}}, {{0, 0, -1}, 0.5, shading::lit, {1, 1, 1}}},
                {}});
   v.push_back({"camera_inside", {{{0.1, -0.2, 0.0}, 2.0, shading::normal}, {{0, 0, -1}, 0.5, shading::normal}}, {}});
-  camera_params tilted;
-  tilted.origin = {-2, 2, 1};
+  api::camera tilted;
+  tilted.lookfrom = {-2, 2, 1};
   tilted.lookat = point3(0, 0, -1);
-  tilted.vfov_degrees = 40;
+  tilted.vfov = 40;
   v.push_back({"tilted_world", *builtin_spheres("world"), tilted});
   // Many small spheres (fixed seed), seen straight and from a tilted camera:
   // the rows' sphere culling (spheres_in_row) leaves most of them out of
@@ -199,10 +199,10 @@ const std::vector<sphere_case>& sphere_cases() {
     many.push_back(sp);
   }
   v.push_back({"many_spheres", many, {}});
-  camera_params high;
-  high.origin = {3, 2, 2};
+  api::camera high;
+  high.lookfrom = {3, 2, 2};
   high.lookat = point3(0, 0, -3);
-  high.vfov_degrees = 60;
+  high.vfov = 60;
   v.push_back({"many_spheres_tilted", many, high});
   return v;
   }();
@@ -248,9 +248,9 @@ TEST_P(SphereEquivalence, BitIdenticalToScalar) {
                                                {31, 2}, {33, 19}, {64, 36}, {255, 7}, {400, 225}, {401, 225}};
   for (const auto& [w, h] : sizes) {
     SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h));
-    camera_params cp = sc.cam;
-    cp.image_width = w;
-    cp.image_height = h;
+    api::camera cp = sc.cam;
+    cp.width = w;
+    cp.height = h;
     const scene s = raycast_test::make_scene(cp, {}, sc.spheres);
     // Every set of the sky's shortcuts the sphere kernel takes (render/plan.h).
     for (pixel_format f : {pixel_format::rgb8, pixel_format::rgb_f32}) {
@@ -270,9 +270,9 @@ TEST_P(SphereEquivalence, BitIdenticalToScalar) {
 TEST_P(SphereEquivalence, ThreadsAndBandsGiveTheSameBytes) {
   const param& prm = GetParam();
   const sphere_case& sc = sphere_cases()[prm.scene];
-  camera_params cp = sc.cam;
-  cp.image_width = 640;
-  cp.image_height = 480;
+  api::camera cp = sc.cam;
+  cp.width = 640;
+  cp.height = 480;
   const scene s = raycast_test::make_scene(cp, {}, sc.spheres);
   const image want = raycast_test::render_with_scalar(s, precision::exact, pixel_format::rgb8);
   const image two = raycast_test::render_with(renderer(s, {prm.which, prm.prec, 2}), pixel_format::rgb8);
@@ -297,9 +297,9 @@ INSTANTIATE_TEST_SUITE_P(Spheres, SphereEquivalence, ::testing::ValuesIn(all_par
 TEST(SphereCulling, RowListsLoseNoSphere) {
   for (const sphere_case& sc : sphere_cases())
     for (int64_t h : {1, 2, 37, 300}) {
-      camera_params cp = sc.cam;
-      cp.image_width = 64;
-      cp.image_height = h;
+      api::camera cp = sc.cam;
+      cp.width = 64;
+      cp.height = h;
       const float_scene f = prepare_float_scene(raycast_test::make_scene(cp, {}, sc.spheres));
       const size_t n = f.spheres.size();
       std::vector<std::vector<uint32_t>> near_rows(size_t(f.height));
@@ -331,9 +331,9 @@ TEST(SphereCulling, RowListsLoseNoSphere) {
 // reach a sphere whose centre is behind it. Without that, every sky batch of
 // a many-sample `world` tested the ground (twice the sky's cost per sample).
 TEST(SphereCulling, StrayingRaysLeaveTheGroundOutAboveTheHorizon) {
-  camera_params cp;
-  cp.image_width = 400;
-  cp.image_height = 225;
+  api::camera cp;
+  cp.width = 400;
+  cp.height = 225;
   const float_scene f = prepare_float_scene(raycast_test::make_scene(cp, {}, *builtin_spheres("world")));
   ASSERT_GT(f.pixel_spread, 0.0);
   std::vector<sphere_span> spans(f.spheres.size() + 1);
@@ -422,8 +422,8 @@ silhouette_stats against_reference(const scene& s) {
 TEST(SphereNumerics, WithinOneLsbOfTheReferenceAwayFromSilhouettes) {
   for (const sphere_case& sc : sphere_cases()) {
     for (int64_t w : {400, 1280}) {
-      camera_params cp = sc.cam;
-      cp.image_width = w;
+      api::camera cp = sc.cam;
+      cp.width = w;
       const scene s = raycast_test::make_scene(cp, {}, sc.spheres);
       const silhouette_stats st = against_reference(s);
       const int64_t pixels = s.cam.image_width * s.cam.image_height;
@@ -458,7 +458,7 @@ double max_float_error(const raycast_test::sphere_stiff_case& c) {
   const double far = raycast_test::farthest_in_radii(c), oracle = 4e-16 * far * far;
   if (c.name.rfind("unit_sphere_at_", 0) == 0) {
     const sphere& s = c.spheres.at(0);
-    return 1e-5 + 8e-8 * glm::length(s.center - c.cam.origin) / s.radius + oracle;
+    return 1e-5 + 8e-8 * glm::length(to_glm(s.center) - to_glm(c.cam.lookfrom)) / s.radius + oracle;
   }
   return 2e-5 + oracle;
 }
@@ -491,7 +491,7 @@ TEST(Scenes, BuiltInNames) {
 }
 
 TEST(Scenes, InvalidSpheresNameTheirPath) {
-  scene_params p;
+  api::scene p;
   p.spheres = *builtin_spheres("world");
   EXPECT_FALSE(validate(p));
   for (double bad : {0.0, -1.0, double(INFINITY), double(NAN)}) {
@@ -506,7 +506,7 @@ TEST(Scenes, InvalidSpheresNameTheirPath) {
   EXPECT_EQ(path(*validate(p)), "spheres[1].center");
   p.spheres[1].center.y = 0;
   p.spheres[0].shade = shading::flat;
-  p.spheres[0].flat_color = {0, INFINITY, 0};
+  p.spheres[0].color = {0, INFINITY, 0};
   ASSERT_TRUE(validate(p));
   EXPECT_EQ(path(*validate(p)), "spheres[0].color");
   p.spheres[0].shade = shading::normal;  // a normal-shaded sphere's colour is not read
@@ -518,10 +518,10 @@ TEST(Scenes, InvalidSpheresNameTheirPath) {
 // arrays) is refused by name before any sphere is read, not cut short.
 TEST(Scenes, MoreSpheresThanTheIndicesHoldAreRefused) {
   const float one[4] = {0.0f, 0.0f, -1.0f, 0.5f};
-  scene_params p;
-  sphere_view v;
-  v.centers = {one, sphere_view::element::f32, 12, 4};
-  v.radii = {one + 3, sphere_view::element::f32, 4, 0};
+  api::scene p;
+  api::sphere_arrays v;
+  v.centers = {one, api::element::f32, 12, 4};
+  v.radii = {one + 3, api::element::f32, 4, 0};
   v.count = 1;
   p.arrays = v;
   EXPECT_FALSE(validate(p));

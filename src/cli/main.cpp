@@ -16,13 +16,11 @@
 #include <utility>
 #include <vector>
 
-#include "io/image_sink.h"
 #include "io/signals.h"
 #include "io/timestamp.h"
 #include "options.h"
+#include "raycast/raycast.h"
 #include "settings/names.h"
-#include "library/bands.h"
-#include "render/render.h"
 #include "simd/cpu.h"
 
 namespace {
@@ -57,61 +55,49 @@ using clock = std::chrono::steady_clock;
 
 double seconds_since(clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); }
 
-// What --stats reports, besides the job's load time.
+// What --stats reports: each stage's seconds, which add up to the run's.
 struct run_stats {
-  double prepare = 0, render = 0, write = 0;  // seconds
-  double light = 0;                           // of prepare: shadow and AO structures (0: none)
-  size_t light_bytes = 0;
-  uint64_t rays = 0;                          // pixels x samples
-  size_t spheres = 0;
+  double prepare = 0;  // the job: the float scene, culling, the light's structures
+  api::job::timings output;
+  api::job::stats job;
+  uint64_t rays = 0;  // pixels x samples
 };
 
 int run(cli::job& j, run_stats& st) {
   auto t = clock::now();
-  const renderer r(j.sc, j.render);
+  const api::job job(std::move(j.description), j.options);  // moves the spheres; freed once prepared
   st.prepare = seconds_since(t);
-  st.light = r.light_seconds();
-  st.light_bytes = r.light_bytes();
-  // The renderer keeps its own copy of the scene: the job's spheres (a scene
-  // file's millions) are not needed any more.
-  st.spheres = j.sc.arrays ? j.sc.arrays->count : j.sc.spheres.size();
-  std::vector<sphere>().swap(j.sc.spheres);
-  // The output is the region (the whole image unless --region), rendered
-  // and written in bands of whole region rows (library/bands.h).
-  const cli::pixel_region& reg = j.region;
-  const int64_t W = reg.width(), H = reg.height();
-  auto sink = io::open_sink(j.output, j.format, W, H);
+  st.job = job.statistics();
+  const int64_t W = job.width(), H = job.height();
   progress bar(!j.quiet && isatty(STDERR_FILENO), H);
-  const band_timings bt =
-      render_to_sink(r, pixel_rect{reg.x0, reg.y0, reg.x1, reg.y1}, io::pixel_format_for(j.format), *sink, j.output,
-                     [&bar](int64_t rows_done, const char* phase) { bar.show(rows_done, phase); });
-  st.render = bt.render;
-  st.write = bt.write;
-  st.rays = uint64_t(W) * uint64_t(H) * r.samples();
+  st.output = job.write(j.output, j.options.format, [&bar](int64_t rows_done, const char* phase) { bar.show(rows_done, phase); });
+  st.rays = uint64_t(W) * uint64_t(H) * st.job.samples;
   return 0;
 }
 
 // --stats: a short block with stable labels (tests read it), like pbrt's.
+// Every stage of the run is a line, so that they add up to the total but
+// for the parsing of the options and the process's start and end.
 void print_stats(const cli::job& j, const run_stats& st, double total) {
   rusage ru{};
   getrusage(RUSAGE_SELF, &ru);
-  const double rays_per_second = st.render > 0 ? double(st.rays) / st.render : 0.0;
+  const double rays_per_second = st.output.render > 0 ? double(st.rays) / st.output.render : 0.0;
   std::fprintf(stderr, "raycast stats:\n  load      %10.4f s\n  prepare   %10.4f s\n", j.load_seconds, st.prepare);
   // Where shadow or AO rays are cast: what their structures took of prepare.
-  if (st.light_bytes > 0)
-    std::fprintf(stderr, "  light     %10.4f s  (of prepare: %.1f MB for shadow and AO rays)\n", st.light,
-                 double(st.light_bytes) / 1e6);
+  if (st.job.light_bytes > 0)
+    std::fprintf(stderr, "  light     %10.4f s  (of prepare: %.1f MB for shadow and AO rays)\n", st.job.light_seconds,
+                 double(st.job.light_bytes) / 1e6);
   std::fprintf(stderr,
+               "  open      %10.4f s  (the output file, and the image library where its format needs it)\n"
                "  render    %10.4f s\n"
                "  write     %10.4f s\n"
                "  total     %10.4f s\n"
                "  rays/s    %10.4g  (%llu rays)\n"
                "  spheres   %10zu\n"
                "  peak RSS  %10.1f MB\n",
-               st.render, st.write, total, rays_per_second, static_cast<unsigned long long>(st.rays), st.spheres,
-               double(ru.ru_maxrss) * 1024.0 / 1e6);
+               st.output.open, st.output.render, st.output.write, total, rays_per_second,
+               static_cast<unsigned long long>(st.rays), st.job.spheres, double(ru.ru_maxrss) * 1024.0 / 1e6);
 }
-
 
 void print_error(std::string_view what) {
   std::cerr << "raycast: error: " << cli::printable(what) << "\n";
@@ -155,10 +141,15 @@ int main(int argc, char** argv) {
     const int code = run(*parsed.run, st);
     if (parsed.run->stats) print_stats(*parsed.run, st, seconds_since(start));
     return code;
-  } catch (const io::io_error& e) {
-    print_error(e.what());
-  } catch (const unsupported_backend& e) {
-    print_error(std::string("--backend: ") + e.what());
+  } catch (const api::error& e) {
+    // The job's own checks (a backend this CPU cannot run, --precision fast
+    // with spheres) are usage errors, named by their option; writing fails
+    // with the file's name.
+    if (e.kind() == api::error::kind::io) {
+      print_error(e.message());
+      return 1;
+    }
+    print_error("--" + e.field() + ": " + e.message());
     return 2;
   } catch (const std::bad_alloc&) {
     print_error(parsed.run->output + ": out of memory");

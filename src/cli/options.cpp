@@ -1,9 +1,9 @@
 #include "options.h"
 
-#include "settings/inputs.h"
-#include "scene/builtin.h"
+#include "library/pipeline.h"
+#include "render/backend.h"
+#include "scene/camera.h"
 #include "settings/names.h"
-#include "formats/json.h"
 
 #include <CLI/CLI.hpp>
 
@@ -79,12 +79,12 @@ settings given_settings(const CLI::App& app, const command_line& cl) {
     given g;
     g.source = option;
     if (row.type == value_type::flag) g.v.flag = cl.flags[size_t(row.id)];
-    else if (auto e = parse_value(row, cl.text[size_t(row.id)], g)) throw usage_error{option, *e};
-    if (size_t(row.id) >= scene_setting_count)
-      if (auto e = check_range(row, g)) throw usage_error{option, *e};
+    else if (auto e = parse_value(row, cl.text[size_t(row.id)], g.v, g.tokens)) throw usage_error{option, *e};
+    if (!is_scene_row(row))
+      if (auto e = check_range(row, g.v, g.tokens)) throw usage_error{option, *e};
     s[row.id] = std::move(g);
   }
-  if (auto e = check_groups(input_table(), s)) throw usage_error{e->source, e->message};
+  if (auto e = check_groups(s)) throw usage_error{e->source, e->message};
   return s;
 }
 
@@ -134,99 +134,36 @@ std::string in_our_words(std::string message) {
   return message.substr(0, at) + ": given " + message.substr(at + twice.size()) + " times; give it once";
 }
 
-// The scene: --scene's spheres and keys, the options merged over the keys,
-// then the derived settings and the checks, each error blaming who gave it.
-scene_params scene_of(const settings& cli, job& j) {
-  scene_file_contents contents;
-  std::string file;  // a scene file's name, for errors of its keys
-  const particle_settings particles = particles_of(cli, cli.has(scene) ? cli[scene]->v.text : "");
-  if (particles.refused) throw usage_error{std::string(particles.refused->option), particles.why};
-  if (cli.has(scene)) {
-    const auto start = std::chrono::steady_clock::now();
-    auto read = read_scene(cli[scene]->v.text, particles.options);
-    j.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (auto* e = std::get_if<scene_file_error>(&read)) {
-      const std::string& name = cli[scene]->v.text;
-      const std::string named = is_scene_file_name(name) ? name + ": " : "";
-      throw usage_error{"--scene", named + (e->path.empty() ? "" : e->path + ": ") + e->message, e->io ? 1 : 2};
-    }
-    contents = std::move(std::get<scene_file_contents>(read));
-    if (!builtin_spheres(cli[scene]->v.text)) file = cli[scene]->v.text;
-  }
-  settings merged = contents.keys;
-  merge(merged, cli, input_table());
-  const auto blame_source = [&](std::string_view source, const std::string& why) {
-    if (source.starts_with("--")) return usage_error{std::string(source), why};
-    return usage_error{"--scene", file + ": " + std::string(source) + ": " + why};
-  };
-  scene_params& params = contents.scene;
-  if (auto e = resolve(merged, params.camera, params.sky, params.light)) throw blame_source(e->source, e->message);
-  // What one value cannot say (lookat = lookfrom, vup along the view, a
-  // derived height, spheres far from the camera) is the scene's to check
-  // (scene/scene.h), once; here only the field it blames becomes the
-  // setting that set it.
-  if (auto e = validate(params)) {
-    const blamed b = blame(*e, merged, !file.empty());
-    if (b.from_file) throw usage_error{"--scene", file + ": " + path(*e) + ": " + e->message};
-    throw usage_error{std::string(input_row(b.id).option), e->message};
-  }
-  return std::move(params);
+// A refusal of the pipeline in the command line's words: an option's own
+// ("--width: ..."), or a scene file's ("--scene: FILE: camera.vfov: ...").
+usage_error in_cli_words(const refusal& r) {
+  const int code = r.kind == error_kind::io ? 1 : 2;
+  if (r.source.starts_with("--")) return {r.source, r.why, code};
+  std::string why = r.file.empty() ? "" : r.file + ": ";
+  if (!r.source.empty()) why += r.source + ": ";
+  return {"--scene", why + r.why, code};
 }
 
-// The output file and its format.
-void output_of(const settings& cli, job& j) {
+// The run: the scene described (--scene's file read, the options merged over
+// its keys), the output's format, and the region within the image.
+job job_of(const settings& cli) {
+  run_settings run;
+  if (auto e = resolve_run(cli, run)) throw usage_error{e->source, e->message};
   if (!cli.has(output)) throw usage_error{"--output", "is required (a file name, or - for standard output)"};
-  j.output = cli[output]->v.text;
-  if (j.output.empty()) throw usage_error{"--output", "empty file name"};
-  if (cli.has(format)) {
-    j.format = io::format_names[cli[format]->v.name].format;
-  } else if (auto why = io::format_from_path(j.output, j.format)) {
-    throw usage_error{"--output", *why};
-  }
-  if (j.output == "-")
-    if (auto why = io::stdout_format_error(j.format)) throw usage_error{"--format", *why};
-}
-
-std::string_view name_of(const settings& cli, setting_id id) { return input_row(id).names[cli[id]->v.name]; }
-
-void render_options_of(const settings& cli, job& j) {
-  if (cli.has(setting_id::backend)) {
-    const auto b = *parse_backend(name_of(cli, setting_id::backend));
-    if (auto why = backend_unavailable(b)) throw usage_error{"--backend", *why};
-    j.render.which = b;
-  }
-  if (cli.has(setting_id::precision)) j.render.prec = *parse_precision(name_of(cli, setting_id::precision));
-  if (cli.has(threads)) j.render.threads = int(cli[threads]->v.integer);
-  if (cli.has(samples)) j.render.samples = uint32_t(cli[samples]->v.integer);
-  if (cli.has(sampler)) j.render.sampler = *parse_sampler(name_of(cli, sampler));
-  if (cli.has(seed)) j.render.seed = cli[seed]->v.seed;
-  j.quiet = cli.has(quiet);
-  j.stats = cli.has(stats);
-}
-
-// --region within the image, and the sides the format can hold.
-void region_of(const settings& cli, const camera_params& cp, job& j) {
-  const int64_t w = j.sc.cam.image_width, h = j.sc.cam.image_height;
-  j.region = {0, 0, w, h};
-  if (cli.has(region)) {
-    const auto& r = cli[region]->v.region;
-    if (auto why = check_region(r, w, h, cli[region]->tokens[0])) throw usage_error{"--region", *why};
-    j.region = {r[0], r[1], r[2], r[3]};
-  }
-  const int64_t side = io::max_side(j.format);
-  if (side <= 0) return;
-  const std::string limit = std::string(io::display_name(j.format)) + " supports at most " + std::to_string(side) +
-                            " pixels per side, got ";
-  // The file holds the region: with --region, its sides are what count.
-  if (cli.has(region)) {
-    if (j.region.width() > side || j.region.height() > side)
-      throw usage_error{"--region", limit + std::to_string(std::max(j.region.width(), j.region.height()))};
-  } else if (w > side) {
-    throw usage_error{"--width", limit + std::to_string(w)};
-  } else if (h > side) {
-    throw usage_error{cp.image_height ? "--height" : "--aspect",
-                      limit + (cp.image_height ? "" : "a height of ") + std::to_string(h)};
-  }
+  job j;
+  described_scene d = describe(run.scene, cli, front_end::command_line);
+  j.format = output_format(run.output, run.options.format, front_end::command_line);
+  const camera cam = make_camera(d.scene.cam);
+  j.region = output_region(run.options, cam.image_width, cam.image_height, front_end::command_line);
+  check_sides(j.format, j.region, {cli.has(region), d.scene.cam.height.has_value()}, front_end::command_line);
+  j.description = std::move(d.scene);
+  j.options = std::move(run.options);
+  j.options.format = std::string(io::to_string(j.format));
+  j.output = std::move(run.output);
+  j.quiet = run.quiet;
+  j.stats = run.stats;
+  j.load_seconds = d.load_seconds;
+  return j;
 }
 
 }  // namespace
@@ -274,15 +211,11 @@ parse_result parse_args(int argc, const char* const* argv, std::ostream& out, st
     return {std::nullopt, 0};
   }
   try {
-    const settings cli = given_settings(app, cl);
-    job j;
-    scene_params params = scene_of(cli, j);
-    output_of(cli, j);
-    render_options_of(cli, j);
-    const camera_params cp = params.camera;
-    j.sc = make_scene(std::move(params));  // moves the spheres
-    region_of(cli, cp, j);
-    return {std::move(j), 0};
+    return {job_of(given_settings(app, cl)), 0};
+  } catch (const refusal& r) {
+    const usage_error e = in_cli_words(r);
+    err << "raycast: error: " << printable(e.option) << ": " << printable(e.why) << "\n";
+    return {std::nullopt, e.exit_code};
   } catch (const usage_error& e) {
     err << "raycast: error: " << printable(e.option) << ": " << printable(e.why) << "\n";
     return {std::nullopt, e.exit_code};

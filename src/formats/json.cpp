@@ -21,10 +21,8 @@
 
 #include <simdjson.h>
 
-#include "scene/builtin.h"
 #include "memory/arrays.h"
 #include "settings/names.h"
-#include "formats/ply.h"
 #include "formats/regular_file.h"
 
 namespace raycast {
@@ -587,7 +585,7 @@ void reader::read_setting(od::value& v, const setting& row, given& g) {
   g.source = path;
   g.where = where(start);
   const auto parse = [&](std::string_view text, const std::string& blame) {
-    if (auto e = parse_value(row, text, g)) fail(blame, *e, start);
+    if (auto e = parse_value(row, text, g.v, g.tokens)) fail(blame, *e, start);
   };
   switch (row.type) {
     case value_type::integer: parse(number_token(v, path, "must be an integer"), path); break;
@@ -643,8 +641,8 @@ void reader::read_setting(od::value& v, const setting& row, given& g) {
 void reader::read_settings(od::value& v, std::string_view object_name, settings& out) {
   static const auto known_of = [](std::string_view prefix) {
     std::vector<std::string_view> names;
-    for (const setting& row : scene_settings())
-      if (row.file_key.substr(0, row.file_key.find('.')) == prefix) names.push_back(row.file_key.substr(prefix.size() + 1));
+    for (const setting& row : input_table())
+      if (is_scene_row(row) && row.file_key.substr(0, row.file_key.find('.')) == prefix) names.push_back(row.file_key.substr(prefix.size() + 1));
     return names;
   };
   static const std::vector<std::string_view> camera_keys = known_of("camera"), sky_keys = known_of("sky"),
@@ -721,7 +719,7 @@ sphere reader::read_sphere(od::value& item, size_t k) {
       }
       case 3:
         color_at = at(value);
-        ball.flat_color = triple(value, [&] { return at_k() + ".color"; });
+        ball.color = triple(value, [&] { return at_k() + ".color"; });
         break;
     }
   });
@@ -775,7 +773,7 @@ scene_file_contents reader::read() {
   const char* rest = nullptr;
   if (doc_.current_location().get(rest) == simdjson::SUCCESS) fail_json(simdjson::TRAILING_CONTENT, rest);
   // One file gives vfov or viewport_height, not both.
-  if (auto e = check_groups(scene_settings(), p.keys)) throw failure{{e->source, e->message}};
+  if (auto e = check_groups(p.keys)) throw failure{{e->source, e->message}};
   return p;
 }
 
@@ -1048,45 +1046,21 @@ std::variant<scene_file_contents, scene_file_error> read_scene_file(const std::s
 namespace {
 
 // The file's camera and sky keys applied to the lesson's, as nothing overrides them.
-std::variant<scene_params, scene_file_error> resolved(std::variant<scene_file_contents, scene_file_error>&& r) {
+std::variant<api::scene, scene_file_error> resolved(std::variant<scene_file_contents, scene_file_error>&& r) {
   if (auto* e = std::get_if<scene_file_error>(&r)) return std::move(*e);
   scene_file_contents& c = std::get<scene_file_contents>(r);
-  if (auto e = resolve(c.keys, c.scene.camera, c.scene.sky, c.scene.light)) return scene_file_error{e->source, e->message};
+  if (auto e = resolve_scene(c.keys, c.scene)) return scene_file_error{e->source, e->message};
   return std::move(c.scene);
 }
 
 }  // namespace
 
-std::variant<scene_params, scene_file_error> parse_scene_file(std::string_view text) {
+std::variant<api::scene, scene_file_error> parse_scene_file(std::string_view text) {
   return resolved(read_scene_text(text));
 }
 
-std::variant<scene_params, scene_file_error> load_scene_file(const std::string& path) {
+std::variant<api::scene, scene_file_error> load_scene_file(const std::string& path) {
   return resolved(read_scene_file(path));
-}
-
-bool is_scene_file_name(std::string_view name) {
-  std::string ext(name.substr(name.size() > 5 ? name.size() - 5 : 0));
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return (ext == ".json" && name.size() > 5) || is_ply_file_name(name);
-}
-
-std::variant<scene_file_contents, scene_file_error> read_scene(const std::string& name_or_path) {
-  return read_scene(name_or_path, particle_options{});
-}
-
-std::variant<scene_file_contents, scene_file_error> read_scene(const std::string& name_or_path,
-                                                               const particle_options& particles) {
-  if (auto spheres = builtin_spheres(name_or_path)) {
-    scene_file_contents c;
-    c.scene.spheres = std::move(*spheres);
-    return c;
-  }
-  if (is_ply_file_name(name_or_path)) return read_ply_file(name_or_path, particles);
-  if (!is_scene_file_name(name_or_path))
-    return scene_file_error{"", not_one_of(name_or_path, quote_token(name_or_path), builtin_scene_names(),
-                                           ", a .json scene file or a .ply particle file")};
-  return read_scene_file(name_or_path);
 }
 
 }  // namespace raycast

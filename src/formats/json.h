@@ -33,7 +33,8 @@
 #include <variant>
 
 #include "scene/scene.h"
-#include "settings/settings.h"
+#include "settings/layer.h"
+#include "settings/resolve.h"
 
 namespace raycast {
 
@@ -46,7 +47,7 @@ struct scene_file_error {
 // A scene file as read: its spheres (scene.spheres; camera and sky as the
 // lesson's) and its camera and sky keys, not applied yet.
 struct scene_file_contents {
-  scene_params scene;
+  api::scene scene;
   settings keys;
 };
 
@@ -70,7 +71,7 @@ std::optional<scene_file_contents> read_scene_windows(std::string_view text, siz
 
 // The same, with the file's keys resolved (ranges checked; as on the command
 // line, a "vup" without "lookat" looks down -z from "lookfrom").
-std::variant<scene_params, scene_file_error> parse_scene_file(std::string_view text);
+std::variant<api::scene, scene_file_error> parse_scene_file(std::string_view text);
 
 // Reads the file and parses it as read_scene_text does. Only a regular file
 // is read: a directory, device, FIFO or socket is refused without blocking
@@ -80,19 +81,6 @@ std::variant<scene_params, scene_file_error> parse_scene_file(std::string_view t
 // strerror's text ("No such file or directory") or the reason.
 std::variant<scene_file_contents, scene_file_error> read_scene_file(const std::string& path);
 // The same, resolved as parse_scene_file does.
-std::variant<scene_params, scene_file_error> load_scene_file(const std::string& path);
-
-// The command line's --scene: a built-in scene's name (its spheres), a
-// .json scene file read by read_scene_file, or a .ply particle file read by
-// read_ply_file (formats/ply.h) with the particle options given (the others
-// have no use for them: the caller refuses them); another name is an error
-// listing the built-in ones (and the nearest, when it looks like a slip). A
-// file's error is its reader's: the caller names the file.
-struct particle_options;
-std::variant<scene_file_contents, scene_file_error> read_scene(const std::string& name_or_path);
-std::variant<scene_file_contents, scene_file_error> read_scene(const std::string& name_or_path,
-                                                               const particle_options& particles);
-// Whether read_scene reads name as a file: it ends in .json or .ply (any case).
-bool is_scene_file_name(std::string_view name);
+std::variant<api::scene, scene_file_error> load_scene_file(const std::string& path);
 
 }  // namespace raycast

@@ -14,6 +14,7 @@
 #include "memory/arrays.h"
 #include "settings/names.h"
 #include "formats/regular_file.h"
+#include "scene/colormap.h"
 
 namespace raycast {
 namespace {
@@ -216,7 +217,7 @@ void triple_of(const element& v, const char* const names[3], bool u8_too, const 
     fail("vertex." + std::string(names[0]), "the three must have one type", out[0]->at);
 }
 
-layout layout_of(const header& h, const particle_options& o) {
+layout layout_of(const header& h, const api::particles& o) {
   layout l;
   for (const element& e : h.elements)
     if (e.name == "vertex") l.vertex = &e;
@@ -341,7 +342,7 @@ constexpr bool exact_body = false;
 constexpr bool exact_body = false;
 #endif
 
-// The memory a scene's spheres are read from, owned by its sphere_view.
+// The memory a scene's spheres are read from, owned by its sphere arrays.
 struct ply_storage {
   char* body = nullptr;  // the file's bytes after the header
   size_t body_bytes = 0;
@@ -371,13 +372,13 @@ table_columns columns_of(const layout& l) {
   return c;
 }
 
-using column = sphere_view::column;
+using api::column;
 // first's values in place, and the next components' at second's distance from them.
 column file_column(const char* rows, const element& v, const property* first, const property* second, bool swap) {
   const ptrdiff_t component = second ? ptrdiff_t(second->offset) - ptrdiff_t(first->offset) : 0;
-  const auto type = first->type == ply_type::f32   ? sphere_view::element::f32
-                    : first->type == ply_type::f64 ? sphere_view::element::f64
-                                                   : sphere_view::element::u8;
+  const auto type = first->type == ply_type::f32   ? api::element::f32
+                    : first->type == ply_type::f64 ? api::element::f64
+                                                   : api::element::u8;
   return column{rows + first->offset, type, ptrdiff_t(v.row_bytes), component, swap};
 }
 
@@ -427,16 +428,16 @@ void decode_binary(const layout& l, const char* rows, bool swap, ply_storage& st
 }
 
 // Table columns as the view's: doubles, tc.width a row.
-void view_table(const layout& l, ply_storage& st, sphere_view& view) {
+void view_table(const layout& l, ply_storage& st, api::sphere_arrays& view) {
   const table_columns tc = columns_of(l);
   const ptrdiff_t row = ptrdiff_t(tc.width * sizeof(double));
-  view.centers = column{st.table.data(), sphere_view::element::f64, row, sizeof(double), false};
-  if (tc.radius) view.radii = column{st.table.data() + tc.radius, sphere_view::element::f64, row, 0, false};
-  if (tc.rgb) view.colors = column{st.table.data() + tc.rgb, sphere_view::element::f64, row, sizeof(double), false};
+  view.centers = column{st.table.data(), api::element::f64, row, sizeof(double), false};
+  if (tc.radius) view.radii = column{st.table.data() + tc.radius, api::element::f64, row, 0, false};
+  if (tc.rgb) view.colors = column{st.table.data() + tc.rgb, api::element::f64, row, sizeof(double), false};
 }
 
 // The vertex element's rows in a binary body: read in place, or decoded.
-void read_binary(const header& h, const layout& l, ply_storage& st, sphere_view& view, std::vector<double>* shown) {
+void read_binary(const header& h, const layout& l, ply_storage& st, api::sphere_arrays& view, std::vector<double>* shown) {
   const bool swap = (h.format == encoding::big) != (std::endian::native == std::endian::big);
   uint64_t at = 0;
   for (const element& e : h.elements) {
@@ -543,7 +544,7 @@ void skip_ascii(const element& e, words& w) {
     }
 }
 
-void read_ascii(const header& h, const layout& l, ply_storage& st, sphere_view& view, std::vector<double>* shown) {
+void read_ascii(const header& h, const layout& l, ply_storage& st, api::sphere_arrays& view, std::vector<double>* shown) {
   words w{st.body, st.body + st.body_bytes, st.body, h.bytes};
   for (const element& e : h.elements) {
     if (&e == l.vertex) break;
@@ -581,16 +582,16 @@ void read_ascii(const header& h, const layout& l, ply_storage& st, sphere_view& 
 }
 
 // --color-by: each sphere's value through the colormap, 3 floats a sphere.
-void color_by(const particle_options& o, const std::vector<double>& shown, ply_storage& st, sphere_view& view) {
+void color_by(const api::particles& o, const std::vector<double>& shown, ply_storage& st, api::sphere_arrays& view) {
   double lo = o.color_range ? (*o.color_range)[0] : INFINITY, hi = o.color_range ? (*o.color_range)[1] : -INFINITY;
   if (!o.color_range)
     for (double x : shown) lo = std::min(lo, x), hi = std::max(hi, x);
   st.colors.resize(shown.size() * 3);
   for (size_t k = 0; k < shown.size(); ++k) {
-    const std::array<float, 3> c = colormap_color(o.map, shown[k], lo, hi);
+    const std::array<float, 3> c = colormap_color(colormap_named(o.colormap), shown[k], lo, hi);
     std::copy(c.begin(), c.end(), st.colors.begin() + ptrdiff_t(3 * k));
   }
-  view.colors = column{st.colors.data(), sphere_view::element::f32, 3 * sizeof(float), sizeof(float), false};
+  view.colors = column{st.colors.data(), api::element::f32, 3 * sizeof(float), sizeof(float), false};
 }
 
 // The body after the header, read once; a file that changes meanwhile is refused.
@@ -623,7 +624,7 @@ byte_source memory_source(std::string_view bytes) {
   return src;
 }
 
-std::variant<scene_file_contents, scene_file_error> read_ply(const byte_source& src, const particle_options& o) try {
+std::variant<scene_file_contents, scene_file_error> read_ply(const byte_source& src, const api::particles& o) try {
   std::string head(size_t(std::min<uint64_t>(src.size, max_ply_header_bytes)), '\0');
   const ptrdiff_t got = src.read(0, head.size(), head.data());
   if (got < 0) return scene_file_error{"", std::strerror(errno), true};
@@ -631,14 +632,14 @@ std::variant<scene_file_contents, scene_file_error> read_ply(const byte_source& 
   const header h = parse_header(head, src.size);
   const layout l = layout_of(h, o);
   const std::shared_ptr<ply_storage> st = read_body(src, h);
-  sphere_view view;
+  api::sphere_arrays view;
   view.count = size_t(l.vertex->count);
   std::vector<double> shown;  // sized by the readers, once they know the file holds the count
   if (h.format == encoding::ascii) read_ascii(h, l, *st, view, l.color_by ? &shown : nullptr);
   else read_binary(h, l, *st, view, l.color_by ? &shown : nullptr);
   if (o.radius) {
     st->radius = *o.radius;
-    view.radii = column{&st->radius, sphere_view::element::f64, 0, 0, false};
+    view.radii = column{&st->radius, api::element::f64, 0, 0, false};
   }
   if (l.color_by) color_by(o, shown, *st, view);
   view.shade = view.colors.data ? shading::lit : shading::normal;
@@ -652,7 +653,7 @@ std::variant<scene_file_contents, scene_file_error> read_ply(const byte_source& 
   return e;
 }
 
-std::variant<scene_file_contents, scene_file_error> read_ply_file(const std::string& path, const particle_options& o) {
+std::variant<scene_file_contents, scene_file_error> read_ply_file(const std::string& path, const api::particles& o) {
   auto opened = regular_file::open(path);
   if (auto* why = std::get_if<std::string>(&opened)) return scene_file_error{"", *why, true};
   const regular_file& f = *std::get<std::unique_ptr<regular_file>>(opened);

@@ -17,7 +17,7 @@
 //
 // The vertex element gives one sphere per vertex; other elements (faces) are
 // skipped. A binary body is read once into memory of the file's own layout
-// and the spheres are read from it in place (sphere_view columns with the
+// and the spheres are read from it in place (sphere arrays' columns with the
 // file's strides, byte-swapped where the file's order is not the machine's):
 // nothing is converted or copied again until the float renderers prepare
 // their arrays. An ASCII body is parsed into doubles, rounded to each
@@ -39,19 +39,10 @@
 #include <string_view>
 #include <variant>
 
-#include "scene/colormap.h"
 #include "formats/json.h"
+#include "raycast/description.h"
 
 namespace raycast {
-
-// How a particle file's vertices become spheres: the command line's
-// --radius, --color-by, --colormap and --color-range.
-struct particle_options {
-  std::optional<double> radius;  // every sphere's radius (the file's, if it has one, is not read)
-  std::string color_by;          // a vertex property shown through the colormap; empty: none
-  colormap map = colormap::viridis;
-  std::optional<std::array<double, 2>> color_range;  // lo < hi; default: the property's min and max
-};
 
 // The longest header read (comments included): a header that never ends is
 // refused after this many bytes.
@@ -70,10 +61,10 @@ struct byte_source {
 // buffer): they must outlive the read; unchanged is true.
 byte_source memory_source(std::string_view bytes);
 
-std::variant<scene_file_contents, scene_file_error> read_ply(const byte_source& source, const particle_options& o);
+std::variant<scene_file_contents, scene_file_error> read_ply(const byte_source& source, const api::particles& o);
 // The file at path, opened as a JSON scene file is (regular files only); its
 // read errors have io set.
-std::variant<scene_file_contents, scene_file_error> read_ply_file(const std::string& path, const particle_options& o);
+std::variant<scene_file_contents, scene_file_error> read_ply_file(const std::string& path, const api::particles& o);
 
 // Whether read_scene reads name as a PLY file: it ends in .ply (any case).
 bool is_ply_file_name(std::string_view name);

@@ -112,7 +112,7 @@ float next_up(float x) {  // for x >= +0
 // One sphere's constants in double, each rounded to float once
 // (float_spheres.h).
 sphere_record record_of(const sphere& b, const point3& origin) {
-  const vec3 fo = origin - b.center;
+  const vec3 fo = origin - to_glm(b.center);
   // The sphere's own unit, 2^e: max(|f|, r) 2^-e in [0.5, 1) (exact in
   // double for every finite scene; the float constants then neither
   // overflow nor underflow but for radii below 2^-126 of the distance).
@@ -142,7 +142,7 @@ sphere_record record_of(const sphere& b, const point3& origin) {
 // the image plane cuts the sphere or it lies behind (a ray may start inside
 // it: its far root, or no hit).
 sphere_record record_of_ortho(const sphere& b, const camera& cam, double z0) {
-  const vec3 p = b.center - cam.origin;
+  const vec3 p = to_glm(b.center) - cam.origin;
   const double cx = glm::dot(p, cam.axis_u), cy = glm::dot(p, cam.axis_v), depth = -glm::dot(p, cam.axis_w);
   const double cz = depth - z0;
   const int unit = exponent_of(std::max({std::abs(cx), std::abs(cy), std::abs(cz), b.radius}));
@@ -193,7 +193,7 @@ struct depth_of {
   double lateral = 0.0;  // orthographic: max(|cx|, |cy|) + r, how far from the view's axis it reaches
 };
 depth_of depth_of_sphere(const camera& c, const sphere& b) {
-  const vec3 p = b.center - c.origin;
+  const vec3 p = to_glm(b.center) - c.origin;
   const double dist = glm::length(p), ahead = -glm::dot(p, c.axis_w);
   const double all = double(c.image_width) * double(c.image_height);
   if (c.proj == projection::orthographic) {  // from the image plane, along the view; a disc of radius r
@@ -220,7 +220,7 @@ struct survey {
 
 // Whether b is shaded as a is (the colour counts for flat and lit spheres).
 bool same_look(const sphere& a, const sphere& b) {
-  return a.shade == b.shade && (a.shade == shading::normal || a.flat_color == b.flat_color);
+  return a.shade == b.shade && (a.shade == shading::normal || a.color == b.color);
 }
 survey survey_spheres(const scene& s, sphere_order order, size_t team, uint32_t* key) {
   const bool ortho = s.cam.proj == projection::orthographic, depth = order == sphere_order::depth;
@@ -240,7 +240,7 @@ survey survey_spheres(const scene& s, sphere_order order, size_t team, uint32_t*
       any_flat = any_flat || b.shade == shading::flat;
       any_lit = any_lit || b.shade == shading::lit;
       any_normal = any_normal || b.shade == shading::normal;
-      if (rows) key[k] = centre_row(s.cam, b.center);
+      if (rows) key[k] = centre_row(s.cam, to_glm(b.center));
       if (!depth && !ortho) continue;
       const depth_of d = depth_of_sphere(s.cam, b);
       lo = std::min(lo, d.nearest);
@@ -325,7 +325,7 @@ struct sphere_look {
 sphere_look look_of(const sphere& b) {
   const bool flat = b.shade == shading::flat, lit = b.shade == shading::lit;
   if (!flat && !lit) return {0.0f, 0.0f, 0.0f, shading_kind::normal};
-  return {flush(b.flat_color.r) + 0.0f, flush(b.flat_color.g) + 0.0f, flush(b.flat_color.b) + 0.0f,
+  return {flush(b.color.x) + 0.0f, flush(b.color.y) + 0.0f, flush(b.color.z) + 0.0f,
           flat ? shading_kind::flat : shading_kind::lit};
 }
 
@@ -461,7 +461,7 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from, s
   std::vector<uint32_t> next = reorder ? places(key.data(), n, keys, team) : std::vector<uint32_t>{};
   // Colours only where some sphere has one (16 bytes a sphere a cloud of
   // normal-shaded spheres does without), and one for all where every sphere
-  // has the same (the kernels read colour 0 then: sphere_arrays::look).
+  // has the same (the kernels read colour 0 then: kernel_spheres::look).
   const bool colored = (v.any_flat || v.any_lit) && !v.one_look;
   // Each sphere's index in the scene, for the tie rule, where the order is
   // depth's: it is written out of order (4 bytes a sphere, a quarter of a
@@ -483,7 +483,7 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from, s
 }
 
 scalar_hit scalar_trace(const float_scene& f, int64_t i, int64_t j) {
-  sphere_arrays sp = arrays_of(f.spheres);
+  kernel_spheres sp = arrays_of(f.spheres);
   sp.axes = f.axes;
   sp.track_index = true;
   return kernels::scalar::trace_pixel(f, sp, i, j);

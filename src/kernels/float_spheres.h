@@ -156,7 +156,7 @@ struct float_spheres {
 // instruction set and must instantiate no standard-library template (an
 // inline function built for AVX-512 could be picked by the linker for the
 // others). The plan (render/plan.cpp) fills it.
-struct sphere_arrays {
+struct kernel_spheres {
   const sphere_record* rec = nullptr;
   const float *red = nullptr, *green = nullptr, *blue = nullptr, *kind = nullptr;
   const uint32_t* order = nullptr;  // null: the scene's order
@@ -181,7 +181,7 @@ struct sphere_arrays {
   RAYCAST_INLINE size_t look(size_t k) const { return k & look_mask; }
 };
 
-inline sphere_arrays arrays_of(const float_spheres& s) {
+inline kernel_spheres arrays_of(const float_spheres& s) {
   return {s.rec.data(), s.red.data(), s.green.data(), s.blue.data(), s.kind.data(),
           s.order.empty() ? nullptr : s.order.data(), s.depth_key.empty() ? nullptr : s.depth_key.data(), nullptr,
           s.size(), s.any_flat, s.any_normal, s.any_lit, s.any_inside, !s.order.empty(), nullptr, nullptr,

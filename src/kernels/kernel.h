@@ -49,7 +49,7 @@ struct kernel_args {
   // plane_height. Null for a perspective camera.
   const float* ortho_x = nullptr;
   // The sphere kernel's spheres (kernels/float_spheres.h); n = 0 for the sky.
-  sphere_arrays spheres;
+  kernel_spheres spheres;
   // The frame's row index (kernels/culling.h; built by the renderer, with the
   // sampled path's spread when samples is set): row r's candidate spheres
   // are row_list[row_first[r] .. row_first[r + 1]), at most row_most, their
@@ -86,7 +86,7 @@ using sphere_rows_fn = void (*)(const kernel_args& args, const image_band& band,
   namespace name {                                                                          \
   void render_sky_rows(const kernel_args&, const image_band&, int64_t, int64_t, bool);      \
   void render_sphere_rows(const kernel_args&, const image_band&, int64_t, int64_t);         \
-  scalar_hit trace_pixel(const float_scene&, const sphere_arrays&, int64_t i, int64_t j);                         \
+  scalar_hit trace_pixel(const float_scene&, const kernel_spheres&, int64_t i, int64_t j);                         \
   }
 RAYCAST_TARGETS(RAYCAST_DECLARE_KERNELS)
 #undef RAYCAST_DECLARE_KERNELS

@@ -83,7 +83,7 @@ struct rays {
 // f: what the normal is formed from, (f + s d) inv_r: the sphere's own f, or
 // an orthographic hit's offset from the centre (with s = 0).
 template <int Shades>
-RAYCAST_INLINE void record(const sphere_arrays& sp, size_t k, vmask m, vfloat s, const vfloat (&f)[3],
+RAYCAST_INLINE void record(const kernel_spheres& sp, size_t k, vmask m, vfloat s, const vfloat (&f)[3],
                            closest_hit<Shades>& h) {
   const vuint index = vuint(sp.scene_index(k));
   if (none(h.hit)) {  // the first sphere hit: lanes it misses never read these
@@ -139,7 +139,7 @@ RAYCAST_INLINE vfloat discriminant(const sphere_record& e, rays& r, vfloat fx, v
 // scene (the tie rule: spheres are tested in the float scene's order, which
 // need not be the scene's).
 template <int Shades>
-RAYCAST_INLINE void keep_nearer(const sphere_arrays& sp, size_t k, vmask ahead, vfloat s, vfloat t,
+RAYCAST_INLINE void keep_nearer(const kernel_spheres& sp, size_t k, vmask ahead, vfloat s, vfloat t,
                                 const vfloat (&f)[3], closest_hit<Shades>& h) {
   vmask m;
   if (sp.order) {  // a reordered scene: ties by the index in the scene
@@ -159,7 +159,7 @@ RAYCAST_INLINE void keep_nearer(const sphere_arrays& sp, size_t k, vmask ahead, 
 // order, which need not be the scene's). The lanes where disc < 0 are not
 // read: no max(disc, 0) here.
 template <int Shades>
-RAYCAST_INLINE void take_nearest(const sphere_arrays& sp, size_t k, rays& r, vfloat b, vfloat disc, vmask can_hit,
+RAYCAST_INLINE void take_nearest(const kernel_spheres& sp, size_t k, rays& r, vfloat b, vfloat disc, vmask can_hit,
                                  closest_hit<Shades>& h) {
   const sphere_record& e = sp.rec[k];
   const vfloat q = -(b + copysign(sqrt(disc), b));
@@ -182,7 +182,7 @@ RAYCAST_INLINE void take_nearest(const sphere_arrays& sp, size_t k, rays& r, vfl
 // start in it. The normal is formed here: the hit's offset from the centre,
 // (dx, dy, -+sqrt(disc)) in the camera's axes, turned to the world's.
 template <int Shades>
-RAYCAST_INLINE void take_nearest_ortho(const sphere_arrays& sp, size_t k, const rays& r, closest_hit<Shades>& h) {
+RAYCAST_INLINE void take_nearest_ortho(const kernel_spheres& sp, size_t k, const rays& r, closest_hit<Shades>& h) {
   const sphere_record& e = sp.rec[k];
   const vfloat dx = r.px * vfloat(e.c) - vfloat(e.fx), dy = r.py * vfloat(e.c) - vfloat(e.fy);
   const vfloat disc = vfloat(e.r2) - (dx * dx + dy * dy);
@@ -212,7 +212,7 @@ RAYCAST_INLINE void take_nearest_ortho(const sphere_arrays& sp, size_t k, const 
 // the image is the same bits as a walk over the whole list.
 // (An orthographic hit's t is its depth in world units already.)
 template <bool Ortho, int Shades>
-RAYCAST_INLINE bool nearer_than(const sphere_arrays& sp, const sphere_record& e, rays& r, const closest_hit<Shades>& h) {
+RAYCAST_INLINE bool nearer_than(const kernel_spheres& sp, const sphere_record& e, rays& r, const closest_hit<Shades>& h) {
   if (!all(h.hit)) return false;
   if constexpr (Ortho) return all(!(h.t >= vfloat(sp.depth_key[e.depth])));
   return all(!(h.t * r.length() >= vfloat(sp.depth_key[e.depth])));
@@ -230,14 +230,14 @@ RAYCAST_INLINE bool nearer_than(const sphere_arrays& sp, const sphere_record& e,
 // more, and scenes of 10^3 spheres take what they took. With the record,
 // its index in the scene (a hit in a reordered scene records it).
 constexpr size_t prefetch_distance = 6;
-RAYCAST_INLINE void prefetch_sphere(const sphere_arrays& sp, uint32_t k) {
+RAYCAST_INLINE void prefetch_sphere(const kernel_spheres& sp, uint32_t k) {
   __builtin_prefetch(&sp.rec[k]);
   if (sp.order) __builtin_prefetch(&sp.order[k]);
 }
-RAYCAST_INLINE void prefetch_ahead(const sphere_arrays& sp, const uint32_t* list, size_t x, size_t count) {
+RAYCAST_INLINE void prefetch_ahead(const kernel_spheres& sp, const uint32_t* list, size_t x, size_t count) {
   if (list && x + prefetch_distance < count) prefetch_sphere(sp, list[x + prefetch_distance]);
 }
-RAYCAST_INLINE void prefetch_list(const sphere_arrays& sp, const uint32_t* list, size_t count) {
+RAYCAST_INLINE void prefetch_list(const kernel_spheres& sp, const uint32_t* list, size_t count) {
   const size_t m = count < prefetch_distance ? count : prefetch_distance;
   for (size_t x = 0; x < m; ++x) prefetch_sphere(sp, list[x]);
 }
@@ -248,7 +248,7 @@ RAYCAST_INLINE void prefetch_list(const sphere_arrays& sp, const uint32_t* list,
 // time: their long dependency chains overlap). fz_dz: each sphere's f.z d.z
 // where every ray's d.z is the same (the lesson's camera), else null.
 template <int Shades, int M, bool Ortho, bool Deep>
-RAYCAST_INLINE void walk(const sphere_arrays& sp, const uint32_t* list, size_t count, rays (&r)[M],
+RAYCAST_INLINE void walk(const kernel_spheres& sp, const uint32_t* list, size_t count, rays (&r)[M],
                          closest_hit<Shades> (&h)[M], const float* fz_dz) {
   for (size_t x = 0; x < count; ++x) {
     const size_t k = list ? list[x] : x;
@@ -279,7 +279,7 @@ RAYCAST_INLINE void walk(const sphere_arrays& sp, const uint32_t* list, size_t c
 }
 
 template <int Shades, int M, bool Ortho = false>
-RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, size_t count, rays (&r)[M],
+RAYCAST_INLINE void intersect(const kernel_spheres& sp, const uint32_t* list, size_t count, rays (&r)[M],
                               closest_hit<Shades> (&h)[M], const float* fz_dz = nullptr) {
   if (sp.depth_key) walk<Shades, M, Ortho, true>(sp, list, count, r, h, fz_dz);
   else walk<Shades, M, Ortho, false>(sp, list, count, r, h, fz_dz);
@@ -291,7 +291,7 @@ RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, siz
 // (Deep: a depth-ordered walk, which may stop early; its own loop, so that
 // other scenes ask nothing of the depth keys.)
 template <bool Ortho, bool Deep, int Shades>
-RAYCAST_INLINE void walk(const sphere_arrays& sp, const uint32_t* list, size_t count, rays& r, closest_hit<Shades>& h) {
+RAYCAST_INLINE void walk(const kernel_spheres& sp, const uint32_t* list, size_t count, rays& r, closest_hit<Shades>& h) {
   for (size_t x = 0; x < count; ++x) {
     const size_t k = list ? list[x] : x;
     const sphere_record& e = sp.rec[k];
@@ -312,7 +312,7 @@ RAYCAST_INLINE void walk(const sphere_arrays& sp, const uint32_t* list, size_t c
 }
 
 template <bool Ortho = false, int Shades>
-RAYCAST_INLINE void intersect(const sphere_arrays& sp, const uint32_t* list, size_t count, rays& r,
+RAYCAST_INLINE void intersect(const kernel_spheres& sp, const uint32_t* list, size_t count, rays& r,
                               closest_hit<Shades>& h) {
   if (sp.depth_key) walk<Ortho, true>(sp, list, count, r, h);
   else walk<Ortho, false>(sp, list, count, r, h);

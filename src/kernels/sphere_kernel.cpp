@@ -72,7 +72,7 @@ int64_t store_mirrored_ends(const float_scene& s, const sky_shader& sky, batch_c
 
 // The next batch's first candidates, asked for while batch b works
 // (sphere_hit.inl: prefetch_list); b + 1 in the lists' run [.., b1).
-RAYCAST_INLINE void prefetch_next_batch(const sphere_arrays& sp, const batch_culler& lists, int64_t b, int64_t b1) {
+RAYCAST_INLINE void prefetch_next_batch(const kernel_spheres& sp, const batch_culler& lists, int64_t b, int64_t b1) {
   if (b + 1 >= b1) return;
   if (const size_t n = lists.tests(b + 1)) prefetch_list(sp, lists.list(b + 1), n);
 }
@@ -81,7 +81,7 @@ RAYCAST_INLINE void prefetch_next_batch(const sphere_arrays& sp, const batch_cul
 template <int Shades, bool Float, bool Lanes, bool Ortho>
 void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
   const float_scene& s = *a.scene;
-  const sphere_arrays& sp = a.spheres;
+  const kernel_spheres& sp = a.spheres;
   const sky_shader sky(a);
   const int64_t W = s.width, c0 = band.col_begin, c1 = band.cols_end(W);
   const int64_t batches = (W + N - 1) / N;
@@ -165,7 +165,7 @@ struct sample_camera {
   // intersect forms f.z d.z per ray, the same bits).
   float* fz_dz = nullptr;
 
-  sample_camera(const float_scene& s, const sphere_arrays& sp) {
+  sample_camera(const float_scene& s, const kernel_spheres& sp) {
     // du and dv times the sampler's unit (exact), times horizontal and vertical.
     const float du = s.du * sampling::offset_unit<K>, dv = s.dv * sampling::offset_unit<K>;
     for (int k = 0; k < 3; ++k) {
@@ -214,7 +214,7 @@ template <int Shades, sampler_kind K, int M, bool Ortho>
 __attribute__((always_inline)) inline void sample_pass(const sampling::sample_plan& plan,
                                                        const sampling::pixel_seeds<vuint>& seeds,
                                                        const sample_camera<K>& cam, const vfloat base[5],
-                                                       const sphere_arrays& sp, const uint32_t* list, size_t tests,
+                                                       const kernel_spheres& sp, const uint32_t* list, size_t tests,
                                                        uint32_t t0, const pixel_at& at, sample_sums& sums) {
   rays ry[M];
   for (int u = 0; u < M; ++u) {
@@ -245,7 +245,7 @@ __attribute__((always_inline)) inline void sample_pass(const sampling::sample_pl
 template <int Shades, sampler_kind K, bool Ortho>
 void render_samples(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
   const float_scene& s = *a.scene;
-  const sphere_arrays& sp = a.spheres;
+  const kernel_spheres& sp = a.spheres;
   const sampling::sample_plan& plan = *a.samples;
   const bool f32 = band.format == pixel_format::rgb_f32;
   const int64_t W = s.width, c0 = band.col_begin, c1 = band.cols_end(W);
@@ -326,7 +326,7 @@ uint32_t scene_index(const float* bits) {
 
 }  // namespace
 
-scalar_hit trace_pixel(const float_scene& s, const sphere_arrays& sp, int64_t i, int64_t j) {
+scalar_hit trace_pixel(const float_scene& s, const kernel_spheres& sp, int64_t i, int64_t j) {
   const float su = pixel_su(s, i), sv = pixel_sv(s, j);
   rays r;
   for (int k = 0; k < 3; ++k) r.d[k] = (s.center[k] + su * s.horizontal[k]) + sv * s.vertical[k];
@@ -352,7 +352,7 @@ scalar_hit trace_pixel(const float_scene& s, const sphere_arrays& sp, int64_t i,
 }
 
 void render_sphere_rows(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
-  const sphere_arrays& sp = a.spheres;
+  const kernel_spheres& sp = a.spheres;
   if (sp.any_lit) render_shades<all_shadings>(a, band, r0, r1);
   else if (!sp.any_flat) render_shades<normal_shading>(a, band, r0, r1);
   else if (!sp.any_normal) render_shades<flat_shading>(a, band, r0, r1);

@@ -35,7 +35,7 @@ struct sky_shader {
 // The normal of each lane that hit a normal-shaded sphere (float_spheres.h):
 // N, facing the ray inside a sphere; `back`, where it was turned so.
 template <int Shades>
-RAYCAST_INLINE void hit_normal(const sphere_arrays& sp, const closest_hit<Shades>& h, const rays& r, vfloat n[3],
+RAYCAST_INLINE void hit_normal(const kernel_spheres& sp, const closest_hit<Shades>& h, const rays& r, vfloat n[3],
                                vmask* back = nullptr) {
   const vfloat* d = r.d;
   const vfloat f[3] = {h.fx, h.fy, h.fz};
@@ -59,7 +59,7 @@ struct pixel_at {
 // max(-(N . d) / sqrt(n2), 0). With shadow or ambient-occlusion rays, each
 // lit lane's S and A come from light/secondary.h, compiled once.
 template <int Shades>
-RAYCAST_INLINE vfloat lit_light(const sphere_arrays& sp, const closest_hit<Shades>& h, const rays& r,
+RAYCAST_INLINE vfloat lit_light(const kernel_spheres& sp, const closest_hit<Shades>& h, const rays& r,
                                 const vfloat n[3], vmask back, vmask lit, const pixel_at& at) {
   vfloat diffuse;
   if (sp.light) {
@@ -95,7 +95,7 @@ RAYCAST_INLINE vfloat lit_light(const sphere_arrays& sp, const closest_hit<Shade
 // The hit colour of each lane that hit (float_spheres.h): 0.5 (N + 1), the
 // sphere's flat colour, or its lit colour.
 template <int Shades>
-RAYCAST_INLINE void hit_color(const sphere_arrays& sp, const closest_hit<Shades>& h, const rays& r,
+RAYCAST_INLINE void hit_color(const kernel_spheres& sp, const closest_hit<Shades>& h, const rays& r,
                                const pixel_at& at, vfloat out[3]) {
   vfloat n[3];
   vmask back{};
@@ -119,7 +119,7 @@ RAYCAST_INLINE void hit_color(const sphere_arrays& sp, const closest_hit<Shades>
 // The colour of one batch (float_spheres.h): the closest hit's shading, the
 // sky where nothing was hit.
 template <int Shades>
-RAYCAST_INLINE void shade(const sky_shader& sky, const sphere_arrays& sp, const closest_hit<Shades>& h,
+RAYCAST_INLINE void shade(const sky_shader& sky, const kernel_spheres& sp, const closest_hit<Shades>& h,
                           const rays& r, const pixel_at& at, vfloat out[3]) {
   if (none(h.hit)) {
     sky.shade(r, out);
@@ -157,7 +157,7 @@ struct sample_sums {
 
   // One sample's closest hits, then the sky where it hit nothing.
   template <int Shades>
-  RAYCAST_INLINE void add(const sphere_arrays& sp, const closest_hit<Shades>& h, const rays& r, const pixel_at& at) {
+  RAYCAST_INLINE void add(const kernel_spheres& sp, const closest_hit<Shades>& h, const rays& r, const pixel_at& at) {
     if (any(h.hit)) {
       const bool every = all(h.hit);
       vfloat n[3];

@@ -20,7 +20,7 @@ double seconds_since(clock::time_point t) { return std::chrono::duration<double>
 
 }  // namespace
 
-band_timings render_to_sink(const renderer& r, const pixel_rect& reg, pixel_format fmt, io::image_sink& sink,
+band_timings render_to_sink(const renderer& r, const api::region& reg, pixel_format fmt, io::image_sink& sink,
                             const std::string& name, const band_progress& progress) {
   band_timings st;
   const int64_t W = reg.width(), H = reg.height();
@@ -31,8 +31,7 @@ band_timings render_to_sink(const renderer& r, const pixel_rect& reg, pixel_form
   const int64_t band_rows = std::clamp<int64_t>(pixels / W, 1, H);
 
   // Written whole by the render before it is read: in huge pages where
-  // small pages are dear (memory/pages.h; a band of 3 MB took 8 ms of
-  // faults on such a host, a third of the render of a box of 10^6).
+  // small pages are dear (memory/arrays.h).
   filled_later_array<unsigned char> buffer;
   try {
     buffer.resize(stride * size_t(band_rows));

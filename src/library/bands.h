@@ -1,21 +1,15 @@
 // Rendering a region of the image into an image sink, a band of rows at a
 // time: the one render-and-write loop, shared by the raycast command and the
-// library (raycast/raycast.h). Memory is one band, whatever the image size.
+// library (raycast/raycast.h), whose job::write calls it. Memory is one band, whatever the image size.
 #pragma once
 #include <cstdint>
 #include <functional>
 
 #include "io/image_sink.h"
+#include "raycast/description.h"
 #include "render/render.h"
 
 namespace raycast {
-
-// Columns [x0, x1), rows [y0, y1) of the image, row 0 at the top.
-struct pixel_rect {
-  int64_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-  int64_t width() const { return x1 - x0; }
-  int64_t height() const { return y1 - y0; }
-};
 
 struct band_timings {
   double render = 0, write = 0;  // seconds
@@ -29,7 +23,7 @@ using band_progress = std::function<void(int64_t rows_done, const char* phase)>;
 // then finishes the sink (renames the file into place). Throws io::io_error
 // (the sink's, or a band that cannot be allocated, naming `name`); the sink's
 // destructor removes a temporary file on any exception.
-band_timings render_to_sink(const renderer& r, const pixel_rect& region, pixel_format format,
+band_timings render_to_sink(const renderer& r, const api::region& region, pixel_format format,
                             io::image_sink& sink, const std::string& name, const band_progress& progress = {});
 
 }  // namespace raycast

@@ -15,9 +15,10 @@
 #include <pybind11/stl.h>
 
 #include "io/module_loader.h"
+#include "library/pipeline.h"
 #include "raycast/raycast.h"
-#include "settings/inputs.h"
 #include "settings/names.h"
+#include "settings/table.h"
 
 namespace py = pybind11;
 namespace rc = raycast::api;
@@ -37,7 +38,7 @@ struct wrong_type {
   std::string field, message;
 };
 
-rc::sphere_arrays::column column_of(const py::array& a, const char* name, size_t& count) {
+rc::column column_of(const py::array& a, const char* name, size_t& count) {
   const bool matrix = std::string(name) != "radii";
   if (a.ndim() != (matrix ? 2 : 1) || (matrix && a.shape(1) != 3))
     value_error(name, matrix ? "must have shape (N, 3)" : "must have shape (N,)");
@@ -45,10 +46,10 @@ rc::sphere_arrays::column column_of(const py::array& a, const char* name, size_t
     value_error(name, "has " + std::to_string(a.shape(0)) + " rows, want " + std::to_string(count) +
                           " (one per centre)");
   count = size_t(a.shape(0));
-  rc::sphere_arrays::column c;
+  rc::column c;
   c.data = a.data();
-  if (a.dtype().is(py::dtype::of<float>())) c.type = rc::sphere_arrays::element::f32;
-  else if (a.dtype().is(py::dtype::of<double>())) c.type = rc::sphere_arrays::element::f64;
+  if (a.dtype().is(py::dtype::of<float>())) c.type = rc::element::f32;
+  else if (a.dtype().is(py::dtype::of<double>())) c.type = rc::element::f64;
   else throw wrong_type{name, "want a float32 or float64 array"};
   // Strides as NumPy has them: any layout is read in place (a zero stride,
   // packed to the library, was made contiguous by __init__.py).
@@ -67,55 +68,37 @@ size_t one_of(const char* field, const std::string& got, std::initializer_list<s
   value_error(field, raycast::not_one_of(got, raycast::quote_token(got), {names.begin(), names.size()}));
 }
 
-// The keywords (text, as the command line spells them), each parsed and
-// range-checked by its input table row's parsers, as the command line's
-// options are. The camera, sky and light rows become settings over the
-// scene's keys (errors name the scene file's key, "camera.vfov"); the
-// run's rows, the options (errors name the keyword, "samples").
-struct keyword_values {
-  raycast::settings scene;
-  rc::options run;
-};
-
-void set_option(rc::options& o, const raycast::setting& row, const raycast::given& g) {
-  using enum raycast::setting_id;
-  const auto name = [&] { return std::string(row.names[g.v.name]); };
-  switch (row.id) {
-    case backend: o.backend = name(); break;
-    case precision: o.precision = name(); break;
-    case threads: o.threads = int(g.v.integer); break;
-    case samples: o.samples = g.v.integer; break;
-    case sampler: o.sampler = name(); break;
-    case seed: o.seed = g.v.seed; break;
-    case region: o.region = rc::region{g.v.region[0], g.v.region[1], g.v.region[2], g.v.region[3]}; break;
-    default: value_error(std::string(row.keyword), "is not a render() keyword");
+// The keywords (text, as the command line spells them), each parsed by its
+// input table row's parser into a layer of settings, as the command line's
+// options are: the camera, sky and light rows are range-checked after they
+// are merged over the scene's keys (errors name the scene file's key,
+// "camera.vfov"), the others here (errors name the keyword, "samples").
+raycast::settings parse_keywords(const std::map<std::string, std::string>& keywords) {
+  raycast::settings layer;
+  for (const auto& [keyword, text] : keywords) {
+    const raycast::setting* row = raycast::find_keyword(keyword);
+    if (!row || row->id == raycast::setting_id::format || row->id == raycast::setting_id::output)
+      value_error(keyword, "is not a render() keyword");
+    raycast::given g;
+    const std::string source = raycast::is_scene_row(*row) ? std::string(row->file_key) : keyword;
+    if (auto e = raycast::parse_given(*row, text, source, g)) value_error(source, *e);
+    if (!raycast::is_scene_row(*row))
+      if (auto e = raycast::check_range(*row, g.v, g.tokens)) value_error(source, *e);
+    layer[row->id] = std::move(g);
   }
+  if (auto e = raycast::check_groups(layer)) value_error(e->source, e->message);
+  return layer;
 }
 
-keyword_values parse_keywords(const std::map<std::string, std::string>& keywords) {
-  keyword_values out;
-  for (const auto& [keyword, text] : keywords) {
-    const raycast::setting* row = nullptr;
-    for (const raycast::setting& r : raycast::input_table())
-      if (r.keyword == keyword) row = &r;
-    if (!row) value_error(keyword, "is not a render() keyword");
-    const bool scene_row = !row->file_key.empty();
-    raycast::given g;
-    g.source = scene_row ? std::string(row->file_key) : keyword;
-    if (auto e = raycast::parse_value(*row, text, g)) value_error(g.source, *e);
-    if (scene_row) {
-      out.scene[row->id] = std::move(g);
-      continue;
-    }
-    if (auto e = raycast::check_range(*row, g)) value_error(g.source, *e);
-    using enum raycast::setting_id;
-    if (row->id == radius || row->id == color_by || row->id == colormap || row->id == color_range)
-      out.scene[row->id] = std::move(g);  // how a particle file is read: scene_with's
-    else
-      set_option(out.run, *row, g);
-  }
-  if (auto e = raycast::check_groups(raycast::scene_settings(), out.scene)) value_error(e->source, e->message);
-  return out;
+// The scene a render() call names, with the keywords over its keys.
+raycast::described_scene described(const std::string& kind, const std::string& source,
+                                   const raycast::settings& layer) try {
+  using raycast::front_end;
+  if (kind == "json") return raycast::describe_text(source, layer, front_end::library);
+  if (kind == "name") return raycast::describe(source, layer, front_end::library);
+  return raycast::describe(std::nullopt, layer, front_end::library);
+} catch (const raycast::refusal& r) {
+  throw raycast::library_error(r);
 }
 
 // The arrays' spheres, read in place.
@@ -141,18 +124,20 @@ void set_arrays(rc::scene& s, std::optional<py::array> centers, std::optional<py
 py::array render_image(const std::string& kind, const std::string& source, std::optional<py::array> centers,
                        std::optional<py::array> radii, std::optional<py::array> colors, const std::string& shade,
                        const std::map<std::string, std::string>& keywords, const std::string& dtype) {
-  keyword_values kw = parse_keywords(keywords);
+  const raycast::settings layer = parse_keywords(keywords);
+  raycast::run_settings run;
+  if (auto e = raycast::resolve_run(layer, run)) throw raycast::library_error(raycast::refused(*e));
   static constexpr rc::shading shadings[] = {rc::shading::normal, rc::shading::flat, rc::shading::lit};
   const rc::shading sh = shadings[one_of("shade", shade, {"normal", "flat", "lit"})];
   const rc::pixel_type px = one_of("dtype", dtype, {"uint8", "float32"}) == 0 ? rc::pixel_type::rgb8
                                                                               : rc::pixel_type::rgb_f32;
-  rc::scene s = rc::scene_with(kind, source, kw.scene);
+  rc::scene s = described(kind, source, layer).scene;
   set_arrays(s, centers, radii, colors, sh);
 
   std::optional<rc::job> j;
   {
     py::gil_scoped_release free;  // preparing 10^6 spheres takes a while too
-    j.emplace(s, kw.run);
+    j.emplace(std::move(s), run.options);
   }
   const std::vector<py::ssize_t> shape = {py::ssize_t(j->height()), py::ssize_t(j->width()), 3};
   py::array out = px == rc::pixel_type::rgb8 ? py::array(py::dtype::of<uint8_t>(), shape)

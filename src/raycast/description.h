@@ -6,8 +6,6 @@
 // library only; every default is the command line's.
 #pragma once
 #include <array>
-#include <bit>
-#include <concepts>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -15,26 +13,25 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace raycast::api {
 
 // x, y, z. Built from three numbers or from any vector type with members x,
-// y and z (GLM's, Eigen's Map of a struct).
+// y and z (GLM's, for one). The header asks for C++17 only.
 struct vec3 {
   double x = 0, y = 0, z = 0;
   constexpr vec3() = default;
   constexpr vec3(double x_, double y_, double z_) : x(x_), y(y_), z(z_) {}
-  template <class V>
-    requires(!std::same_as<V, vec3>) && requires(const V& v) {
-      { v.x } -> std::convertible_to<double>;
-      { v.y } -> std::convertible_to<double>;
-      { v.z } -> std::convertible_to<double>;
-    }
+  template <class V, class = std::enable_if_t<!std::is_same_v<V, vec3>>,
+            class = decltype(double(std::declval<const V&>().x) + double(std::declval<const V&>().y) +
+                             double(std::declval<const V&>().z))>
   constexpr vec3(const V& v) : x(double(v.x)), y(double(v.y)), z(double(v.z)) {}
   constexpr double operator[](size_t k) const { return k == 0 ? x : k == 1 ? y : z; }
   constexpr double& operator[](size_t k) { return k == 0 ? x : k == 1 ? y : z; }
-  friend constexpr bool operator==(const vec3&, const vec3&) = default;
+  friend constexpr bool operator==(const vec3& a, const vec3& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+  friend constexpr bool operator!=(const vec3& a, const vec3& b) { return !(a == b); }
 };
 
 enum class shading : uint8_t {
@@ -109,22 +106,27 @@ struct column {
     const auto* p = static_cast<const unsigned char*>(data) + std::ptrdiff_t(k) * stride + c * component_stride;
     switch (type) {
       case element::u8: return double(*p) / 255.0;
-      case element::f32: return std::bit_cast<float>(load<uint32_t>(p));
-      case element::u32: return double(load<uint32_t>(p));
-      case element::i32: return double(std::bit_cast<int32_t>(load<uint32_t>(p)));
+      case element::f32: return double(load<float, uint32_t>(p));
+      case element::u32: return double(load<uint32_t, uint32_t>(p));
+      case element::i32: return double(load<int32_t, uint32_t>(p));
       case element::f64: break;
     }
-    return std::bit_cast<double>(load<uint64_t>(p));
+    return load<double, uint64_t>(p);
   }
 
  private:
-  template <class U>
-  U load(const unsigned char* p) const {
-    U b;
+  // A T from its bytes at p, swapped where the column says so.
+  template <class T, class Bits>
+  T load(const unsigned char* p) const {
+    Bits b;
     std::memcpy(&b, p, sizeof b);
-    if (!byte_swapped) return b;
-    if constexpr (sizeof(U) == 4) return __builtin_bswap32(b);
-    else return __builtin_bswap64(b);
+    if (byte_swapped) {
+      if constexpr (sizeof(Bits) == 4) b = __builtin_bswap32(b);
+      else b = __builtin_bswap64(b);
+    }
+    T t;
+    std::memcpy(&t, &b, sizeof t);
+    return t;
   }
 };
 
@@ -187,7 +189,9 @@ struct region {
   int64_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;
   int64_t width() const { return x1 - x0; }
   int64_t height() const { return y1 - y0; }
-  friend bool operator==(const region&, const region&) = default;
+  friend bool operator==(const region& a, const region& b) {
+    return a.x0 == b.x0 && a.y0 == b.y0 && a.x1 == b.x1 && a.y1 == b.y1;
+  }
 };
 
 enum class pixel_type : uint8_t {

@@ -24,7 +24,7 @@ struct hit_record {
 // disc = half_b^2 - a c; the nearer root (-half_b - sqrt(disc)) / a unless it
 // lies outside [t_min, t_max] (both ends inclusive), then the farther one.
 inline bool hit_sphere(const sphere& s, const ray& r, double t_min, double t_max, hit_record& rec) {
-  const vec3 oc = r.origin() - s.center;
+  const vec3 oc = r.origin() - to_glm(s.center);
   const double a = glm::dot(r.direction(), r.direction());
   const double half_b = glm::dot(oc, r.direction());
   const double c = glm::dot(oc, oc) - s.radius * s.radius;
@@ -38,7 +38,7 @@ inline bool hit_sphere(const sphere& s, const ray& r, double t_min, double t_max
   }
   rec.t = root;
   rec.p = r.at(rec.t);
-  const vec3 outward_normal = (rec.p - s.center) / s.radius;
+  const vec3 outward_normal = (rec.p - to_glm(s.center)) / s.radius;
   rec.front_face = glm::dot(r.direction(), outward_normal) < 0;
   rec.normal = rec.front_face ? outward_normal : -outward_normal;
   rec.object = &s;
@@ -68,7 +68,7 @@ inline bool hit_world(std::span<const sphere> world, const ray& r, double t_min,
 inline bool blocked(std::span<const sphere> world, const point3& o, const vec3& d, double t_max, const sphere* skip) {
   for (const sphere& s : world) {
     if (&s == skip) continue;
-    const vec3 oc = o - s.center;
+    const vec3 oc = o - to_glm(s.center);
     const double r2 = s.radius * s.radius;
     if (glm::dot(oc, oc) <= r2) return true;
     const double b = glm::dot(oc, d);

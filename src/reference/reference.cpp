@@ -27,9 +27,9 @@ struct ray_at {
 // The light of a lit hit (scene/light.h), in double: every sphere asked,
 // the same numbers for ambient occlusion as the float renderers draw.
 double lit_light(const scene& s, const ray& r, const hit_record& rec, const ray_at& at) {
-  const lighting& li = s.light;
+  const api::light& li = s.light;
   const vec3& n = rec.normal;  // facing the ray
-  const vec3 l = li.direction ? unit_vector(*li.direction) : -glm::normalize(r.direction());
+  const vec3 l = li.direction ? unit_vector(to_glm(*li.direction)) : -glm::normalize(r.direction());
   const double diffuse = std::max(glm::dot(n, l), 0.0);
   // A hit seen from outside its sphere skips it (light/secondary.h).
   const sphere* skip = rec.front_face ? rec.object : nullptr;
@@ -52,12 +52,13 @@ color trace(const scene& s, const ray& r, const ray_at& at) {
   // The book's ch. 6 ray_color: the closest hit for t in [0, infinity).
   hit_record rec;
   if (!hit_world(s.spheres, r, 0.0, INFINITY, rec)) return ray_color(r, s.sky);
-  if (rec.object->shade == shading::flat) return rec.object->flat_color;
+  const color c = to_glm(rec.object->color);
+  if (rec.object->shade == shading::flat) return c;
   if (rec.object->shade == shading::lit) {
-    if (s.light.any()) return rec.object->flat_color * lit_light(s, r, rec, at);
+    if (s.light.any()) return c * lit_light(s, r, rec, at);
     // scene/sphere.h's headlight
     const double facing = -glm::dot(rec.normal, glm::normalize(r.direction()));
-    return rec.object->flat_color * (double(lit_ambient) + double(lit_diffuse) * std::max(facing, 0.0));
+    return c * (double(lit_ambient) + double(lit_diffuse) * std::max(facing, 0.0));
   }
   return 0.5 * (rec.normal + color(1.0, 1.0, 1.0));
 }

@@ -135,7 +135,7 @@ renderer::renderer(const scene& s, const render_options& opts)
 
 void renderer::set_light(const scene& s) {
   if (s.light.direction) {
-    const vec3 l = unit_vector(*s.light.direction);
+    const vec3 l = unit_vector(to_glm(*s.light.direction));
     for (int k = 0; k < 3; ++k) light_[k] = float(l[k]);
   }
   if (s.light.secondary()) {

@@ -17,7 +17,7 @@ std::optional<std::vector<sphere>> builtin_spheres(std::string_view name) {
   if (name == "red-sphere") {
     sphere red = small;
     red.shade = shading::flat;
-    red.flat_color = {1.0, 0.0, 0.0};
+    red.color = {1.0, 0.0, 0.0};
     return std::vector<sphere>{red};
   }
   if (name == "normals") return std::vector<sphere>{small};

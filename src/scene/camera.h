@@ -8,6 +8,7 @@
 #include <string>
 
 #include "scene/invalid.h"
+#include "raycast/description.h"
 #include "scene/ray.h"
 
 namespace raycast {
@@ -16,27 +17,7 @@ namespace raycast {
 // float and SIMD renderers; every integer up to 2^24 is exact in float.
 inline constexpr int64_t max_dimension = int64_t{1} << 24;
 
-// How rays leave the camera: from one point through the viewport (the book's
-// pinhole), or parallel to the view direction from every point of an image
-// plane through lookfrom (particle pictures: sizes comparable across the
-// picture).
-enum class projection : uint8_t { perspective, orthographic };
-
-struct camera_params {
-  projection proj = projection::perspective;
-  double aspect_ratio = 16.0 / 9.0;
-  int64_t image_width = 400;
-  std::optional<int64_t> image_height;  // default: int(width / aspect), at least 1
-  double viewport_height = 2.0;
-  double focal_length = 1.0;
-  point3 origin{0.0, 0.0, 0.0};  // the book's lookfrom
-  // Positionable camera. Without lookat the camera looks down -z with +y up,
-  // exactly the lesson's. vfov (degrees, in (0, 180)) replaces viewport_height
-  // by 2 tan(vfov / 2) focal_length.
-  std::optional<point3> lookat;
-  vec3 vup{0.0, 1.0, 0.0};
-  std::optional<double> vfov_degrees;
-};
+using api::projection;
 
 struct camera {
   projection proj = projection::perspective;
@@ -85,9 +66,9 @@ int64_t default_height(int64_t width, double aspect_ratio);
 // dimensions over the limit, lookfrom = lookat, vup parallel to the view
 // direction, vfov outside (0, 180)), naming the field; nullopt when they can.
 // The one place these rules live: callers do not repeat them.
-std::optional<invalid_field> validate(const camera_params& p);
+std::optional<invalid_field> validate(const api::camera& p);
 
 // Builds the camera; the parameters must pass validate().
-camera make_camera(const camera_params& p);
+camera make_camera(const api::camera& p);
 
 }  // namespace raycast

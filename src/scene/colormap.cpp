@@ -32,4 +32,10 @@ std::array<float, 3> colormap_color(colormap m, double v, double lo, double hi) 
   return gray_entry(k);
 }
 
+colormap colormap_named(std::string_view name) {
+  for (size_t k = 0; k < std::size(colormap_names); ++k)
+    if (colormap_names[k] == name) return colormap(k);
+  return colormap::viridis;
+}
+
 }  // namespace raycast

@@ -16,4 +16,8 @@ inline constexpr std::string_view colormap_names[] = {"viridis", "magma", "gray"
 // value is the map's middle entry (128).
 std::array<float, 3> colormap_color(colormap m, double v, double lo, double hi);
 
+// The map a name (colormap_names) gives; "" is the default, viridis. The
+// input table checks names before they reach here: another name is viridis.
+colormap colormap_named(std::string_view name);
+
 }  // namespace raycast

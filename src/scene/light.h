@@ -1,5 +1,6 @@
-// How `lit` spheres are lit: the headlight (a light at the camera, the
-// default), or a directional light with hard shadows; and ambient occlusion.
+// How `lit` spheres are lit (api::light): the headlight (a light at the
+// camera, the default), or a directional light with hard shadows; and
+// ambient occlusion.
 // Per channel, a lit sphere's colour is
 //   colour (lit_ambient A + lit_diffuse max(0, N . L) S)      (scene/sphere.h)
 // L the unit direction toward the light (the headlight's: -d / |d|, toward
@@ -16,6 +17,7 @@
 #include <optional>
 #include <string>
 
+#include "raycast/description.h"
 #include "scene/invalid.h"
 #include "scene/vec.h"
 
@@ -23,22 +25,10 @@ namespace raycast {
 
 inline constexpr uint32_t max_ao_samples = 4096;
 
-struct lighting {
-  std::optional<vec3> direction;  // toward the light, any length but 0; none: the headlight
-  bool shadows = false;           // needs a direction
-  uint32_t ao_samples = 0;        // 0: no ambient occlusion
-  double ao_distance = std::numeric_limits<double>::infinity();
-
-  // Whether any secondary ray is cast (what the occlusion structure is built for).
-  bool secondary() const { return shadows || ao_samples > 0; }
-  // Whether lit spheres see anything but today's headlight.
-  bool any() const { return direction.has_value() || secondary(); }
-};
-
 // Why the lighting cannot be rendered, naming the input, or nullopt.
-inline std::optional<invalid_field> validate(const lighting& l) {
+inline std::optional<invalid_field> validate(const api::light& l) {
   if (l.direction) {
-    const vec3& d = *l.direction;
+    const api::vec3& d = *l.direction;
     for (int k = 0; k < 3; ++k)
       if (!std::isfinite(d[k])) return invalid_field{scene_field::light_direction, "must be finite"};
     const double m = std::max({std::abs(d[0]), std::abs(d[1]), std::abs(d[2])});

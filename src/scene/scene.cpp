@@ -55,20 +55,19 @@ std::optional<invalid_field> validate(const sphere& s, size_t index) {
     return bad(scene_field::sphere_radius, "sphere radius must be at most 1e37 (the float renderers' range)");
   if (s.shade != shading::normal)
     for (int k = 0; k < 3; ++k)
-      if (!(std::abs(s.flat_color[k]) <= max_color))
+      if (!(std::abs(s.color[k]) <= max_color))
         return bad(scene_field::sphere_color, "colour components must be finite and within +-1e30");
   return std::nullopt;
 }
 
 std::vector<sphere> sphere_vector(const scene& s) {
-  if (!s.arrays) return s.spheres;
-  std::vector<sphere> v(s.arrays->count);
-  for (size_t k = 0; k < v.size(); ++k) v[k] = s.arrays->at(k);
+  std::vector<sphere> v(s.sphere_count());
+  for (size_t k = 0; k < v.size(); ++k) v[k] = s.sphere_at(k);
   return v;
 }
 
-std::optional<invalid_field> validate(const scene_params& p) {
-  if (auto e = validate(p.camera)) return e;
+std::optional<invalid_field> validate(const api::scene& p) {
+  if (auto e = validate(p.cam)) return e;
   if (auto e = validate(p.sky)) return e;
   if (auto e = validate(p.light)) return e;
   const size_t n = p.arrays ? p.arrays->count : p.spheres.size();
@@ -78,14 +77,14 @@ std::optional<invalid_field> validate(const scene_params& p) {
                              std::to_string(n),
                          0};
   for (size_t k = 0; k < n; ++k) {
-    const sphere s = p.arrays ? p.arrays->at(k) : p.spheres[k];
+    const sphere s = p.sphere_at(k);
     if (auto e = validate(s, k)) return e;
     // As a scene file's sphere: flat and lit take the colour they show.
     if (p.arrays && !p.arrays->colors.data && s.shade != shading::normal)
       return invalid_field{scene_field::sphere_color,
                            s.shade == shading::flat ? "is required for flat shading" : "is required for lit shading", k};
     for (int c = 0; c < 3; ++c)
-      if (!(std::abs(p.camera.origin[c] - s.center[c]) <= max_sphere_extent))
+      if (!(std::abs(p.cam.lookfrom[c] - s.center[c]) <= max_sphere_extent))
         return invalid_field{scene_field::sphere_center,
                              "sphere centre must be within 1e37 of the camera (lookfrom) in each coordinate "
                              "(the float renderers' range)",
@@ -94,12 +93,12 @@ std::optional<invalid_field> validate(const scene_params& p) {
   return std::nullopt;
 }
 
-scene make_scene(const scene_params& p) {
-  return scene{make_camera(p.camera), p.sky, p.spheres, p.arrays, p.light};
+scene make_scene(const api::scene& d) {
+  return scene{make_camera(d.cam), make_sky(d.sky), d.spheres, d.arrays, d.light};
 }
 
-scene make_scene(scene_params&& p) {
-  return scene{make_camera(p.camera), p.sky, std::move(p.spheres), p.arrays, p.light};
+scene make_scene(api::scene&& d) {
+  return scene{make_camera(d.cam), make_sky(d.sky), std::move(d.spheres), d.arrays, d.light};
 }
 
 }  // namespace raycast

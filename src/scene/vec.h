@@ -6,10 +6,15 @@
 #include <glm/common.hpp>
 #include <glm/vec3.hpp>
 
+#include "raycast/description.h"
+
 namespace raycast {
 using vec3 = glm::dvec3;
 using point3 = glm::dvec3;  // a position in world space
 using color = glm::dvec3;   // linear RGB
+
+// A description's vector as GLM's, for the arithmetic.
+inline vec3 to_glm(const api::vec3& v) { return vec3(v.x, v.y, v.z); }
 
 // b / |b|, scaled by its largest component first (as Eigen's stableNormalized)
 // so that no square overflows or underflows; the zero vector stays zero.

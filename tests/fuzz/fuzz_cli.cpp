@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "library/pipeline.h"
 #include "options.h"
 #include "render/render.h"
 
@@ -65,7 +66,7 @@ void check_finite(const rendered& img, const std::string& where) {
 
 // `some_shortcuts`: a set of the plan's shortcuts picked by the input.
 void render_everywhere(const cli::job& j, unsigned some_shortcuts) {
-  scene s = j.sc;
+  scene s = make_scene(j.description);
   s.cam.image_width = std::min(s.cam.image_width, max_width);
   const int64_t H = s.cam.image_height;
   // Row bands in the image's own coordinates, so v = j / (H - 1) is the real one.
@@ -79,7 +80,7 @@ void render_everywhere(const cli::job& j, unsigned some_shortcuts) {
 
   // The job's own options, as the CLI would run them (threads included).
   {
-    const renderer r(s, j.render);
+    const renderer r(s, renderer_options(j.options));
     for (const auto& [r0, r1] : bands) {
       check_finite(render_rows(r, pixel_format::rgb_f32, r0, r1), "the job's own options");
       (void)render_rows(r, pixel_format::rgb8, r0, r1);
@@ -161,7 +162,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (parsed.exit_code != 0) fail("a job came with exit code " + std::to_string(parsed.exit_code));
   if (!err.str().empty()) fail("an accepted job printed: " + err.str());
   const cli::job& j = *parsed.run;
-  const camera& c = j.sc.cam;
+  const camera c = make_camera(j.description.cam);
   if (c.image_width < 1 || c.image_width > max_dimension || c.image_height < 1 ||
       c.image_height > max_dimension)
     fail("accepted a camera of " + std::to_string(c.image_width) + "x" +

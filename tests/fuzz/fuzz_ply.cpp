@@ -59,7 +59,7 @@ std::vector<unsigned char> render_small(const scene& s, backend b) {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size == 0) return 0;
   const std::string bytes(reinterpret_cast<const char*>(data + 1), size - 1);
-  particle_options o;
+  api::particles o;
   if (data[0] & 1) o.radius = 0.25;
   if (data[0] & 2) o.color_by = "z";
   const byte_source src = memory_source(bytes);
@@ -68,13 +68,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     check_refusal(*e, bytes.size());
     return 0;
   }
-  scene_params p = std::move(std::get<scene_file_contents>(read).scene);
+  api::scene p = std::move(std::get<scene_file_contents>(read).scene);
   if (!p.arrays || p.arrays->count == 0) fail("accepted without spheres");
   for (size_t k = 0; k < p.arrays->count; ++k)
     if (auto e = validate(p.arrays->at(k), k)) fail("accepted an invalid sphere: " + path(*e) + ": " + e->message);
-  p.camera.image_width = 16;
-  p.camera.image_height = 9;
-  p.camera.origin = vec3(0.0, 0.0, 10.0);
+  p.cam.width = 16;
+  p.cam.height = 9;
+  p.cam.lookfrom = vec3(0.0, 0.0, 10.0);
   if (validate(p)) return 0;  // a centre too far from the camera for the float renderers: refused there
   const scene s = make_scene(p);
   const auto want = render_small(s, backend::scalar);

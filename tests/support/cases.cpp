@@ -5,10 +5,10 @@
 
 namespace raycast_test {
 
-raycast::camera_params sized(int64_t w, int64_t h) {
-  raycast::camera_params p;
-  p.image_width = w;
-  p.image_height = h;
+raycast::api::camera sized(int64_t w, int64_t h) {
+  raycast::api::camera p;
+  p.width = w;
+  p.height = h;
   return p;
 }
 

@@ -13,16 +13,16 @@ namespace raycast_test {
 // A scene with a name: the stiff cases, the equivalence cameras.
 struct scene_case {
   std::string name;
-  raycast::camera_params cam;
+  raycast::api::camera cam;
   raycast::sky sky;
 };
 
 // The lesson's camera at w x h pixels.
-raycast::camera_params sized(int64_t w, int64_t h);
+raycast::api::camera sized(int64_t w, int64_t h);
 
-inline raycast::scene make_scene(const raycast::camera_params& p = {}, const raycast::sky& s = {},
+inline raycast::scene make_scene(const raycast::api::camera& p = {}, const raycast::sky& s = {},
                                  std::vector<raycast::sphere> spheres = {}) {
-  return raycast::make_scene(raycast::scene_params{p, s, std::move(spheres), std::nullopt, {}});
+  return raycast::make_scene(raycast::api::scene{p, {s.bottom, s.top}, std::move(spheres), std::nullopt, {}});
 }
 
 // S = max(1, |bottom|, |top|) over all channels: the scale of the error bounds

@@ -45,11 +45,11 @@ double cloud_radius(int64_t n, double coverage) {
   return rounded;
 }
 
-scene_params particle_cloud(int64_t n, double coverage) {
-  scene_params p;
-  p.camera.image_width = width;
-  p.camera.image_height = height;
-  p.camera.vfov_degrees = vfov_degrees;
+api::scene particle_cloud(int64_t n, double coverage) {
+  api::scene p;
+  p.cam.width = width;
+  p.cam.height = height;
+  p.cam.vfov = vfov_degrees;
   std::mt19937 gen(20261122u);
   // [0, 1) from the top 24 bits of one word: exact in float and double.
   auto unit = [&gen] { return double(gen() >> 8) * 0x1p-24; };
@@ -72,22 +72,22 @@ namespace {
 // The packed box's camera (particle_box) and room for its n spheres; and
 // their radius: n equal spheres filling 0.3 of the unit cube, exact or
 // rounded as the JSON writes it.
-scene_params box_view(int64_t n, bool orthographic) {
-  scene_params p;
-  p.camera.image_width = width;
-  p.camera.image_height = height;
+api::scene box_view(int64_t n, bool orthographic) {
+  api::scene p;
+  p.cam.width = width;
+  p.cam.height = height;
   if (orthographic) {
-    p.camera.proj = projection::orthographic;
-    p.camera.viewport_height = 1.2;
-    p.camera.origin = point3(0.5, 0.5, 2.0);
+    p.cam.projection = projection::orthographic;
+    p.cam.viewport_height = 1.2;
+    p.cam.lookfrom = point3(0.5, 0.5, 2.0);
   } else {
-    p.camera.vfov_degrees = 30.0;
+    p.cam.vfov = 30.0;
     // Far enough that the cube's bounding sphere (radius sqrt(3) / 2) fills the lens's height.
     const double distance = 0.5 * std::sqrt(3.0) / std::sin(15.0 * std::numbers::pi / 180.0);
     const double out = std::round((0.5 + distance / std::sqrt(3.0)) * 1e6) / 1e6;  // as the JSON writes it
-    p.camera.origin = point3(out, out, out);
+    p.cam.lookfrom = point3(out, out, out);
   }
-  p.camera.lookat = point3(0.5, 0.5, 0.5);
+  p.cam.lookat = point3(0.5, 0.5, 0.5);
   p.spheres.resize(size_t(n));
   return p;
 }
@@ -102,8 +102,8 @@ double box_radius(int64_t n) {
 
 }  // namespace
 
-scene_params particle_box(int64_t n, bool orthographic) {
-  scene_params p = box_view(n, orthographic);
+api::scene particle_box(int64_t n, bool orthographic) {
+  api::scene p = box_view(n, orthographic);
   int64_t m = 1;
   while (m * m * m < n) ++m;
   const double cell = 1.0 / double(m);
@@ -128,8 +128,8 @@ scene_params particle_box(int64_t n, bool orthographic) {
   return p;
 }
 
-scene_params particle_box_random(int64_t n) {
-  scene_params p = box_view(n, false);
+api::scene particle_box_random(int64_t n) {
+  api::scene p = box_view(n, false);
   const double radius = box_radius(n), span = 1.0 - 2.0 * radius;
   std::mt19937 gen(20261129u);
   auto unit = [&gen] { return double(gen() >> 8) * 0x1p-24; };
@@ -154,16 +154,16 @@ void vector_of(std::string& out, const char* name, const vec3& v) {
 }
 }  // namespace
 
-std::string cloud_json(const scene_params& p) {
-  std::string out = "{\"camera\": {\"width\": " + std::to_string(p.camera.image_width) +
-                    ", \"height\": " + std::to_string(p.camera.image_height.value_or(0));
-  if (p.camera.proj == projection::orthographic)
-    out += ", \"projection\": \"orthographic\", \"viewport_height\": " + std::to_string(p.camera.viewport_height);
+std::string cloud_json(const api::scene& p) {
+  std::string out = "{\"camera\": {\"width\": " + std::to_string(p.cam.width) +
+                    ", \"height\": " + std::to_string(p.cam.height.value_or(0));
+  if (p.cam.projection == projection::orthographic)
+    out += ", \"projection\": \"orthographic\", \"viewport_height\": " + std::to_string(p.cam.viewport_height);
   else
-    out += ", \"vfov\": " + std::to_string(p.camera.vfov_degrees.value_or(90.0));
-  if (p.camera.lookat) {
-    vector_of(out, "lookfrom", p.camera.origin);
-    vector_of(out, "lookat", *p.camera.lookat);
+    out += ", \"vfov\": " + std::to_string(p.cam.vfov.value_or(90.0));
+  if (p.cam.lookat) {
+    vector_of(out, "lookfrom", to_glm(p.cam.lookfrom));
+    vector_of(out, "lookat", to_glm(*p.cam.lookat));
   }
   out += "},\n \"spheres\": [";
   out.reserve(out.size() + p.spheres.size() * 90 + 8);
@@ -178,7 +178,7 @@ std::string cloud_json(const scene_params& p) {
     append(out, s.radius, true);
     const char* shade = s.shade == shading::lit ? "lit" : s.shade == shading::flat ? "flat" : "normal";
     out += std::string(", \"shade\": \"") + shade + "\"";
-    if (s.shade != shading::normal) vector_of(out, "color", s.flat_color);
+    if (s.shade != shading::normal) vector_of(out, "color", to_glm(s.color));
     out += "}";
   }
   return out + "]}\n";

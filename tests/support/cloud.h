@@ -21,7 +21,7 @@ using namespace raycast;
 // are about large n.
 // coverage: the spheres' summed screen area in image areas (1.5: the sparse
 // family, 3: the dense one, about three spheres behind each pixel).
-scene_params particle_cloud(int64_t n, double coverage = 1.5);
+api::scene particle_cloud(int64_t n, double coverage = 1.5);
 
 // The radius that keeps the cloud's coverage at that many image areas (cloud.cpp).
 double cloud_radius(int64_t n, double coverage = 1.5);
@@ -36,17 +36,17 @@ double cloud_radius(int64_t n, double coverage = 1.5);
 // Orthographic: the same box seen along an axis (-z), from an image plane
 // 1.2 high (the box fills most of the picture's height; a ray passes m
 // spheres' cells, 100 at 10^6).
-scene_params particle_box(int64_t n, bool orthographic = false);
+api::scene particle_box(int64_t n, bool orthographic = false);
 
 // The same cube, camera and radius with the centres uniform in it (spheres
 // may overlap: a gas's snapshot rather than a packing). The lattice box lists
 // each sphere in one cell of a grid of n cells (where m^3 = n, as at 10^6,
 // the lattice is such a grid); here a sphere reaches into several, as in
 // most particle data.
-scene_params particle_box_random(int64_t n);
+api::scene particle_box_random(int64_t n);
 
 // p as scene-file text (formats/json.h), about 85 bytes a sphere: each
 // sphere's shading, and the colour of a flat or lit one.
-std::string cloud_json(const scene_params& p);
+std::string cloud_json(const api::scene& p);
 
 }  // namespace raycast_test

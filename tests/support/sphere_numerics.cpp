@@ -20,18 +20,18 @@ using namespace raycast;
 
 constexpr double pi = 3.14159265358979323846;
 
-camera_params width_200() {
-  camera_params p;
-  p.image_width = 200;
+api::camera width_200() {
+  api::camera p;
+  p.width = 200;
   return p;
 }
 
 // A unit sphere d radii away, filling about half the image: the textbook
 // b^2 - c in float renders it as a solid square at 4100 (Ray Tracing Gems ch. 7).
 sphere_stiff_case unit_sphere_at(double d) {
-  camera_params p = width_200();
+  api::camera p = width_200();
   p.lookat = point3(0, 0, -1);
-  p.vfov_degrees = 2.0 * std::atan(2.0 / d) * 180.0 / pi;
+  p.vfov = 2.0 * std::atan(2.0 / d) * 180.0 / pi;
   return {"unit_sphere_at_" + std::to_string(int(d)), {{{0, 0, -d}, 1.0, shading::normal}}, p};
 }
 
@@ -42,9 +42,9 @@ sphere_stiff_case unit_sphere_at(double d) {
 sphere_stiff_case ground_grazing(double r) {
   const double D = std::sqrt((r + 0.5) * (r + 0.5) + 1.0);
   const double depression = std::atan(r + 0.5) - std::asin(r / D);
-  camera_params p = width_200();
+  api::camera p = width_200();
   p.lookat = point3(0, -std::tan(depression), -1);
-  p.vfov_degrees = 10;
+  p.vfov = 10;
   return {"ground_radius_" + std::to_string(int64_t(r)) + "_grazing",
           {{{0, -r - 0.5, -1}, r, shading::normal}}, p};
 }
@@ -57,10 +57,10 @@ sphere_stiff_case ground_grazing(double r) {
 // 36 rays tangent (to the rounding of r): half of them hit in double, half
 // not. A larger sphere behind turns the misses into other-object pixels.
 sphere_stiff_case tangent_rays() {
-  camera_params p;
-  p.aspect_ratio = 1.0;
-  p.image_width = 161;
-  p.image_height = 161;
+  api::camera p;
+  p.aspect = 1.0;
+  p.width = 161;
+  p.height = 161;
   const double rho = 65.0 / 80.0, d = 2.0;
   const double r = d * rho / std::sqrt(1.0 + rho * rho);  // sin(atan(rho)) d
   return {"tangent_rays", {{{0, 0, -d}, r, shading::normal}, {{0, 0, -20}, 15.0, shading::normal}}, p};
@@ -69,10 +69,10 @@ sphere_stiff_case tangent_rays() {
 // The camera and the spheres near 1e30, the scene 1e28 across: float
 // coordinates there are 8e22 apart (1e-5 of the scene), and r^2 overflows float.
 sphere_stiff_case coordinates_near_1e30() {
-  camera_params p = width_200();
+  api::camera p = width_200();
   const point3 o(1.1e30, -0.7e30, 2.3e30);
   const double k = 1e28;
-  p.origin = o;
+  p.lookfrom = o;
   return {"coordinates_near_1e30",
           {{o + k * vec3(0, 0, -1), 0.5 * k, shading::normal},
            {o + k * vec3(0.9, 0.2, -1.6), 0.45 * k, shading::normal},
@@ -84,11 +84,11 @@ sphere_stiff_case coordinates_near_1e30() {
 // the centres and the radii all multiplied by s: the same picture at every s.
 // (The origin is moved off 0 so that it scales too.)
 sphere_stiff_case world_scaled(double s, const std::string& suffix) {
-  camera_params p = width_200();
+  api::camera p = width_200();
   p.viewport_height = 2.0 * s;
   p.focal_length = s;
   const vec3 o(1, 2, 3);
-  p.origin = s * o;
+  p.lookfrom = s * o;
   return {"world_scaled_" + suffix,
           {{s * (o + vec3(0, 0, -1)), 0.5 * s, shading::normal},
            {s * (o + vec3(0, -100.5, -1)), 100 * s, shading::normal}},
@@ -100,9 +100,9 @@ sphere_stiff_case world_scaled(double s, const std::string& suffix) {
 // vectors are scaled so their largest component is near 1), and only that
 // ray hits the sphere ahead. Its squared length is below float's normal range.
 sphere_stiff_case degenerate_focal_length() {
-  camera_params p;
-  p.image_width = 401;
-  p.image_height = 225;
+  api::camera p;
+  p.width = 401;
+  p.height = 225;
   p.focal_length = 1e-19;
   return {"focal_length_1e-19",
           {{{0, 0, -1}, 0.5, shading::normal}, {{0, -100.5, -1}, 100, shading::normal}},
@@ -116,18 +116,18 @@ sphere_stiff_case degenerate_focal_length() {
 // keeps the depths' precision), and with a sphere behind the plane and one
 // the plane cuts.
 sphere_stiff_case orthographic(const std::string& name, double scale, double back) {
-  camera_params p = width_200();
-  p.proj = projection::orthographic;
+  api::camera p = width_200();
+  p.projection = projection::orthographic;
   p.viewport_height = 3.0 * scale;
-  p.origin = point3(0.0, 0.0, back);
+  p.lookfrom = point3(0.0, 0.0, back);
   std::vector<sphere> world = {{{0, 0, -1}, 0.5, shading::normal}, {{0, -100.5, -1}, 100, shading::normal}};
-  for (sphere& b : world) b.center *= scale, b.radius *= scale;
+  for (sphere& b : world) b.center = to_glm(b.center) * scale, b.radius *= scale;
   return {name, world, p};
 }
 
 sphere_stiff_case orthographic_plane_cuts() {
-  camera_params p = width_200();
-  p.proj = projection::orthographic;
+  api::camera p = width_200();
+  p.projection = projection::orthographic;
   p.viewport_height = 3.0;
   return {"ortho_spheres_behind_and_cut",
           {{{0.6, 0.0, 2.0}, 0.5, shading::normal},     // behind the image plane: never seen
@@ -140,7 +140,7 @@ std::vector<sphere_stiff_case> make_cases() {
   std::vector<sphere_stiff_case> v;
   for (double d : {10.0, 100.0, 1e3, 4100.0, 1e4, 1e5, 1e6, 1e7}) v.push_back(unit_sphere_at(d));
   for (double r : {100.0, 1e4, 1e6}) v.push_back(ground_grazing(r));
-  const camera_params p = width_200();
+  const api::camera p = width_200();
   v.push_back({"camera_touching", {{{0, 0, -0.5}, 0.5, shading::normal}, {{0, 0, -2}, 0.5, shading::normal}}, p});
   v.push_back({"camera_inside", {{{0.2, 0.1, -0.3}, 3.0, shading::normal}}, p});
   v.push_back({"camera_on_the_ground", {{{0, -1000, 0}, 1000, shading::normal}, {{0, 0, -2}, 0.5, shading::normal}}, p});
@@ -214,7 +214,7 @@ void naive_sky(const sky& sk, const f3& d, float out[3]) {
 
 double farthest_in_radii(const sphere_stiff_case& c) {
   double most = 0.0;
-  for (const sphere& b : c.spheres) most = std::max(most, glm::length(c.cam.origin - b.center) / b.radius);
+  for (const sphere& b : c.spheres) most = std::max(most, glm::length(to_glm(c.cam.lookfrom) - to_glm(b.center)) / b.radius);
   return most;
 }
 
@@ -268,7 +268,7 @@ traced_image trace_naive(const scene& s) {
       float closest = std::numeric_limits<float>::infinity(), tk = 0;
       int64_t hit = -1;
       for (size_t k = 0; k < s.spheres.size(); ++k)
-        if (naive_hit(o, d, to_f3(s.spheres[k].center), float(s.spheres[k].radius), closest, tk)) {
+        if (naive_hit(o, d, to_f3(to_glm(s.spheres[k].center)), float(s.spheres[k].radius), closest, tk)) {
           closest = tk;
           hit = int64_t(k);
         }
@@ -276,9 +276,9 @@ traced_image trace_naive(const scene& s) {
       if (hit < 0) {
         naive_sky(s.sky, d, c);
       } else if (const sphere& sp = s.spheres[size_t(hit)]; sp.shade == shading::flat) {
-        for (int k = 0; k < 3; ++k) c[k] = float(sp.flat_color[k]);
+        for (int k = 0; k < 3; ++k) c[k] = float(sp.color[k]);
       } else {
-        const f3 ctr = to_f3(sp.center);
+        const f3 ctr = to_f3(to_glm(sp.center));
         const float r = float(sp.radius);
         f3 n = {(o.x + closest * d.x - ctr.x) / r, (o.y + closest * d.y - ctr.y) / r,
                 (o.z + closest * d.z - ctr.z) / r};

@@ -21,7 +21,7 @@ namespace raycast_test {
 struct sphere_stiff_case {
   std::string name;
   std::vector<raycast::sphere> spheres;
-  raycast::camera_params cam;
+  raycast::api::camera cam;
 };
 
 // unit_sphere_at_10 ... _10000000, ground_radius_100/10000/1000000_grazing,

@@ -5,24 +5,24 @@ namespace {
 
 using namespace raycast;
 
-camera_params scaled(double viewport_height, double focal_length) {
-  camera_params p;
+api::camera scaled(double viewport_height, double focal_length) {
+  api::camera p;
   p.viewport_height = viewport_height;
   p.focal_length = focal_length;
   return p;
 }
 
-camera_params at(double x, double y, double z) {
-  camera_params p;
-  p.origin = point3(x, y, z);
+api::camera at(double x, double y, double z) {
+  api::camera p;
+  p.lookfrom = point3(x, y, z);
   return p;
 }
 
-camera_params aspect(double ratio, int64_t w, std::optional<int64_t> h) {
-  camera_params p;
-  p.aspect_ratio = ratio;
-  p.image_width = w;
-  p.image_height = h;
+api::camera aspect(double ratio, int64_t w, std::optional<int64_t> h) {
+  api::camera p;
+  p.aspect = ratio;
+  p.width = w;
+  p.height = h;
   return p;
 }
 
@@ -34,7 +34,7 @@ std::vector<stiff_case> stiff_cases() {
   hdr.bottom = color(4.0, 2.0, 0.5);
   hdr.top = color(-1.0, 0.25, 16.0);
   return {
-      {"default 400x225", camera_params{}, lesson},
+      {"default 400x225", api::camera{}, lesson},
       {"W=1", sized(1, 225), lesson},
       {"H=1", sized(400, 1), lesson},
       {"W=H=1", sized(1, 1), lesson},
@@ -47,7 +47,7 @@ std::vector<stiff_case> stiff_cases() {
       {"origin (1e8,-1e8,1e12)", at(1e8, -1e8, 1e12), lesson},
       {"origin +3.4e38", at(3.4e38, 3.4e38, 3.4e38), lesson},
       {"origin -3.4e38", at(-3.4e38, -3.4e38, -3.4e38), lesson},
-      {"HDR sky (bottom 4,2,0.5 top -1,0.25,16)", camera_params{}, hdr},
+      {"HDR sky (bottom 4,2,0.5 top -1,0.25,16)", api::camera{}, hdr},
   };
 }
 

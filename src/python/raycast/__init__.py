@@ -78,9 +78,9 @@ def _json_value(v):
     raise _type_error("scene", f"a {type(v).__name__} is not a JSON value")
 
 
-# The input table's keywords that render() takes (format is write()'s).
+# The input table's keywords that render() takes (path and format are write()'s).
 _TABLE = _raycast.input_table()
-_RENDER_KEYWORDS = tuple(r["keyword"] for r in _TABLE if r["keyword"] and r["keyword"] != "format")
+_RENDER_KEYWORDS = tuple(r["keyword"] for r in _TABLE if r["keyword"] and r["keyword"] not in ("format", "path"))
 # What errors name: a scene file's key where the keyword has one (camera.vfov).
 _FIELD = {r["keyword"]: r["file_key"] or r["keyword"] for r in _TABLE}
 

@@ -99,7 +99,7 @@ def test_every_front_end_gives_the_same_verdict_in_the_same_words(tmp_path, row,
 
 def test_every_keyword_is_a_table_row_and_every_row_a_keyword():
     import inspect
-    table = {r["keyword"] for r in _raycast.input_table() if r["keyword"]} - {"format"}
+    table = {r["keyword"] for r in _raycast.input_table() if r["keyword"]} - {"format", "path"}
     params = set(inspect.signature(raycast.render).parameters)
     own = {"scene", "centers", "radii", "colors", "shade", "dtype"}
     assert params - own == table

@@ -23,8 +23,8 @@ int main(int argc, char** argv) {
   a.cam.width = 96;
   rc::sphere_arrays arr;
   arr.count = 2;
-  arr.centers = {centers.data(), rc::sphere_arrays::element::f32, 0, 0};
-  arr.radii = {radii.data(), rc::sphere_arrays::element::f32, 0, 0};
+  arr.centers = rc::packed(centers.data(), 3);
+  arr.radii = rc::packed(radii.data());
   a.arrays = arr;
   rc::write(argv[2], rc::render(a, o));
 
