@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/sampler.h"
+#include "sampling/sampler.h"
 #include "scene/scene.h"
 
 namespace raycast::bench {

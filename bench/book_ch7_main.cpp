@@ -21,7 +21,7 @@ int main() {
   const hittable_list world = ch6_world();
 
   // Camera
-  const camera cam;
+  const raycast::bench::book::camera cam;
 
   // Render
   std::cout << "P3\n" << image_width << ' ' << image_height << "\n255\n";

@@ -12,7 +12,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "scene/ray.h"
+#include "scene/camera.h"
 
 namespace raycast::bench::book {
 

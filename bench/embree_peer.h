@@ -12,7 +12,7 @@
 #include <string>
 
 #include "image/image.h"
-#include "scene/sampler.h"
+#include "sampling/sampler.h"
 #include "scene/scene.h"
 
 namespace raycast::bench {

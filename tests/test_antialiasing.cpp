@@ -22,7 +22,7 @@
 #include "backend_test.h"
 #include "render_support.h"
 #include "scene/builtin.h"
-#include "scene/sampler.h"
+#include "sampling/sampler.h"
 
 namespace {
 

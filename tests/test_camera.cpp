@@ -9,7 +9,7 @@
 
 #include "scene/camera.h"
 #include "reference/color.h"
-#include "kernels/float_scene.h"
+#include "prepare/float_scene.h"
 #include "reference/reference.h"
 #include "render_support.h"
 #include "kernels/scalar.h"

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "cloud.h"
-#include "kernels/culling.h"
+#include "prepare/culling.h"
 #include "render/render.h"
 #include "render_support.h"
 

@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "raycast/raycast.h"
-#include "scene/colormap.h"
+#include "particles/colormap.h"
 #include "formats/registry.h"
-#include "kernels/float_scene.h"
+#include "prepare/float_scene.h"
 #include "render/backend.h"
 #include "render_support.h"
 #include "formats/ply.h"

@@ -16,8 +16,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "kernels/culling.h"
-#include "kernels/float_scene.h"
+#include "prepare/culling.h"
+#include "prepare/float_scene.h"
 #include "kernels/scalar.h"
 #include "reference/hittable.h"
 #include "backend_test.h"

@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include "io/signals.h"
+#include "io/files/signals.h"
 #include "io/timestamp.h"
 #include "options.h"
 #include "raycast/raycast.h"

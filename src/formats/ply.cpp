@@ -14,7 +14,7 @@
 #include "memory/arrays.h"
 #include "settings/names.h"
 #include "formats/regular_file.h"
-#include "scene/colormap.h"
+#include "particles/colormap.h"
 
 namespace raycast {
 namespace {

@@ -6,10 +6,10 @@
 #include <optional>
 #include <string>
 
-#include "io/atomic_file.h"
-#include "io/module_loader.h"
+#include "io/files/atomic_file.h"
+#include "io/module/module_loader.h"
 #include "io/ppm.h"
-#include "io/signals.h"
+#include "io/files/signals.h"
 #include "io/timestamp.h"
 
 namespace raycast::io {

@@ -3,7 +3,7 @@
 #include <memory>
 #include <string>
 
-#include "io/atomic_file.h"
+#include "io/files/atomic_file.h"
 #include "io/image_sink.h"
 
 namespace raycast::io {

@@ -3,11 +3,11 @@
 #include <cstdint>
 
 #include "image/image.h"
-#include "kernels/culling.h"
-#include "kernels/float_scene.h"
+#include "prepare/culling.h"
+#include "prepare/float_scene.h"
 #include "kernels/precision.h"
 #include "kernels/scalar.h"
-#include "scene/sampler.h"
+#include "sampling/sampler.h"
 #include "simd/targets.h"
 
 namespace raycast::kernels {

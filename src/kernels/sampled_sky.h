@@ -16,7 +16,7 @@
 #include <cstdint>
 #include <cstring>
 
-#include "scene/sampler.h"
+#include "sampling/sampler.h"
 
 namespace raycast::sampling {
 

@@ -67,13 +67,11 @@ namespace raycast {
 // tests): sphere = the index of the closest sphere hit, -1 for none;
 // distance = the float renderer's hit distance from the camera origin in
 // world units, widened to double (0 when nothing is hit). Exact mode; every
-// backend renders these hits bit for bit. scalar_trace is the 1-lane
-// target's trace_pixel (kernels/kernel.h).
+// backend renders these hits bit for bit. scalar_trace (render/backend.h)
+// is the 1-lane target's trace_pixel (kernels/kernel.h).
 struct scalar_hit {
   int64_t sphere = -1;
   double distance = 0.0;
 };
-struct float_scene;
-scalar_hit scalar_trace(const float_scene& f, int64_t i, int64_t j);
 
 }  // namespace raycast

@@ -2,7 +2,7 @@
 #include <chrono>
 
 #include "io/image_sink.h"
-#include "io/module_loader.h"
+#include "io/module/module_loader.h"
 #include "library/bands.h"
 #include "library/pipeline.h"
 #include "raycast/raycast.h"

@@ -19,7 +19,7 @@
 
 #include "light/grid.h"
 #include "light/shadow_bins.h"
-#include "scene/sampler.h"
+#include "sampling/sampler.h"
 
 namespace raycast {
 

@@ -14,7 +14,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include "io/module_loader.h"
+#include "io/module/module_loader.h"
 #include "library/pipeline.h"
 #include "raycast/raycast.h"
 #include "settings/names.h"

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cstdint>
 
-#include "scene/ray.h"
+#include "scene/camera.h"
 #include "scene/sky.h"
 
 namespace raycast {

@@ -7,7 +7,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "scene/ray.h"
+#include "scene/camera.h"
 #include "scene/sphere.h"
 
 namespace raycast {

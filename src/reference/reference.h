@@ -7,7 +7,7 @@
 #pragma once
 #include "image/image.h"
 #include "reference/color.h"
-#include "scene/sampler.h"
+#include "sampling/sampler.h"
 #include "scene/scene.h"
 
 namespace raycast {

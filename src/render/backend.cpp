@@ -62,4 +62,11 @@ target_kernels kernels_for(backend b) {
   }
 }
 
+scalar_hit scalar_trace(const float_scene& f, int64_t i, int64_t j) {
+  kernel_spheres sp = arrays_of(f.spheres);
+  sp.axes = f.axes;
+  sp.track_index = true;
+  return kernels::scalar::trace_pixel(f, sp, i, j);
+}
+
 }  // namespace raycast

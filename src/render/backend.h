@@ -66,4 +66,7 @@ struct target_kernels {
 };
 target_kernels kernels_for(backend b);
 
+// What the 1-lane target's ray through pixel (i, j) hits (kernels/scalar.h's scalar_hit).
+scalar_hit scalar_trace(const float_scene& f, int64_t i, int64_t j);
+
 }  // namespace raycast

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <new>
 
-#include "kernels/float_scene.h"
+#include "prepare/float_scene.h"
 
 namespace raycast {
 

@@ -9,7 +9,7 @@
 #include <cstdlib>
 #include <memory>
 
-#include "kernels/float_scene.h"
+#include "prepare/float_scene.h"
 #include "kernels/kernel.h"
 #include "kernels/precision.h"
 

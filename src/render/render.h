@@ -4,14 +4,14 @@
 #include <optional>
 
 #include "image/image.h"
-#include "kernels/culling.h"
-#include "kernels/float_scene.h"
+#include "prepare/culling.h"
+#include "prepare/float_scene.h"
 #include "kernels/precision.h"
 #include "light/grid.h"
 #include "light/secondary.h"
 #include "render/backend.h"
 #include "render/plan.h"
-#include "scene/sampler.h"
+#include "sampling/sampler.h"
 #include "scene/scene.h"
 
 namespace raycast {

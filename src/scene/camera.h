@@ -9,9 +9,23 @@
 
 #include "scene/invalid.h"
 #include "raycast/description.h"
-#include "scene/ray.h"
+#include "scene/vec.h"
 
 namespace raycast {
+
+// A ray P(t) = A + t*b: origin A, direction b (not necessarily unit length).
+struct ray {
+  point3 orig{0.0};
+  vec3 dir{0.0};
+
+  ray() = default;
+  ray(const point3& origin, const vec3& direction) : orig(origin), dir(direction) {}
+
+  point3 origin() const { return orig; }
+  vec3 direction() const { return dir; }
+  point3 at(double t) const { return orig + t * dir; }
+};
+
 
 // Largest width or height we render. Pixel indices are converted to float by the
 // float and SIMD renderers; every integer up to 2^24 is exact in float.

@@ -9,9 +9,9 @@
 #include "render/backend.h"
 #include "render/render.h"
 #include "scene/builtin.h"
-#include "scene/colormap.h"
+#include "particles/colormap.h"
 #include "scene/light.h"
-#include "scene/sampler.h"
+#include "sampling/sampler.h"
 #include "scene/scene.h"
 
 namespace raycast {

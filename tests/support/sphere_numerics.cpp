@@ -7,7 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "cases.h"
-#include "kernels/float_scene.h"
+#include "prepare/float_scene.h"
 #include "kernels/scalar.h"
 #include "reference/hittable.h"
 #include "reference/reference.h"

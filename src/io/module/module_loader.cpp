@@ -1,4 +1,4 @@
-#include "io/module_loader.h"
+#include "io/module/module_loader.h"
 
 #include <dlfcn.h>
 #include <unistd.h>
@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "io/io_error.h"
-#include "io/signals.h"
+#include "io/files/signals.h"
 
 namespace raycast::io {
 namespace {

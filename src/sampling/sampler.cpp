@@ -1,4 +1,4 @@
-#include "scene/sampler.h"
+#include "sampling/sampler.h"
 
 #include <cmath>
 

@@ -10,7 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "kernels/float_spheres.h"
+#include "prepare/float_spheres.h"
 #include "scene/scene.h"
 #include "simd/inline.h"
 

@@ -1,4 +1,4 @@
-#include "kernels/culling.h"
+#include "prepare/culling.h"
 
 #include <omp.h>
 

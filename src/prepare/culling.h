@@ -27,7 +27,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "kernels/float_scene.h"
+#include "prepare/float_scene.h"
 #include "memory/arrays.h"
 
 namespace raycast {

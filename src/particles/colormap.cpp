@@ -1,4 +1,4 @@
-#include "scene/colormap.h"
+#include "particles/colormap.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 namespace raycast {
 namespace {
 
-#include "scene/colormap_data.inc"
+#include "particles/colormap_data.inc"
 
 // gray: entry k is k / 255 in every channel.
 std::array<float, 3> gray_entry(int k) {

@@ -16,7 +16,7 @@
 #include <thread>
 #include <vector>
 
-#include "image_module.h"
+#include "io/module/image_module.h"
 
 namespace {
 

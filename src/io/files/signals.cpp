@@ -1,4 +1,4 @@
-#include "io/signals.h"
+#include "io/files/signals.h"
 
 #include <fcntl.h>
 #include <unistd.h>

@@ -1,4 +1,4 @@
-#include "io/atomic_file.h"
+#include "io/files/atomic_file.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -13,7 +13,7 @@
 #include <cstring>
 #include <vector>
 
-#include "io/signals.h"
+#include "io/files/signals.h"
 
 namespace raycast::io {
 namespace {

@@ -3,7 +3,7 @@
 #pragma once
 #include <string>
 
-#include "io/image_module.h"
+#include "io/module/image_module.h"
 
 namespace raycast::io {
 

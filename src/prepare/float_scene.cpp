@@ -1,4 +1,4 @@
-#include "kernels/float_scene.h"
+#include "prepare/float_scene.h"
 
 #include <algorithm>
 #include <bit>
@@ -9,7 +9,6 @@
 
 #include <glm/geometric.hpp>
 
-#include "kernels/kernel.h"
 
 namespace raycast {
 namespace {
@@ -480,13 +479,6 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from, s
 #pragma omp parallel for schedule(static) num_threads(team)
   for (size_t k = 0; k < n; ++k) sp.cull_radius[k] = cull_radius_of(sp.rec[k]);
   return f;
-}
-
-scalar_hit scalar_trace(const float_scene& f, int64_t i, int64_t j) {
-  kernel_spheres sp = arrays_of(f.spheres);
-  sp.axes = f.axes;
-  sp.track_index = true;
-  return kernels::scalar::trace_pixel(f, sp, i, j);
 }
 
 }  // namespace raycast
