@@ -41,20 +41,29 @@ struct rays {
   vfloat px = 0.0f, py = 0.0f;  // an orthographic ray's start on the image plane (float_scene.h)
 
   // n2 from d, and the guard of everything the intersection and shading
-  // divide by it: a lane whose n2 is below 2^-64 (only a degenerate camera's
-  // centre ray: a focal length 10^-19 of the viewport) has its d scaled by
-  // 2^64 first. That is exact, and changes nothing a ray shows (hits compare
-  // s along one ray, the normal and the sky are homogeneous in d), but no
-  // n2 is then zero or denormal: the far root, 1 / n2 and the headlight are
+  // divide by it (centre_unit: float_scene::centre_unit, or null where the
+  // frame has no short direction: float_scene::tiny_directions). Only a
+  // degenerate camera's rays near the viewport's centre are short: a focal
+  // length 10^-19 of the viewport or less. A lane whose n2 is below 2^-64
+  // has its d scaled by 2^64: exact, and it changes nothing a ray shows (hits
+  // compare s along one ray, the normal and the sky are homogeneous in d),
+  // but no n2 is then denormal: the far root, 1 / n2 and the headlight are
   // those of the reference's direction, on every target and under FTZ/DAZ.
-  // (Only where the frame has such a ray: float_scene::tiny_directions.)
-  RAYCAST_INLINE void set_length(bool guard = true) {
+  // A lane whose d is 0 even so is a ray through the viewport's centre when
+  // the centre lies below float's range of the viewport (su horizontal + sv
+  // vertical is exactly 0 there, and nothing is left of the centre in
+  // float): its direction is the centre's own, centre_unit.
+  RAYCAST_INLINE void set_length(const float* centre_unit) {
     n2 = (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2];
-    if (!guard) return;
+    if (!centre_unit) return;
     const vmask tiny = !(n2 >= 0x1p-64f);
     if (none(tiny)) return;
     for (int k = 0; k < 3; ++k) d[k] = select(tiny, d[k] * 0x1p64f, d[k]);
     n2 = select(tiny, (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2], n2);
+    const vmask zero = n2 <= vfloat(0.0f);
+    if (none(zero)) return;
+    for (int k = 0; k < 3; ++k) d[k] = select(zero, vfloat(centre_unit[k]), d[k]);
+    n2 = select(zero, (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2], n2);
   }
   // 1 / n2, computed the first time a far sphere needs it: a division is a
   // large part of a batch's cost.

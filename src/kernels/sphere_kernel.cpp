@@ -115,7 +115,7 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
       } else {
         for (int k = 0; k < 3; ++k) ry.d[k] = vfloat::load(a.column_part[k] + i0) + row_part[k];
       }
-      ry.set_length(s.tiny_directions);
+      ry.set_length(s.tiny_directions ? s.centre_unit : nullptr);
       return ry;
     };
     const bool built = mirror && run == batches;  // one run: the whole row's lists at once
@@ -164,8 +164,9 @@ struct sample_camera {
   // kernels instantiate no standard-library template; without it,
   // intersect forms f.z d.z per ray, the same bits).
   float* fz_dz = nullptr;
+  const float* centre_unit;  // set_length's guard (float_scene::centre_unit)
 
-  sample_camera(const float_scene& s, const kernel_spheres& sp) {
+  sample_camera(const float_scene& s, const kernel_spheres& sp) : centre_unit(s.centre_unit) {
     // du and dv times the sampler's unit (exact), times horizontal and vertical.
     const float du = s.du * sampling::offset_unit<K>, dv = s.dv * sampling::offset_unit<K>;
     for (int k = 0; k < 3; ++k) {
@@ -201,7 +202,7 @@ struct sample_camera {
       ry.n2 = (ry.d[0] * ry.d[0] + ry.d[1] * ry.d[1]) + z2;  // >= z2 >= 2^-64: no guard needed
     } else {
       for (int k = 0; k < 3; ++k) ry.d[k] = (base[k] + xi * step_x[k]) + eta * step_y[k];
-      ry.set_length();
+      ry.set_length(centre_unit);
     }
     return ry;
   }
@@ -330,7 +331,7 @@ scalar_hit trace_pixel(const float_scene& s, const kernel_spheres& sp, int64_t i
   const float su = pixel_su(s, i), sv = pixel_sv(s, j);
   rays r;
   for (int k = 0; k < 3; ++k) r.d[k] = (s.center[k] + su * s.horizontal[k]) + sv * s.vertical[k];
-  r.set_length();
+  r.set_length(s.centre_unit);
   closest_hit<normal_shading> h;  // every sphere, in the float scene's order
   if (s.orthographic) {
     r.px = su * s.plane_width;

@@ -78,6 +78,8 @@ void prepare_camera(float_scene& f, const scene& s) {
     f.plane_height = float(c.viewport_height);
     f.pixel_spread = 1.01 * (c.viewport_width * double(f.du) + c.viewport_height * double(f.dv));
   }
+  const double cm = std::max({std::abs(center.x), std::abs(center.y), std::abs(center.z)});
+  for (int k = 0; k < 3; ++k) f.centre_unit[k] = cm > 0.0 ? flush_camera(center[k] / cm) : 0.0f;
   f.tiny_directions = (double(f.center[0]) * f.center[0] + double(f.center[1]) * f.center[1] +
                        double(f.center[2]) * f.center[2]) < 0x1p-60;
   f.axis_aligned_camera = f.horizontal[1] == 0 && f.horizontal[2] == 0 && f.vertical[0] == 0 &&

@@ -48,6 +48,10 @@ struct float_scene {
   // every direction is at least as long as center, which is that short):
   // the sphere kernel then guards each batch (sphere_hit.inl, set_length).
   bool tiny_directions = false;
+  // The viewport centre's direction alone, centre / its largest component:
+  // the direction of a ray through the centre where centre itself is too
+  // short to survive in float (a focal length below 2^-100 of the viewport).
+  float centre_unit[3] = {};
   // An orthographic camera (scene/camera.h): every ray has the direction
   // center (the unit view direction -w, scaled; horizontal and vertical are
   // 0, so the sky reads one direction everywhere) and starts on the image

@@ -99,14 +99,19 @@ sphere_stiff_case world_scaled(double s, const std::string& suffix) {
 // centre ray's direction is 10^-19 long next to its neighbours' (the camera
 // vectors are scaled so their largest component is near 1), and only that
 // ray hits the sphere ahead. Its squared length is below float's normal range.
-sphere_stiff_case degenerate_focal_length() {
+// A camera whose viewport centre is a vanishing fraction of the viewport:
+// the focal length 10^-19, 10^-30 and 10^-36 of it (below float's range
+// of the viewport from 2^-100 on), or the viewport 10^150 times the focal
+// length (about the largest the reference's squares of the direction hold).
+// 401 x 225 pixels: one pixel sees the viewport's centre, and only that
+// ray reaches the sphere ahead.
+sphere_stiff_case degenerate_camera(const std::string& name, double focal_length, double viewport_height = 2.0) {
   api::camera p;
   p.width = 401;
   p.height = 225;
-  p.focal_length = 1e-19;
-  return {"focal_length_1e-19",
-          {{{0, 0, -1}, 0.5, shading::normal}, {{0, -100.5, -1}, 100, shading::normal}},
-          p};
+  p.focal_length = focal_length;
+  p.viewport_height = viewport_height;
+  return {name, {{{0, 0, -1}, 0.5, shading::normal}, {{0, -100.5, -1}, 100, shading::normal}}, p};
 }
 
 // The ch. 6 world through an orthographic camera (scene/camera.h), its
@@ -149,7 +154,10 @@ std::vector<sphere_stiff_case> make_cases() {
   v.push_back(coordinates_near_1e30());
   for (const auto& [s, suffix] : {std::pair{1e-30, "1e-30"}, {1e-10, "1e-10"}, {1e10, "1e10"}, {1e30, "1e30"}})
     v.push_back(world_scaled(s, suffix));
-  v.push_back(degenerate_focal_length());
+  v.push_back(degenerate_camera("focal_length_1e-19", 1e-19));
+  v.push_back(degenerate_camera("focal_length_1e-30", 1e-30));
+  v.push_back(degenerate_camera("focal_length_1e-36", 1e-36));
+  v.push_back(degenerate_camera("viewport_1e150", 1.0, 1e150));
   v.push_back(orthographic("ortho_world", 1.0, 0.0));
   v.push_back(orthographic("ortho_viewport_3e-6", 1e-6, 0.0));
   v.push_back(orthographic("ortho_viewport_3e6", 1e6, 0.0));

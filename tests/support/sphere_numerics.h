@@ -27,7 +27,8 @@ struct sphere_stiff_case {
 // unit_sphere_at_10 ... _10000000, ground_radius_100/10000/1000000_grazing,
 // camera_touching, camera_inside, camera_on_the_ground, sphere_behind_camera,
 // tangent_rays, coordinates_near_1e30, world_scaled_1e-30 ... _1e30 (200
-// pixels wide), focal_length_1e-19 (401 x 225).
+// pixels wide), focal_length_1e-19, _1e-30, _1e-36 and viewport_1e150
+// (401 x 225: the reference's own centre ray sees the sphere).
 const std::vector<sphere_stiff_case>& sphere_stiff_cases();
 raycast::scene scene_of(const sphere_stiff_case& c);
 
