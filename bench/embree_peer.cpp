@@ -114,9 +114,15 @@ struct embree_peer::impl {
   // The ray direction of pixel (i, row j from the bottom), formed in double
   // from the camera and rounded to float once, as an Embree user with our
   // camera would hand it over.
+  // The ray's direction in float, scaled by a power of two to a largest
+  // component in [0.5, 1) (a ray is its direction: Embree refuses components
+  // beyond about 1.8e18, and a far viewport's would overflow float).
   float3 direction(const vec3& row_base, int64_t i) const {
     const vec3 d = row_base + column[size_t(i)];
-    return {float(d.x), float(d.y), float(d.z)};
+    int e = 0;
+    std::frexp(std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)}), &e);
+    const vec3 s = d * std::ldexp(1.0, -e);
+    return {float(s.x), float(s.y), float(s.z)};
   }
 
   // The colour of a ray that hit sphere prim at distance t with Embree's
