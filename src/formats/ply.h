@@ -66,7 +66,4 @@ std::variant<scene_file_contents, scene_file_error> read_ply(const byte_source& 
 // read errors have io set.
 std::variant<scene_file_contents, scene_file_error> read_ply_file(const std::string& path, const api::particles& o);
 
-// Whether read_scene reads name as a PLY file: it ends in .ply (any case).
-bool is_ply_file_name(std::string_view name);
-
 }  // namespace raycast
