@@ -121,8 +121,8 @@ struct embree_peer::impl {
     const vec3 d = row_base + column[size_t(i)];
     int e = 0;
     std::frexp(std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)}), &e);
-    const vec3 s = d * std::ldexp(1.0, -e);
-    return {float(s.x), float(s.y), float(s.z)};
+    const vec3 u = d * std::ldexp(1.0, -e);
+    return {float(u.x), float(u.y), float(u.z)};
   }
 
   // The colour of a ray that hit sphere prim at distance t with Embree's

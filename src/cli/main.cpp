@@ -20,7 +20,7 @@
 #include "io/timestamp.h"
 #include "options.h"
 #include "raycast/raycast.h"
-#include "settings/names.h"
+#include "text/names.h"
 #include "simd/cpu.h"
 
 namespace {

@@ -3,7 +3,7 @@
 #include "library/pipeline.h"
 #include "render/backend.h"
 #include "scene/camera.h"
-#include "settings/names.h"
+#include "text/names.h"
 
 #include <CLI/CLI.hpp>
 

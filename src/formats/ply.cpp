@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "memory/arrays.h"
-#include "settings/names.h"
+#include "text/names.h"
 #include "formats/ply/header.h"
 #include "formats/regular_file.h"
 #include "particles/colormap.h"

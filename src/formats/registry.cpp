@@ -6,7 +6,7 @@
 #include "formats/ply.h"
 #include "formats/regular_file.h"
 #include "scene/builtin.h"
-#include "settings/names.h"
+#include "text/names.h"
 
 namespace raycast::formats {
 namespace {

@@ -4,7 +4,7 @@
 #include "formats/registry.h"
 #include "library/pipeline.h"
 #include "scene/builtin.h"
-#include "settings/names.h"
+#include "text/names.h"
 
 namespace raycast::api {
 
@@ -36,21 +36,21 @@ namespace {
 settings particle_layer(const particles& p) {
   if (auto e = check_particles(p)) throw library_error(refused(*e));
   settings s;
-  const auto set = [&s](setting_id id, value v) {
-    given g;
-    g.v = std::move(v);
+  const auto set = [&s](setting_id id) -> value& {
+    given& g = s[id].emplace();
     g.source = input_row(id).keyword;
-    s[id] = std::move(g);
+    return g.v;
   };
-  if (p.radius) set(setting_id::radius, value{.real = *p.radius});
-  if (!p.color_by.empty()) set(setting_id::color_by, value{.text = p.color_by});
+  if (p.radius) set(setting_id::radius).real = *p.radius;
+  if (!p.color_by.empty()) set(setting_id::color_by).text = p.color_by;
   if (!p.colormap.empty()) {
     const setting& row = input_row(setting_id::colormap);
-    value v;
-    parse_name(p.colormap, row.names, v.name);
-    set(setting_id::colormap, v);
+    parse_name(p.colormap, row.names, set(setting_id::colormap).name);
   }
-  if (p.color_range) set(setting_id::color_range, value{.triple = {(*p.color_range)[0], (*p.color_range)[1], 0}});
+  if (p.color_range) {
+    value& v = set(setting_id::color_range);
+    v.triple = {(*p.color_range)[0], (*p.color_range)[1], 0};
+  }
   return s;
 }
 

@@ -24,12 +24,11 @@ std::array<float, 3> colormap_color(colormap m, double v, double lo, double hi) 
     const double t = (v / 2 - lo / 2) / (hi / 2 - lo / 2);
     k = t > 0.0 ? int(std::min(255.0, std::floor(std::min(t, 1.0) * 256.0))) : 0;
   }
-  switch (m) {
-    case colormap::viridis: return {viridis_table[k][0], viridis_table[k][1], viridis_table[k][2]};
-    case colormap::magma: return {magma_table[k][0], magma_table[k][1], magma_table[k][2]};
-    case colormap::gray: break;
-  }
-  return gray_entry(k);
+  static constexpr const float (*tables[])[3] = {viridis_table, magma_table,   plasma_table,
+                                                 inferno_table, cividis_table, coolwarm_table};
+  if (m == colormap::gray) return gray_entry(k);
+  const float* e = tables[size_t(m)][k];
+  return {e[0], e[1], e[2]};
 }
 
 colormap colormap_named(std::string_view name) {

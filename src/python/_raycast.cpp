@@ -17,7 +17,7 @@
 #include "io/module/module_loader.h"
 #include "library/pipeline.h"
 #include "raycast/raycast.h"
-#include "settings/names.h"
+#include "text/names.h"
 #include "settings/table.h"
 
 namespace py = pybind11;

@@ -14,6 +14,7 @@
 #include <optional>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace raycast::api {
@@ -176,12 +177,24 @@ struct scene {
   sphere sphere_at(size_t k) const { return arrays ? arrays->at(k) : spheres[k]; }
 };
 
-// How particle data (a PLY file's vertices) become spheres.
+// How particle data (a LAMMPS dump's, an extended XYZ or GSD file's, a PLY
+// file's vertices) become spheres. A type is named as the file names it: an
+// element ("Cu"), a GSD type ("A"), a LAMMPS type number ("1").
 struct particles {
-  std::optional<double> radius;  // every sphere's (instead of the file's radius property)
-  std::string color_by;          // a property shown through the colormap; empty: none
-  std::string colormap;          // viridis (empty: the default), magma, gray
+  std::optional<double> radius;  // every sphere's, instead of the file's radii or its types'
+  std::vector<std::pair<std::string, double>> type_radius;  // a type's radius (else its element's, else 0.5)
+  std::vector<std::pair<std::string, vec3>> type_color;     // a type's colour, in [0, 1]
+  // "type" (a palette by type), "element" (Jmol's colours), or a property
+  // shown through the colormap; empty: the file's colours, else its types'.
+  std::string color_by;
+  std::string colormap;  // viridis (empty: the default), magma, plasma, inferno, cividis, coolwarm, gray
   std::optional<std::array<double, 2>> color_range;  // lo < hi; default: the property's min and max
+  bool range_in_percentiles = false;  // color_range as percentiles of the frame's values: 1, 99
+  std::optional<shading> shade;  // every sphere's; default: lit where the file gives colours or types
+  // Where a particle file is seen from when no camera is given: "corner"
+  // (the default), "x", "y" or "z" (along that axis); the picture holds its
+  // simulation box (else its particles' bounds) whole.
+  std::string view;
 };
 
 // Columns [x0, x1), rows [y0, y1) of the image, row 0 at the top.

@@ -6,12 +6,11 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "settings/names.h"
+#include "text/names.h"
 
 namespace raycast {
 namespace {
 
-constexpr size_t excerpt_bytes = 32;
 using vt = value_type;
 
 std::optional<std::string> range_error(double x, const value_range& r, const std::string& token) {
@@ -41,27 +40,6 @@ std::optional<std::string> split(std::string_view text, size_t n, const char* no
 }
 
 }  // namespace
-
-std::string number_text(double x) {
-  char buf[32];
-  auto [p, ec] = std::to_chars(buf, buf + sizeof buf, x);
-  return ec == std::errc() ? std::string(buf, p) : std::to_string(x);
-}
-
-std::string quote_token(std::string_view token) {
-  size_t n = token.size();
-  if (n > excerpt_bytes) {
-    n = excerpt_bytes;
-    while (n > 0 && (static_cast<unsigned char>(token[n]) & 0xc0) == 0x80) --n;  // not inside a UTF-8 sequence
-  }
-  std::string r;
-  r.reserve(n + 5);
-  r.push_back('\'');
-  r.append(token.data(), n);
-  if (n < token.size()) r.append("\u2026");
-  r.push_back('\'');
-  return r;
-}
 
 std::optional<std::string> parse_int(std::string_view text, int64_t& value, bool* beyond) {
   if (text.empty()) return "empty value";

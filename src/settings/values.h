@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "settings/table.h"
+#include "text/quote.h"
 
 namespace raycast {
 
@@ -24,10 +25,6 @@ struct value {
   std::string text;
   bool flag = false;
 };
-
-// The token in quotes, at most 32 bytes of it (cut at a character boundary,
-// "…" when cut): messages never carry a huge token whole.
-std::string quote_token(std::string_view token);
 
 // The parsers, one per type; each returns why the text is not a value.
 // A number beyond the type's range sets *beyond (where given) and value to
@@ -57,8 +54,5 @@ std::optional<std::string> check_range(const setting& row, const value& v, const
 // image, so they are checked once the image is known.
 std::optional<std::string> check_region(const std::array<int64_t, 4>& r, int64_t width, int64_t height,
                                         std::string_view token);
-
-// A number as a person writes it, shortest round trip: 16777216, 0.5, 1e+30.
-std::string number_text(double x);
 
 }  // namespace raycast

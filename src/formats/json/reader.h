@@ -23,7 +23,7 @@
 #include "formats/json.h"
 #include "formats/json/syntax.h"
 #include "memory/pages.h"
-#include "settings/names.h"
+#include "text/names.h"
 
 namespace raycast::json_detail {
 

@@ -3,7 +3,7 @@
 #include <charconv>
 
 #include "formats/ply.h"
-#include "settings/names.h"
+#include "text/names.h"
 
 namespace raycast::ply_detail {
 
