@@ -563,7 +563,7 @@ TEST_F(Cli, SlipsGetTheNearestNameAndNothingIsWritten) {
       {{"-x"}, "-x: no such option (see --help)"},
       {{"4"}, "'4': not expected (no option takes it: each takes one value; see --help)"},
       {{"--scene", "wrld"},
-       "--scene: 'wrld' is not one of sky, red-sphere, normals, world, lit-world, a .json scene file or a .ply particle file; did you "
+       "--scene: 'wrld' is not one of sky, red-sphere, normals, world, lit-world, a .json scene file or a particle file (LAMMPS dump, extended XYZ, GSD, PLY); did you "
        "mean world?"},
       {{"--backend", "avx"}, "--backend: 'avx' is not one of auto, reference, scalar, sse2, avx2, avx512, neon; did "
                              "you mean avx2?"},

@@ -49,7 +49,8 @@ TEST_F(CliPly, RadiusAndColorByShapeAFileWithoutEither) {
   write_file(box.work() / "p.ply", ply_of(ps, enc::little, false, false));
   run_result r = run_with({"--scene", box.path("p.ply"), "-o", box.path("a.ppm")});
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_TRUE(contains(r.err, "p.ply: vertex.radius: is missing: give every sphere one with --radius R")) << r.err;
+  EXPECT_TRUE(contains(r.err, "--scene: " + box.path("p.ply") + ": the file gives no radius and no types: give --radius R"))
+      << r.err;
   r = run_with({"--scene", box.path("p.ply"), "--radius", "0.2", "-o", box.path("normal.ppm")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   r = run_with({"--scene", box.path("p.ply"), "--radius", "0.2", "--color-by", "id", "--colormap", "magma",
@@ -63,14 +64,15 @@ TEST_F(CliPly, RadiusAndColorByShapeAFileWithoutEither) {
 TEST_F(CliPly, ParticleOptionsAreRefusedWhereTheyMeanNothing) {
   write_file(box.work() / "p.ply", ply_of(random_particles(10, 23), enc::little));
   const std::pair<std::vector<std::string>, std::string> cases[] = {
-      {{"--scene", "world", "--radius", "1"}, "--radius: applies to .ply particle files only"},
-      {{"--color-by", "id"}, "--color-by: applies to .ply particle files only"},
-      {{"--scene", box.path("p.ply"), "--colormap", "gray"}, "--colormap: needs --color-by NAME"},
+      {{"--scene", "world", "--color-by", "id"}, "--color-by: applies to particle files only"},
+      {{"--color-by", "id"}, "--color-by: applies to particle files only"},
+      {{"--scene", "world", "--view", "x"}, "--view: applies to particle files only"},
+      {{"--scene", box.path("p.ply"), "--colormap", "gray"}, "--colormap: needs --color-by COLUMN"},
       {{"--scene", box.path("p.ply"), "--color-by", "id", "--color-range", "5,1"},
        "--color-range: '5' is not below '1' (want lo,hi with lo < hi)"},
       {{"--scene", box.path("p.ply"), "--radius", "-1"}, "--radius: '-1' is too small (above 0)"},
       {{"--scene", box.path("p.ply"), "--color-by", "idd"},
-       "vertex.idd: no such property (it has: x, y, z, radius, red, green, blue, id); did you mean id? (at byte "},
+       "--color-by: 'idd' is not a column of this frame (it has: type, element, x, y, z, radius, id); did you mean id?"},
   };
   for (const auto& [args, message] : cases) {
     std::vector<std::string> a = args;

@@ -3,6 +3,10 @@
 // --radius and --color-by; and every kind of hostile file refused with the
 // part of the file and the byte where it goes wrong.
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 
 #include <bit>
 #include <cstdio>
@@ -170,7 +174,9 @@ TEST(Ply, RadiusGivesEverySphereOne) {
     ASSERT_TRUE(p.arrays);
     for (size_t k = 0; k < ps.size(); ++k) EXPECT_EQ(p.arrays->at(k).radius, 0.125);
   }
-  EXPECT_EQ(refused(ply_of(ps, enc::little, false)).path, "vertex.radius");
+  const scene_file_error e = refused(ply_of(ps, enc::little, false));
+  EXPECT_EQ(e.path, "radius");
+  EXPECT_NE(e.message.find("the file gives no radius and no types: give --radius R"), std::string::npos) << e.message;
 }
 
 // --color-by: the property through the colormap over its min and max, or
@@ -206,7 +212,8 @@ TEST(Ply, ColorByMapsAPropertyThroughTheColormap) {
   api::particles o;
   o.color_by = "ids";
   const scene_file_error e = refused(ply_of(ps, enc::little), o);
-  EXPECT_EQ(e.path, "vertex.ids");
+  EXPECT_EQ(e.path, "color_by");
+  EXPECT_NE(e.message.find("'ids' is not a column of this frame"), std::string::npos) << e.message;
   EXPECT_NE(e.message.find("did you mean id?"), std::string::npos) << e.message;
 }
 
@@ -270,8 +277,6 @@ std::vector<hostile> hostile_files() {
       {"zero vertices", head(le, "0", xyzr), "vertex", "has no vertices: nothing to render"},
       {"no vertex element", "ply\nformat ascii 1.0\nelement face 0\nend_header\n", "header",
        "has no vertex element"},
-      {"no radius", head(le, "1", "property float x\nproperty float y\nproperty float z\n") + floats({0, 0, -1}),
-       "vertex.radius", "is missing: give every sphere one with --radius R"},
       {"integer coordinates", head(le, "1", "property int x\nproperty int y\nproperty int z\nproperty float radius\n"),
        "vertex.x", "is int; want float or double"},
       {"mixed coordinate types",
@@ -329,12 +334,26 @@ TEST(Ply, AFileThatChangesWhileReadIsRefused) {
   EXPECT_NE(std::get<scene_file_error>(r).message.find("changed while being read"), std::string::npos);
 }
 
-TEST(Ply, OnlyNamesEndingInPlyAreParticleFiles) {
-  EXPECT_TRUE(formats::is_particle_file_name("a.ply"));
-  EXPECT_TRUE(formats::is_particle_file_name("dir/B.PLY"));
-  EXPECT_FALSE(formats::is_particle_file_name(".ply"));
-  EXPECT_FALSE(formats::is_particle_file_name("a.ply.json"));
-  EXPECT_TRUE(formats::is_scene_file_name("a.ply"));
+// What a file is comes from its content where a format has a signature,
+// else from its name (which is all a missing file has).
+TEST(Ply, TheRegistryTellsAFileByItsContentThenItsName) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("raycast-registry-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::vector<particle> ps = random_particles(10, 3);
+  const auto write = [&](const char* name, const std::string& bytes) {
+    std::ofstream(dir / name, std::ios::binary) << bytes;
+    return (dir / name).string();
+  };
+  EXPECT_EQ(formats::detect(write("a.json", ply_of(ps, enc::little))).particles, &ply_format());
+  EXPECT_EQ(formats::detect(write("b.ply", json_of(ps))).scene, formats::scene_formats()[0]);
+  EXPECT_EQ(formats::detect(write("noext", ply_of(ps, enc::ascii))).particles, &ply_format());
+  EXPECT_EQ(formats::detect((dir / "missing.PLY").string()).particles, &ply_format());
+  EXPECT_FALSE(formats::detect((dir / "missing.txt").string()));
+  EXPECT_TRUE(formats::names_a_file((dir / "missing.ply").string()));
+  EXPECT_TRUE(formats::names_a_file((dir / "noext").string()));
+  EXPECT_FALSE(formats::names_a_file(".ply"));
+  EXPECT_FALSE(formats::names_a_file("world"));
+  std::filesystem::remove_all(dir);
 }
 
 // The library's load_scene reads a particle file with the command line's
@@ -370,14 +389,17 @@ TEST(Ply, TheLibraryLoadsAParticleFile) {
   s = rc::scene{};
   const rc::image img = rc::render(copy, {});
   EXPECT_EQ(img.width, 64);
+  rc::particles radius;  // every sphere's, in a scene file too
+  radius.radius = 1.0;
+  for (const rc::sphere& b : rc::load_scene(json, radius).spheres) EXPECT_EQ(b.radius, 1.0);
   try {
-    rc::particles radius;
-    radius.radius = 1.0;
-    rc::load_scene(json, radius);
+    rc::particles by;
+    by.color_by = "id";
+    rc::load_scene(json, by);
     ADD_FAILURE() << "no error";
   } catch (const rc::error& e) {
-    EXPECT_EQ(e.field(), "radius");
-    EXPECT_NE(e.message().find("applies to .ply particle files only"), std::string::npos) << e.what();
+    EXPECT_EQ(e.field(), "color_by");
+    EXPECT_NE(e.message().find("applies to particle files only"), std::string::npos) << e.what();
   }
   try {
     shape.colormap = "jet";

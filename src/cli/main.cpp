@@ -11,6 +11,7 @@
 #include <iostream>
 #include <memory>
 #include <new>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -104,11 +105,13 @@ void print_error(std::string_view what) {
 }
 
 // --help and --version print to standard output: a failed write there (closed,
-// full, a reader gone) is a failure too, reported like any other.
-bool standard_output_flushed() {
+// full, a reader gone) is a failure too, reported like any other. The text
+// goes out in one write, so that the error is that write's.
+bool written_to_standard_output(const std::string& text) {
   errno = 0;
-  std::cout.flush();
-  if (std::fflush(stdout) == 0 && !std::ferror(stdout) && std::cout.good()) return true;
+  if (std::fwrite(text.data(), 1, text.size(), stdout) == text.size() && std::fflush(stdout) == 0 &&
+      !std::ferror(stdout))
+    return true;
   const int e = errno;
   print_error(std::string("standard output: ") + (e != 0 ? std::strerror(e) : "write error"));
   return false;
@@ -127,9 +130,10 @@ int main(int argc, char** argv) {
     print_error("RAYCAST_MAX_ISA: " + not_one_of(*isa, "'" + *isa + "'", target_names()));
     return 2;
   }
-  cli::parse_result parsed = cli::parse_args(argc, argv, std::cout, std::cerr);
+  std::ostringstream out;
+  cli::parse_result parsed = cli::parse_args(argc, argv, out, std::cerr);
   if (!parsed.run) {
-    if (parsed.exit_code == 0 && !standard_output_flushed()) return 1;
+    if (parsed.exit_code == 0 && !written_to_standard_output(out.str())) return 1;
     return parsed.exit_code;
   }
   if (auto why = io::source_date_epoch().error) {

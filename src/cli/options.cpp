@@ -1,6 +1,7 @@
 #include "options.h"
 
 #include "library/pipeline.h"
+#include "library/source.h"
 #include "render/backend.h"
 #include "scene/camera.h"
 #include "text/names.h"

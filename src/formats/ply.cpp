@@ -15,21 +15,21 @@
 #include "text/names.h"
 #include "formats/ply/header.h"
 #include "formats/regular_file.h"
-#include "particles/colormap.h"
+#include "particles/spheres.h"
 
 namespace raycast {
 namespace {
 
 using namespace ply_detail;
 
-// The spheres' properties in the vertex element.
+// The vertex element's roles: positions, radius and colour where given; every
+// other property is the frame's by its name.
 struct layout {
   const element* vertex = nullptr;
-  uint64_t vertex_at = 0;  // its first row's byte (binary)
   const property* xyz[3] = {};
   const property* radius = nullptr;
   const property* rgb[3] = {};
-  const property* color_by = nullptr;
+  std::vector<const property*> others;
 };
 
 const property* one_of_types(const element& v, std::string_view name, bool reals_only, bool u8_too) {
@@ -56,7 +56,7 @@ void triple_of(const element& v, const char* const names[3], bool u8_too, const 
     fail("vertex." + std::string(names[0]), "the three must have one type", out[0]->at);
 }
 
-layout layout_of(const header& h, const api::particles& o) {
+layout layout_of(const header& h) {
   layout l;
   for (const element& e : h.elements)
     if (e.name == "vertex") l.vertex = &e;
@@ -70,23 +70,12 @@ layout layout_of(const header& h, const api::particles& o) {
   static const char* const rgb[3] = {"red", "green", "blue"};
   triple_of(v, xyz, false, l.xyz);
   if (!l.xyz[0]) fail("vertex.x", "is missing: a vertex needs x, y and z (float or double)", v.at);
-  if (!o.radius) {
-    l.radius = one_of_types(v, "radius", true, false);
-    if (!l.radius) fail("vertex.radius", "is missing: give every sphere one with --radius R", v.at);
-  }
+  l.radius = one_of_types(v, "radius", true, false);
   triple_of(v, rgb, true, l.rgb);
-  if (!o.color_by.empty()) {
-    l.color_by = v.find(o.color_by);
-    if (!l.color_by) {
-      std::vector<std::string_view> names;
-      for (const property& p : v.props) names.push_back(p.name);
-      fail("vertex." + o.color_by, "no such property (it has: " + [&] {
-        std::string s;
-        for (std::string_view n : names) s += (s.empty() ? "" : ", ") + std::string(n);
-        return s;
-      }() + ")" + did_you_mean(o.color_by, names), v.at);
-    }
-  }
+  for (const property& p : v.props)
+    if (&p != l.xyz[0] && &p != l.xyz[1] && &p != l.xyz[2] && &p != l.radius && &p != l.rgb[0] && &p != l.rgb[1] &&
+        &p != l.rgb[2])
+      l.others.push_back(&p);
   return l;
 }
 
@@ -140,20 +129,13 @@ double value_at(const char* p, ply_type t, bool swap) {
   return std::bit_cast<double>(load(uint64_t{}));
 }
 
-std::string number_text(double x) {
-  char buf[32];
-  const auto [p, ec] = std::to_chars(buf, buf + sizeof buf, x);
-  return ec == std::errc() ? std::string(buf, p) : "?";
-}
-
 // What a sphere's values must be, each refusal naming the vertex, the property and the byte.
-enum class role : uint8_t { coordinate, radius, color, shown, other };
+enum class role : uint8_t { coordinate, radius, color, other };
 void check_value(role r, const property& p, uint64_t k, double v, uint64_t at) {
   const auto bad = [&](const std::string& why) { fail("vertex[" + std::to_string(k) + "]." + p.name, number_text(v) + why, at); };
   switch (r) {
     case role::coordinate:
-    case role::shown:
-      if (!std::isfinite(v)) bad(r == role::shown ? " cannot be coloured: not a finite number" : " is not a finite number");
+      if (!std::isfinite(v)) bad(" is not a finite number");
       break;
     case role::radius:
       if (!std::isfinite(v)) bad(" is not a finite radius");
@@ -187,9 +169,7 @@ struct ply_storage {
   size_t body_bytes = 0;
   size_t mapped = 0;  // what map_huge was asked for (at least a byte)
   // Read out of order by the preparation, as the body is: in huge pages always.
-  out_of_order_array<double> table;  // decoded rows (ASCII, uneven binary): x y z [radius] [r g b]
-  out_of_order_array<float> colors;  // --color-by's, 3 a sphere
-  double radius = 0.0;               // --radius's
+  out_of_order_array<double> table;  // decoded rows (ASCII, uneven binary): x y z [radius] [r g b] [others]
   ply_storage() = default;
   ply_storage(const ply_storage&) = delete;
   ply_storage& operator=(const ply_storage&) = delete;
@@ -200,24 +180,39 @@ struct ply_storage {
   }
 };
 
-// The decoded table's columns: x y z, then the radius and r g b where read.
+// The decoded table's columns: x y z, then the radius and r g b where read,
+// then the other properties in the header's order.
 struct table_columns {
-  size_t width = 3, radius = 0, rgb = 0;  // 0: not in the table
+  size_t width = 3, radius = 0, rgb = 0, others = 0;  // 0: not in the table
 };
 table_columns columns_of(const layout& l) {
   table_columns c;
   if (l.radius) c.radius = c.width++;
   if (l.rgb[0]) c.rgb = c.width, c.width += 3;
+  c.others = c.width;
+  c.width += l.others.size();
   return c;
 }
 
 using api::column;
-// first's values in place, and the next components' at second's distance from them.
-column file_column(const char* rows, const element& v, const property* first, const property* second, bool swap) {
+// first's values in place, and the next components' at second's distance
+// from them; nullopt for a type a column cannot read in place (16-bit and
+// signed 8-bit integers), which the table holds decoded.
+std::optional<column> file_column(const char* rows, const element& v, const property* first, const property* second,
+                                  bool swap, bool colour = false) {
   const ptrdiff_t component = second ? ptrdiff_t(second->offset) - ptrdiff_t(first->offset) : 0;
-  const auto type = first->type == ply_type::f32   ? api::element::f32
-                    : first->type == ply_type::f64 ? api::element::f64
-                                                   : api::element::u8;
+  api::element type{};
+  switch (first->type) {
+    case ply_type::f32: type = api::element::f32; break;
+    case ply_type::f64: type = api::element::f64; break;
+    case ply_type::u8:
+      if (!colour) return std::nullopt;  // a column's u8 is a colour, read as value / 255
+      type = api::element::u8;
+      break;
+    case ply_type::u32: type = api::element::u32; break;
+    case ply_type::i32: type = api::element::i32; break;
+    default: return std::nullopt;
+  }
   return column{rows + first->offset, type, ptrdiff_t(v.row_bytes), component, swap};
 }
 
@@ -226,8 +221,8 @@ bool evenly_spaced(const property* const p[3]) {
   return !p[0] || p[1]->offset - p[0]->offset == p[2]->offset - p[1]->offset;
 }
 
-// A binary vertex element's checks, and its colour-by values (into `shown`).
-void check_binary(const layout& l, const char* rows, uint64_t file_at, bool swap, std::vector<double>* shown) {
+// A binary vertex element's checks.
+void check_binary(const layout& l, const char* rows, uint64_t file_at, bool swap) {
   const element& v = *l.vertex;
   for (uint64_t k = 0; k < v.count; ++k) {
     const char* row = rows + k * v.row_bytes;
@@ -239,44 +234,50 @@ void check_binary(const layout& l, const char* rows, uint64_t file_at, bool swap
         check_value(role::color, *l.rgb[c], k, value_at(row + l.rgb[c]->offset, l.rgb[c]->type, swap), at + l.rgb[c]->offset);
     }
     if (l.radius) check_value(role::radius, *l.radius, k, value_at(row + l.radius->offset, l.radius->type, swap), at + l.radius->offset);
-    if (shown) {
-      const double x = value_at(row + l.color_by->offset, l.color_by->type, swap);
-      check_value(role::shown, *l.color_by, k, x, at + l.color_by->offset);
-      (*shown)[k] = x;
-    }
   }
 }
 
-// Binary rows copied into the table (properties not evenly spaced, which one column cannot read).
-void decode_binary(const layout& l, const char* rows, bool swap, ply_storage& st) {
+// The properties a binary body's columns cannot read in place, decoded into
+// the table: all of them where x y z or r g b are not evenly spaced (`all`),
+// else the others of the types a column has not.
+void decode_binary(const layout& l, const char* rows, bool swap, bool all, ply_storage& st) {
   const table_columns tc = columns_of(l);
   const element& v = *l.vertex;
   st.table.resize(v.count * tc.width);
+  const auto decoded = [&](const property* p) { return all || !file_column(rows, v, p, nullptr, swap); };
   for (uint64_t k = 0; k < v.count; ++k) {
     const char* row = rows + k * v.row_bytes;
     double* out = st.table.data() + k * tc.width;
-    for (int c = 0; c < 3; ++c) {
+    for (int c = 0; c < 3 && all; ++c) {
       out[c] = value_at(row + l.xyz[c]->offset, l.xyz[c]->type, swap);
       if (tc.rgb) {
         const double x = value_at(row + l.rgb[c]->offset, l.rgb[c]->type, swap);
         out[tc.rgb + size_t(c)] = l.rgb[c]->type == ply_type::u8 ? x / 255.0 : x;
       }
     }
-    if (tc.radius) out[tc.radius] = value_at(row + l.radius->offset, l.radius->type, swap);
+    if (tc.radius && all) out[tc.radius] = value_at(row + l.radius->offset, l.radius->type, swap);
+    for (size_t i = 0; i < l.others.size(); ++i)
+      if (decoded(l.others[i])) out[tc.others + i] = value_at(row + l.others[i]->offset, l.others[i]->type, swap);
   }
 }
 
-// Table columns as the view's: doubles, tc.width a row.
-void view_table(const layout& l, ply_storage& st, api::sphere_arrays& view) {
-  const table_columns tc = columns_of(l);
+// Table column c (doubles, tc.width a row), components of it a row.
+column table_column(const ply_storage& st, const table_columns& tc, size_t c) {
   const ptrdiff_t row = ptrdiff_t(tc.width * sizeof(double));
-  view.centers = column{st.table.data(), api::element::f64, row, sizeof(double), false};
-  if (tc.radius) view.radii = column{st.table.data() + tc.radius, api::element::f64, row, 0, false};
-  if (tc.rgb) view.colors = column{st.table.data() + tc.rgb, api::element::f64, row, sizeof(double), false};
+  return column{st.table.data() + c, api::element::f64, row, sizeof(double), false};
+}
+
+// The frame's columns from the table (ASCII, uneven binary).
+void frame_of_table(const layout& l, const ply_storage& st, particle_frame& f) {
+  const table_columns tc = columns_of(l);
+  f.positions = table_column(st, tc, 0);
+  if (tc.radius) f.radii = table_column(st, tc, tc.radius);
+  if (tc.rgb) f.colors = table_column(st, tc, tc.rgb);
+  for (size_t i = 0; i < l.others.size(); ++i) f.properties.push_back({l.others[i]->name, table_column(st, tc, tc.others + i)});
 }
 
 // The vertex element's rows in a binary body: read in place, or decoded.
-void read_binary(const header& h, const layout& l, ply_storage& st, api::sphere_arrays& view, std::vector<double>* shown) {
+void read_binary(const header& h, const layout& l, ply_storage& st, particle_frame& f) {
   const bool swap = (h.format == encoding::big) != (std::endian::native == std::endian::big);
   uint64_t at = 0;
   for (const element& e : h.elements) {
@@ -291,16 +292,19 @@ void read_binary(const header& h, const layout& l, ply_storage& st, api::sphere_
                        std::to_string(room / v.row_bytes) + " of them",
          h.bytes + st.body_bytes);
   const char* rows = st.body + at;
-  if (shown) shown->resize(v.count);
-  check_binary(l, rows, h.bytes + at, swap, shown);
-  if (!evenly_spaced(l.xyz) || !evenly_spaced(l.rgb)) {
-    decode_binary(l, rows, swap, st);
-    view_table(l, st, view);
-    return;
+  check_binary(l, rows, h.bytes + at, swap);
+  const bool all = !evenly_spaced(l.xyz) || !evenly_spaced(l.rgb);
+  const bool any = std::any_of(l.others.begin(), l.others.end(), [&](const property* p) { return !file_column(rows, v, p, nullptr, swap); });
+  if (all || any) decode_binary(l, rows, swap, all, st);
+  if (all) return frame_of_table(l, st, f);
+  const table_columns tc = columns_of(l);
+  f.positions = *file_column(rows, v, l.xyz[0], l.xyz[1], swap);
+  if (l.radius) f.radii = *file_column(rows, v, l.radius, nullptr, swap);
+  if (l.rgb[0]) f.colors = *file_column(rows, v, l.rgb[0], l.rgb[1], swap, true);
+  for (size_t i = 0; i < l.others.size(); ++i) {
+    const std::optional<column> c = file_column(rows, v, l.others[i], nullptr, swap);
+    f.properties.push_back({l.others[i]->name, c ? *c : table_column(st, tc, tc.others + i)});
   }
-  view.centers = file_column(rows, v, l.xyz[0], l.xyz[1], swap);
-  if (l.radius) view.radii = file_column(rows, v, l.radius, nullptr, swap);
-  if (l.rgb[0]) view.colors = file_column(rows, v, l.rgb[0], l.rgb[1], swap);
 }
 
 // An ASCII body's words, with their byte offsets in the file.
@@ -348,24 +352,23 @@ double ascii_number(std::string_view w, ply_type t, const std::string& path, uin
   return double(i);
 }
 
-// Where each vertex property of an ASCII row goes: a table column (or none)
-// and what its value must be.
+// Where each vertex property of an ASCII row goes: its table column and
+// what its value must be.
 struct slot {
-  int column = -1;
+  size_t column = 0;
   role what = role::other;
   bool byte_color = false;  // uchar red green blue: value / 255
-  bool shown = false;       // --color-by's property
 };
 std::vector<slot> slots_of(const layout& l) {
   const table_columns tc = columns_of(l);
   std::vector<slot> s(l.vertex->props.size());
   const auto index = [&](const property* p) { return size_t(p - l.vertex->props.data()); };
   for (int c = 0; c < 3; ++c) {
-    s[index(l.xyz[c])] = {c, role::coordinate};
-    if (l.rgb[0]) s[index(l.rgb[c])] = {int(tc.rgb) + c, role::color, l.rgb[c]->type == ply_type::u8};
+    s[index(l.xyz[c])] = {size_t(c), role::coordinate};
+    if (l.rgb[0]) s[index(l.rgb[c])] = {tc.rgb + size_t(c), role::color, l.rgb[c]->type == ply_type::u8};
   }
-  if (l.radius) s[index(l.radius)] = {int(tc.radius), role::radius};
-  if (l.color_by) s[index(l.color_by)].shown = true;
+  if (l.radius) s[index(l.radius)] = {tc.radius, role::radius};
+  for (size_t i = 0; i < l.others.size(); ++i) s[index(l.others[i])] = {tc.others + i, role::other};
   return s;
 }
 
@@ -383,7 +386,7 @@ void skip_ascii(const element& e, words& w) {
     }
 }
 
-void read_ascii(const header& h, const layout& l, ply_storage& st, api::sphere_arrays& view, std::vector<double>* shown) {
+void read_ascii(const header& h, const layout& l, ply_storage& st, particle_frame& f) {
   words w{st.body, st.body + st.body_bytes, st.body, h.bytes};
   for (const element& e : h.elements) {
     if (&e == l.vertex) break;
@@ -400,7 +403,6 @@ void read_ascii(const header& h, const layout& l, ply_storage& st, api::sphere_a
   const std::vector<slot> slots = slots_of(l);
   const size_t width = columns_of(l).width;
   st.table.resize(v.count * width);
-  if (shown) shown->resize(v.count);
   for (uint64_t k = 0; k < v.count; ++k) {
     double* row = st.table.data() + k * width;
     for (size_t i = 0; i < slots.size(); ++i) {
@@ -408,29 +410,12 @@ void read_ascii(const header& h, const layout& l, ply_storage& st, api::sphere_a
       const property& p = v.props[i];
       if (t.empty()) fail("vertex", "the file ends after " + std::to_string(k) + " of " + std::to_string(v.count) + " vertices", w.offset(t));
       const slot& s = slots[i];
-      if (s.column < 0 && !s.shown) continue;
-      const std::string path = "vertex[" + std::to_string(k) + "]." + p.name;
-      const double x = ascii_number(t, p.type, path, w.offset(t));
+      const double x = ascii_number(t, p.type, "vertex[" + std::to_string(k) + "]." + p.name, w.offset(t));
       check_value(s.what, p, k, x, w.offset(t));
-      if (s.shown) check_value(role::shown, p, k, x, w.offset(t));
-      if (s.shown) (*shown)[k] = x;
-      if (s.column >= 0) row[s.column] = s.byte_color ? x / 255.0 : x;
+      row[s.column] = s.byte_color ? x / 255.0 : x;
     }
   }
-  view_table(l, st, view);
-}
-
-// --color-by: each sphere's value through the colormap, 3 floats a sphere.
-void color_by(const api::particles& o, const std::vector<double>& shown, ply_storage& st, api::sphere_arrays& view) {
-  double lo = o.color_range ? (*o.color_range)[0] : INFINITY, hi = o.color_range ? (*o.color_range)[1] : -INFINITY;
-  if (!o.color_range)
-    for (double x : shown) lo = std::min(lo, x), hi = std::max(hi, x);
-  st.colors.resize(shown.size() * 3);
-  for (size_t k = 0; k < shown.size(); ++k) {
-    const std::array<float, 3> c = colormap_color(colormap_named(o.colormap), shown[k], lo, hi);
-    std::copy(c.begin(), c.end(), st.colors.begin() + ptrdiff_t(3 * k));
-  }
-  view.colors = column{st.colors.data(), api::element::f32, 3 * sizeof(float), sizeof(float), false};
+  frame_of_table(l, st, f);
 }
 
 // The body after the header, read once; a file that changes meanwhile is refused.
@@ -441,11 +426,11 @@ std::shared_ptr<ply_storage> read_body(const byte_source& src, const header& h) 
   // Huge pages always: the preparation reads it out of order (a TLB miss a
   // sphere costs more than the faults: 10^8 spheres 22 s, not 28 s).
   st->body = static_cast<char*>(exact_body ? std::malloc(st->mapped) : map_huge(st->mapped, true));
-  if (!st->body) throw scene_file_error{"", "out of memory reading " + std::to_string(st->body_bytes) + " bytes", true};
+  if (!st->body) throw formats::format_error("out of memory reading " + std::to_string(st->body_bytes) + " bytes", true);
   const ptrdiff_t got = src.read(h.bytes, st->body_bytes, st->body);
-  if (got < 0) throw scene_file_error{"", std::strerror(errno), true};
+  if (got < 0) throw formats::format_error(std::strerror(errno), true);
   if (size_t(got) != st->body_bytes || !src.unchanged())
-    throw scene_file_error{"", "changed while being read (it was " + std::to_string(src.size) + " bytes)"};
+    throw formats::format_error("changed while being read (it was " + std::to_string(src.size) + " bytes)");
   return st;
 }
 
@@ -463,44 +448,87 @@ byte_source memory_source(std::string_view bytes) {
   return src;
 }
 
-std::variant<scene_file_contents, scene_file_error> read_ply(const byte_source& src, const api::particles& o) try {
+particle_frame read_ply_frame(const byte_source& src) try {
   std::string head(size_t(std::min<uint64_t>(src.size, max_ply_header_bytes)), '\0');
   const ptrdiff_t got = src.read(0, head.size(), head.data());
-  if (got < 0) return scene_file_error{"", std::strerror(errno), true};
+  if (got < 0) throw formats::format_error(std::strerror(errno), true);
   head.resize(size_t(got));
   const header h = parse_header(head, src.size);
-  const layout l = layout_of(h, o);
+  const layout l = layout_of(h);
   const std::shared_ptr<ply_storage> st = read_body(src, h);
-  api::sphere_arrays view;
-  view.count = size_t(l.vertex->count);
-  std::vector<double> shown;  // sized by the readers, once they know the file holds the count
-  if (h.format == encoding::ascii) read_ascii(h, l, *st, view, l.color_by ? &shown : nullptr);
-  else read_binary(h, l, *st, view, l.color_by ? &shown : nullptr);
-  if (o.radius) {
-    st->radius = *o.radius;
-    view.radii = column{&st->radius, api::element::f64, 0, 0, false};
-  }
-  if (l.color_by) color_by(o, shown, *st, view);
-  view.shade = view.colors.data ? shading::lit : shading::normal;
-  view.owner = st;
-  scene_file_contents c;
-  c.scene.arrays = view;
-  return c;
+  particle_frame f;
+  f.count = size_t(l.vertex->count);
+  if (h.format == encoding::ascii) read_ascii(h, l, *st, f);
+  else read_binary(h, l, *st, f);
+  f.owner = st;
+  return f;
 } catch (const ply_error& e) {
-  return scene_file_error{e.path, e.message};
-} catch (const scene_file_error& e) {
-  return e;
+  throw formats::format_error(e.path.empty() ? e.message : e.path + ": " + e.message);
 }
 
-std::variant<scene_file_contents, scene_file_error> read_ply_file(const std::string& path, const api::particles& o) {
-  auto opened = regular_file::open(path);
-  if (auto* why = std::get_if<std::string>(&opened)) return scene_file_error{"", *why, true};
-  const regular_file& f = *std::get<std::unique_ptr<regular_file>>(opened);
+std::variant<scene_file_contents, scene_file_error> read_ply(const byte_source& src, const api::particles& o) try {
+  particle_spheres s = spheres_of(read_ply_frame(src), o);
+  scene_file_contents c;
+  c.scene.arrays = std::move(s.arrays);
+  return c;
+} catch (const formats::format_error& e) {
+  const std::string_view m = e.what();
+  const size_t colon = m.find(": ");
+  const bool pathed = !e.io && colon != std::string_view::npos && m.substr(0, colon).find(' ') == std::string_view::npos;
+  if (pathed) return scene_file_error{std::string(m.substr(0, colon)), std::string(m.substr(colon + 2))};
+  return scene_file_error{"", std::string(m), e.io};
+} catch (const particle_refusal& e) {
+  return scene_file_error{e.keyword, e.what()};
+}
+
+namespace {
+
+// A file's bytes as a source, while f lives.
+byte_source file_source(const regular_file& f) {
   byte_source src;
   src.size = f.size();
   src.read = [&f](uint64_t offset, size_t n, char* to) { return f.read_at(offset, n, to); };
   src.unchanged = [&f] { return f.unchanged(); };
-  return read_ply(src, o);
+  return src;
+}
+
+std::unique_ptr<regular_file> opened(const std::string& path) {
+  auto r = regular_file::open(path);
+  if (auto* why = std::get_if<std::string>(&r)) throw formats::format_error(*why, true);
+  return std::move(std::get<std::unique_ptr<regular_file>>(r));
+}
+
+// A PLY file is one frame.
+class ply_trajectory : public formats::trajectory {
+ public:
+  explicit ply_trajectory(std::string path) : path_(std::move(path)) {}
+  size_t frame_count() override { return 1; }
+  particle_frame read(size_t, const formats::wanted_columns&) override {
+    const std::unique_ptr<regular_file> f = opened(path_);
+    return read_ply_frame(file_source(*f));
+  }
+
+ private:
+  std::string path_;
+};
+
+constexpr std::string_view ply_extensions[] = {".ply"};
+bool ply_sniff(std::string_view head) { return head.starts_with("ply\n") || head.starts_with("ply\r\n"); }
+
+}  // namespace
+
+std::variant<scene_file_contents, scene_file_error> read_ply_file(const std::string& path, const api::particles& o) {
+  auto r = regular_file::open(path);
+  if (auto* why = std::get_if<std::string>(&r)) return scene_file_error{"", *why, true};
+  return read_ply(file_source(*std::get<std::unique_ptr<regular_file>>(r)), o);
+}
+
+const formats::format& ply_format() {
+  static const formats::format f{"ply", ply_extensions, ply_sniff, [](const std::string& path) {
+                                   opened(path);  // a file that cannot be read is refused on opening
+                                   return std::unique_ptr<formats::trajectory>(new ply_trajectory(path));
+                                 }};
+  return f;
 }
 
 }  // namespace raycast

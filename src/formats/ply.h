@@ -39,6 +39,7 @@
 #include <string_view>
 #include <variant>
 
+#include "formats/format.h"
 #include "formats/json.h"
 #include "raycast/description.h"
 
@@ -61,7 +62,17 @@ struct byte_source {
 // buffer): they must outlive the read; unchanged is true.
 byte_source memory_source(std::string_view bytes);
 
+// The vertices as a frame of particle data: x y z, radius and red green
+// blue in their roles where given, every other property by its name.
+// Throws formats::format_error, its message the path and why ("vertex[3].x:
+// nan is not a finite number (at byte 212)").
+particle_frame read_ply_frame(const byte_source& source);
+// The same made spheres as the options ask (particles/spheres.h), the
+// refusal's path the reader's or the option's keyword.
 std::variant<scene_file_contents, scene_file_error> read_ply(const byte_source& source, const api::particles& o);
+// The file's format: one frame, its vertices.
+const formats::format& ply_format();
+
 // The file at path, opened as a JSON scene file is (regular files only); its
 // read errors have io set.
 std::variant<scene_file_contents, scene_file_error> read_ply_file(const std::string& path, const api::particles& o);

@@ -1,33 +1,31 @@
 #include "formats/registry.h"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cctype>
 
 #include "formats/ply.h"
 #include "formats/regular_file.h"
 #include "scene/builtin.h"
-#include "text/names.h"
 
 namespace raycast::formats {
 namespace {
 
 constexpr std::string_view json_extensions[] = {".json"};
-constexpr std::string_view ply_extensions[] = {".ply"};
 
 bool json_sniff(std::string_view head) {
   const size_t k = head.find_first_not_of(" \t\r\n");
   return k != std::string_view::npos && head[k] == '{';
 }
-bool ply_sniff(std::string_view head) { return head.starts_with("ply\n") || head.starts_with("ply\r\n"); }
 
-std::variant<scene_file_contents, scene_file_error> read_json(const std::string& path, const api::particles&) {
-  return read_scene_file(path);
+constexpr scene_format json{"json", json_extensions, json_sniff, read_scene_file};
+constexpr const scene_format* scene_list[] = {&json};
+
+const std::vector<const format*>& particle_list() {
+  static const std::vector<const format*> list = {&ply_format()};
+  return list;
 }
-
-constexpr scene_format known[] = {
-    {"json", json_extensions, json_sniff, read_json},
-    {"ply", ply_extensions, ply_sniff, read_ply_file},
-};
 
 bool ends_with(std::string_view name, std::string_view ext) {
   if (name.size() <= ext.size()) return false;  // ".ply" alone is a name, not an extension
@@ -36,48 +34,51 @@ bool ends_with(std::string_view name, std::string_view ext) {
                     [](char a, char b) { return std::tolower((unsigned char)a) == b; });
 }
 
-const scene_format* by_name(std::string_view name) {
-  for (const scene_format& f : known)
-    for (std::string_view ext : f.extensions)
-      if (ends_with(name, ext)) return &f;
+template <class F>
+const F* by_extension(std::span<const F* const> list, std::string_view name) {
+  for (const F* f : list)
+    for (std::string_view ext : f->extensions)
+      if (ends_with(name, ext)) return f;
   return nullptr;
+}
+
+detected by_name(std::string_view name) {
+  return {by_extension(scene_formats(), name), by_extension(particle_formats(), name)};
+}
+
+// The file's first bytes, or "" where it cannot be read as a regular file.
+std::string head_of(const std::string& path) {
+  auto opened = regular_file::open(path);
+  auto* f = std::get_if<std::unique_ptr<regular_file>>(&opened);
+  if (!f) return {};
+  std::string head(4096, '\0');
+  const ptrdiff_t got = (*f)->read_at(0, head.size(), head.data());
+  head.resize(got > 0 ? size_t(got) : 0);
+  return head;
 }
 
 }  // namespace
 
-std::span<const scene_format> scene_formats() { return known; }
+std::span<const scene_format* const> scene_formats() { return scene_list; }
+std::span<const format* const> particle_formats() { return particle_list(); }
 
-const scene_format* detect(const std::string& path) {
-  const scene_format* named = by_name(path);
-  auto opened = regular_file::open(path);
-  if (auto* f = std::get_if<std::unique_ptr<regular_file>>(&opened)) {
-    char head[4096];
-    const ptrdiff_t got = (*f)->read_at(0, sizeof head, head);
-    if (got > 0)
-      for (const scene_format& fmt : known)
-        if (fmt.sniff(std::string_view(head, size_t(got)))) return &fmt;
+detected detect(const std::string& path) {
+  const std::string head = head_of(path);
+  if (!head.empty()) {
+    for (const format* f : particle_formats())
+      if (f->sniff && f->sniff(head)) return {nullptr, f};
+    for (const scene_format* f : scene_formats())
+      if (f->sniff && f->sniff(head)) return {f, nullptr};
   }
-  return named;
+  return by_name(path);
 }
 
-bool is_scene_file_name(std::string_view name) { return by_name(name) != nullptr; }
-bool is_particle_file_name(std::string_view name) {
-  const scene_format* f = by_name(name);
-  return f && f->name != "json";
-}
+bool is_builtin_name(std::string_view name) { return builtin_spheres(name).has_value(); }
 
-std::variant<scene_file_contents, scene_file_error> read_scene(const std::string& name_or_path,
-                                                               const api::particles& particles) {
-  if (auto spheres = builtin_spheres(name_or_path)) {
-    scene_file_contents c;
-    c.scene.spheres = std::move(*spheres);
-    return c;
-  }
-  const scene_format* f = is_scene_file_name(name_or_path) ? detect(name_or_path) : nullptr;
-  if (!f)
-    return scene_file_error{"", not_one_of(name_or_path, quote_token(name_or_path), builtin_scene_names(),
-                                           ", a .json scene file or a .ply particle file")};
-  return f->read(name_or_path, particles);
+bool names_a_file(const std::string& name) {
+  if (by_name(name)) return true;
+  struct stat st {};
+  return ::stat(name.c_str(), &st) == 0;
 }
 
 }  // namespace raycast::formats

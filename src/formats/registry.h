@@ -1,47 +1,46 @@
 // The one place that decides what a --scene value names: a built-in scene,
 // or a file, whose format is told by its content where the format defines a
-// signature (PLY's "ply", JSON's '{') and by its name otherwise; the file
-// goes to that format's reader. Nothing else knows a format's name.
+// signature (PLY's "ply", GSD's magic, a LAMMPS dump's "ITEM: TIMESTEP",
+// JSON's '{') and by its name otherwise; the file goes to that format's
+// reader. Nothing else knows a format's name.
 #pragma once
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
 #include <variant>
 
+#include "formats/format.h"
 #include "formats/json.h"
-#include "raycast/description.h"
 
 namespace raycast::formats {
 
-// A scene file format: its name, the extensions it is known by (lower case,
-// with the dot) and whether a file's first bytes are its.
+// A scene file format (JSON): read whole, its spheres and its scene keys.
 struct scene_format {
-  std::string_view name;  // "json", "ply"
+  std::string_view name;
   std::span<const std::string_view> extensions;
   bool (*sniff)(std::string_view head);
-  // Reads the whole file: its spheres (or particle arrays) and its scene keys.
-  std::variant<scene_file_contents, scene_file_error> (*read)(const std::string& path, const api::particles& p);
+  std::variant<scene_file_contents, scene_file_error> (*read)(const std::string& path);
 };
 
-std::span<const scene_format> scene_formats();
+std::span<const scene_format* const> scene_formats();
+std::span<const format* const> particle_formats();  // PLY, LAMMPS dumps, extended XYZ, GSD
 
-// The format of the file at path (its first bytes read; a file that cannot
-// be opened is told by its name), or null: neither its content nor its
-// name is a format's.
-const scene_format* detect(const std::string& path);
+// A file's format: a scene format or a particle format, or neither (null both).
+struct detected {
+  const scene_format* scene = nullptr;
+  const format* particles = nullptr;
+  explicit operator bool() const { return scene || particles; }
+};
 
-// Whether name is a file name a format is known by (it ends in one of their
-// extensions, any case), so that read_scene takes it for a file.
-bool is_scene_file_name(std::string_view name);
-bool is_particle_file_name(std::string_view name);
+// The format of the file at path: by the first bytes of its content (a .gz
+// file's decompressed) where they are a format's, else by its name (a file
+// that cannot be opened is told by its name alone).
+detected detect(const std::string& path);
 
-// The command line's --scene: a built-in scene's name (its spheres), or a
-// file read by its format's reader with the particle options given (only
-// particle formats use them: the caller refuses them for others); another
-// name is an error listing the built-in ones (and the nearest, when it
-// looks like a slip). A file's error is its reader's: the caller names the
-// file.
-std::variant<scene_file_contents, scene_file_error> read_scene(const std::string& name_or_path,
-                                                               const api::particles& particles = {});
+// What --scene's value names, before anything is read: a built-in scene, or
+// a file (a name a format is known by, or a file that exists).
+bool is_builtin_name(std::string_view name);
+bool names_a_file(const std::string& name);
 
 }  // namespace raycast::formats

@@ -3,6 +3,7 @@
 
 #include "formats/registry.h"
 #include "library/pipeline.h"
+#include "library/source.h"
 #include "scene/builtin.h"
 #include "text/names.h"
 
@@ -57,7 +58,7 @@ settings particle_layer(const particles& p) {
 }  // namespace
 
 scene load_scene(const std::string& path, const particles& p) try {
-  if (!formats::is_scene_file_name(path))
+  if (!formats::names_a_file(path))
     throw refusal{error_kind::invalid_argument, "path", "",
                   quote_token(path) + " is not a .json scene file or a .ply particle file"};
   return describe(path, particle_layer(p), front_end::library).scene;

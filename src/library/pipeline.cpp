@@ -1,11 +1,8 @@
 #include "library/pipeline.h"
 
 #include <algorithm>
-#include <chrono>
 #include <utility>
-#include <variant>
 
-#include "formats/registry.h"
 #include "scene/scene.h"
 
 namespace raycast {
@@ -13,31 +10,6 @@ namespace {
 
 using enum setting_id;
 using kind = error_kind;
-
-// The file's keys with the front end's settings over them, resolved and checked.
-described_scene finish(scene_file_contents&& c, std::string file, const settings& over, front_end fe) {
-  settings merged = std::move(c.keys);
-  merge(merged, over);
-  if (auto e = resolve_scene(merged, c.scene)) {
-    const bool from_file = e->row && merged.has(e->row->id) && !merged[e->row->id]->where.empty();
-    throw refusal{kind::invalid_argument, e->source, from_file ? file : "", e->message};
-  }
-  // What one value cannot say (lookat = lookfrom, vup along the view, a
-  // derived height, spheres far from the camera) is the scene's to check,
-  // once; here only the field it blames becomes the setting that set it.
-  if (auto e = validate(c.scene)) {
-    const blamed b = blame(*e, merged, !file.empty());
-    if (b.from_file) throw refusal{kind::invalid_argument, path(*e), file, e->message};
-    const std::string source = merged.has(b.id) ? merged[b.id]->source : fe == front_end::library ? path(*e)
-                                                                                                  : spell(input_row(b.id), fe);
-    throw refusal{kind::invalid_argument, source, "", e->message};
-  }
-  return {std::move(c.scene), std::move(file), 0.0};
-}
-
-refusal read_refusal(const scene_file_error& e, std::string file) {
-  return refusal{e.io ? kind::io : kind::invalid_argument, e.path, std::move(file), e.message};
-}
 
 }  // namespace
 
@@ -52,29 +24,6 @@ api::error library_error(const refusal& r) {
 
 refusal refused(const setting_error& e, std::string file) {
   return refusal{kind::invalid_argument, e.source, std::move(file), e.message};
-}
-
-described_scene describe(const std::optional<std::string>& scene, const settings& over, front_end fe) {
-  api::particles particles;
-  const bool particle_file = scene && formats::is_particle_file_name(*scene);
-  if (auto e = resolve_particles(over, particle_file, particles, fe == front_end::library)) throw refused(*e);
-  if (!scene) return finish({}, "", over, fe);
-  const auto start = std::chrono::steady_clock::now();
-  auto read = formats::read_scene(*scene, particles);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const std::string file = formats::is_scene_file_name(*scene) ? *scene : "";
-  if (auto* e = std::get_if<scene_file_error>(&read)) throw read_refusal(*e, file);
-  described_scene d = finish(std::move(std::get<scene_file_contents>(read)), file, over, fe);
-  d.load_seconds = seconds;
-  return d;
-}
-
-described_scene describe_text(const std::string& json, const settings& over, front_end fe) {
-  api::particles particles;
-  if (auto e = resolve_particles(over, false, particles, fe == front_end::library)) throw refused(*e);
-  auto read = read_scene_text(json);
-  if (auto* e = std::get_if<scene_file_error>(&read)) throw read_refusal(*e, "");
-  return finish(std::move(std::get<scene_file_contents>(read)), "", over, fe);
 }
 
 io::file_format output_format(const std::string& path, const std::string& format_name, front_end fe) {

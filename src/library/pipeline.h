@@ -35,19 +35,6 @@ struct refusal {
 api::error library_error(const refusal& r);
 refusal refused(const setting_error& e, std::string file = "");
 
-// A scene as described: --scene's value (a built-in name or a file; none:
-// the lesson's sky) or a scene file's text, with `over` merged over the
-// file's keys, resolved, and every rule of the scene checked (a refusal
-// blames whoever gave the value). `over`'s particle rows say how particle
-// data become spheres.
-struct described_scene {
-  api::scene scene;
-  std::string file;  // the scene file's name, "" for a built-in scene or text
-  double load_seconds = 0;  // reading and parsing the file
-};
-described_scene describe(const std::optional<std::string>& scene, const settings& over, front_end fe);
-described_scene describe_text(const std::string& json, const settings& over, front_end fe);
-
 // The format of an output at path: format_name's (a row's name, checked) or
 // its extension's; "-" (standard output) takes PPM only.
 io::file_format output_format(const std::string& path, const std::string& format_name, front_end fe);

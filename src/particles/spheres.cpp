@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "particles/colormap.h"
@@ -83,15 +84,23 @@ void set_radii(const particle_frame& f, const api::particles& p, const std::vect
   }
 }
 
-const api::column* property_named(const particle_frame& f, const std::string& name) {
+// The column --color-by names: a property, or a role's (x, y, z, radius).
+std::optional<api::column> property_named(const particle_frame& f, const std::string& name) {
+  if (name.size() == 1 && name[0] >= 'x' && name[0] <= 'z') {
+    api::column c = f.positions;
+    c.data = static_cast<const unsigned char*>(c.data) + (name[0] - 'x') * c.component_stride;
+    return c;
+  }
+  if (name == "radius" && f.radii) return *f.radii;
   if (const particle_property* q = f.property(name)) {
     if (q->components != 1)
       throw particle_refusal("color_by", quote_token(name) + " has " + std::to_string(q->components) +
                                              " components a particle; colour by one number a particle");
-    return &q->values;
+    return q->values;
   }
-  std::vector<std::string_view> names{"type", "element"};
-  std::string list = "type, element";
+  std::vector<std::string_view> names{"type", "element", "x", "y", "z"};
+  std::string list = "type, element, x, y, z";
+  if (f.radii) names.push_back("radius"), list += ", radius";
   for (const particle_property& q : f.properties) names.push_back(q.name), list += ", " + q.name;
   throw particle_refusal("color_by", quote_token(name) + " is not a column of this frame (it has: " + list + ")" +
                                          did_you_mean(name, names));
@@ -114,8 +123,7 @@ std::array<double, 2> shown_range(const api::column& c, size_t n, const api::par
   if (p.color_range && !p.range_in_percentiles) return *p.color_range;
   std::vector<double> v;
   v.reserve(n);
-  for (size_t k = 0; k < n; ++k)
-    if (const double x = c.get(k); std::isfinite(x)) v.push_back(x);
+  for (size_t k = 0; k < n; ++k) v.push_back(c.get(k));
   if (v.empty()) return {0.0, 0.0};
   if (p.color_range) return {percentile(v, (*p.color_range)[0]), percentile(v, (*p.color_range)[1])};
   const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
@@ -123,7 +131,11 @@ std::array<double, 2> shown_range(const api::column& c, size_t n, const api::par
 }
 
 void color_by_property(const particle_frame& f, const api::particles& p, owned& o, particle_spheres& s) {
-  const api::column& c = *property_named(f, p.color_by);
+  const api::column c = *property_named(f, p.color_by);
+  for (size_t k = 0; k < f.count; ++k)
+    if (const double x = c.get(k); !std::isfinite(x))
+      throw particle_refusal("color_by", "particle " + std::to_string(k) + "'s " + p.color_by + " is " +
+                                             number_text(x) + ": not a finite number, it cannot be coloured");
   const std::array<double, 2> range = shown_range(c, f.count, p);
   if (range[0] == range[1] && f.count > 0)
     s.note = p.color_by + " is " + number_text(range[0]) + " for every particle of this frame: every sphere " +

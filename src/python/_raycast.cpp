@@ -16,6 +16,7 @@
 
 #include "io/module/module_loader.h"
 #include "library/pipeline.h"
+#include "library/source.h"
 #include "raycast/raycast.h"
 #include "text/names.h"
 #include "settings/table.h"

@@ -74,21 +74,30 @@ std::optional<setting_error> resolve_scene(const settings& s, api::scene& d) {
 std::optional<setting_error> resolve_particles(const settings& s, bool particle_file, api::particles& p,
                                                bool keywords) {
   if (auto e = checked(s, [](const setting& r) { return is_particle_row(r.id); })) return e;
-  for (setting_id id : {radius, color_by, colormap, color_range}) {
+  for (setting_id id : {type_radius, type_color, color_by, colormap, color_range, view}) {
     if (!s.has(id)) continue;
     const setting& row = input_row(id);
     if (!particle_file)
       return setting_error{&row, s[id]->source,
-                           "applies to .ply particle files only (this scene gives its spheres' own radii and colours)"};
+                           "applies to particle files only (this scene gives its spheres' own radii and colours)"};
     if ((id == colormap || id == color_range) && !s.has(color_by))
       return setting_error{&row, s[id]->source,
-                           keywords ? "needs color_by (the property it colours by)"
-                                    : "needs --color-by NAME (the property it colours by)"};
+                           keywords ? "needs color_by (the column it colours by)"
+                                    : "needs --color-by COLUMN (the column it colours by)"};
   }
   if (s.has(radius)) p.radius = s[radius]->v.real;
+  for (const auto& [name, x] : s.has(type_radius) ? s[type_radius]->v.pairs : decltype(value::pairs){})
+    p.type_radius.emplace_back(name, x[0]);
+  for (const auto& [name, x] : s.has(type_color) ? s[type_color]->v.pairs : decltype(value::pairs){})
+    p.type_color.emplace_back(name, api::vec3{x[0], x[1], x[2]});
   if (s.has(color_by)) p.color_by = s[color_by]->v.text;
   if (s.has(colormap)) p.colormap = input_row(colormap).names[s[colormap]->v.name];
-  if (s.has(color_range)) p.color_range = {s[color_range]->v.triple[0], s[color_range]->v.triple[1]};
+  if (s.has(color_range)) {
+    p.color_range = {s[color_range]->v.triple[0], s[color_range]->v.triple[1]};
+    p.range_in_percentiles = s[color_range]->v.flag;
+  }
+  if (s.has(shade)) p.shade = api::shading(s[shade]->v.name);
+  if (s.has(view)) p.view = input_row(view).names[s[view]->v.name];
   return std::nullopt;
 }
 

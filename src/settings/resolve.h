@@ -20,9 +20,10 @@ namespace raycast {
 // camera. The camera's and the light's own rules (validate()) come after.
 std::optional<setting_error> resolve_scene(const settings& s, api::scene& d);
 
-// How particle data become spheres (radius, color_by, colormap,
-// color_range), or the first refused and why: any of them where the scene
-// is not a particle file, a colormap or range without color_by.
+// How particle data become spheres (api::particles), or the first refused
+// and why: one that applies to particle files only (all but radius and
+// shade, which set every sphere's) where the scene is not one, a colormap or
+// range without color_by.
 // particle_file: whether the scene is one; keywords: a message names the
 // keywords (color_by), not the options (--color-by).
 std::optional<setting_error> resolve_particles(const settings& s, bool particle_file, api::particles& p,

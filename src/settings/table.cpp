@@ -67,16 +67,30 @@ void scene_rows(std::vector<setting>& t) {
                "D", "unbounded", "How far an ambient occlusion ray looks for a sphere"});
 }
 
+constexpr std::string_view shade_names[] = {"normal", "flat", "lit"};  // api::shading's order
+constexpr std::string_view view_names[] = {"corner", "x", "y", "z"};
+
 void particle_rows(std::vector<setting>& t) {
   t.push_back({radius, "--radius", "", "", "radius", vt::real, {0.0, max_sphere_extent, true, false}, {}, "R",
-               "the file's radius property",
-               "Every sphere's radius, for a .ply particle file (instead of its radius property)"});
-  t.push_back({color_by, "--color-by", "", "", "color_by", vt::text, {}, {}, "NAME", "the file's red green blue",
-               "Colour a .ply particle file's spheres by this vertex property, through --colormap"});
+               "the file's radii, else the types'", "Every sphere's radius"});
+  t.push_back({type_radius, "--type-radius", "", "", "type_radius", vt::type_map, {0.0, max_sphere_extent, true, false},
+               {}, "T=R,...", "the element's van der Waals radius, else 0.5",
+               "A particle type's radius: 1=0.5,2=0.35 (a type as the file names it: Cu, A, 1)"});
+  t.push_back({type_color, "--type-color", "", "", "type_color", vt::type_map, {}, {}, "T=#RRGGBB,...",
+               "the element's Jmol colour, else a palette", "A particle type's colour: 1=#1f77b4,2=#d62728"});
+  t.push_back({color_by, "--color-by", "", "", "color_by", vt::text, {}, {}, "type|element|COLUMN",
+               "the file's colours, else its types'", "Colour particles by type, element, or a column through --colormap"});
   t.push_back({colormap, "--colormap", "", "", "colormap", vt::name, {}, colormap_names, "NAME", "viridis",
-               "The colours of --color-by, low to high"});
+               "The colours of --color-by COLUMN, low to high"});
   t.push_back({color_range, "--color-range", "", "", "color_range", vt::interval, {}, {}, "LO,HI",
-               "the property's min and max", "The values --color-by maps to the colormap's ends (beyond them: the ends)"});
+               "the column's min and max",
+               "The values --color-by maps to the colormap's ends (beyond them: the ends); pLO,pHI: percentiles, as p1,p99"});
+  t.push_back({shade, "--shade", "", "", "shade", vt::name, {}, shade_names, "NAME",
+               "lit where the particles have colours or types",
+               "Every sphere's shading: lit (the light), normal (0.5 (N + 1)) or flat (its colour)"});
+  t.push_back({view, "--view", "", "", "view", vt::name, {}, view_names, "NAME", "corner",
+               "Where a particle file is seen from without a camera option: corner, or along x, y or z; the "
+               "simulation box (else the particles' bounds) fills the picture"});
 }
 
 // Text the rows point at, kept for the program's life.
@@ -100,7 +114,8 @@ void run_rows(std::vector<setting>& t) {
                "Output file; '-' writes binary PPM to standard output"});
   t.push_back({scene, "--scene", "", "", "", vt::text, {}, {}, "NAME|FILE", "sky",
                keep("Built-in scene (" + builtin_scene_list() +
-                    ") or a .json scene file, whose settings the other options override, or a .ply particle file")});
+                    "), a .json scene file, whose settings the other options override, or a particle file: a LAMMPS dump, "
+                    "extended XYZ, GSD or PLY file")});
   t.push_back({format, "--format", "", "", "format", vt::name, {}, io::format_name_list(), "FMT", "",
                "overrides the extension", 0, true});
   t.push_back({backend, "--backend", "", "", "backend", vt::name, {}, backends, "NAME", "auto: the best this CPU runs", ""});
@@ -116,6 +131,12 @@ void run_rows(std::vector<setting>& t) {
   t.push_back({region, "--region", "", "", "region", vt::region, {}, {}, "X0,Y0,X1,Y1", "the whole image",
                "Render and write only the pixels x0 <= x < x1, y0 <= y < y1 of the image (y0 = 0 is the top row), the "
                "same bytes as those of the whole image"});
+  t.push_back({frames, "--frames", "", "", "frame", vt::frames, {}, {}, "K|A:B[:S]", "every frame",
+               "The frames of a trajectory to render: frame K, or a slice as Python's (-1: the last); -o takes a "
+               "pattern such as f_%05d.png (the frame's index) or a movie (.mp4, .webm, .gif)"});
+  t.push_back({fps, "--fps", "", "", "fps", vt::integer, {1, 1000}, {}, "N", "30", "A movie's frames per second"});
+  t.push_back({skip_existing, "--skip-existing", "", "", "", vt::flag, {}, {}, "", "",
+               "Render only the frames whose image is not there yet (a rerun after an interrupted run)"});
   t.push_back({quiet, "--quiet", "-q", "", "", vt::flag, {}, {}, "", "", "No progress on standard error"});
   t.push_back({stats, "--stats", "", "", "", vt::flag, {}, {}, "", "",
                "After the run, print on standard error the seconds each stage took (loading, the image library, "

@@ -23,7 +23,9 @@ enum class value_type : uint8_t {
   seed,      // 0 to 2^64 - 1
   text,      // any text: a file name
   flag,      // present or not; no value
-  interval,  // lo,hi: two finite numbers, lo below hi
+  interval,  // lo,hi: two finite numbers, lo below hi; or pLO,pHI: percentiles, 0 <= LO < HI <= 100
+  type_map,  // NAME=VALUE,NAME=VALUE: a number or a colour (#rrggbb) a type
+  frames,    // K or A:B[:S], Python's index and slice rules
 };
 
 // Every setting: the scene's first (a scene file's keys too), then the run's.
@@ -47,9 +49,13 @@ enum class setting_id : uint8_t {
   ao_distance,
   // How particle data become spheres.
   radius,
+  type_radius,
+  type_color,
   color_by,
   colormap,
   color_range,
+  shade,
+  view,
   // The run's.
   output,
   scene,
@@ -61,6 +67,9 @@ enum class setting_id : uint8_t {
   sampler,
   seed,
   region,
+  frames,
+  fps,
+  skip_existing,
   quiet,
   stats,
   version,
@@ -102,6 +111,6 @@ const setting* find_keyword(std::string_view keyword);
 // Whether a row belongs to the scene (a scene file may give it) or says how
 // particle data become spheres.
 inline bool is_scene_row(const setting& row) { return !row.file_key.empty(); }
-inline bool is_particle_row(setting_id id) { return id >= setting_id::radius && id <= setting_id::color_range; }
+inline bool is_particle_row(setting_id id) { return id >= setting_id::radius && id <= setting_id::view; }
 
 }  // namespace raycast

@@ -39,6 +39,80 @@ std::optional<std::string> split(std::string_view text, size_t n, const char* no
   return std::nullopt;
 }
 
+// lo,hi in values, or pLO,pHI in percentiles (v.flag).
+std::optional<std::string> parse_interval(std::string_view text, value& v, std::array<std::string, 3>& tokens) {
+  std::array<std::string_view, 4> parts;
+  if (auto e = split(text, 2, "number", "lo,hi or pLO,pHI", parts)) return e;
+  const bool p0 = parts[0].starts_with('p'), p1 = parts[1].starts_with('p');
+  if (p0 != p1) return quote_token(text) + ": give both ends as values or both as percentiles (p1,p99)";
+  v.flag = p0;
+  for (int k = 0; k < 2; ++k) {
+    const std::string_view t = parts[size_t(k)].substr(p0 ? 1 : 0);
+    if (auto e = parse_real(t, v.triple[size_t(k)])) return "number " + std::to_string(k + 1) + ": " + *e;
+    tokens[size_t(k)] = parts[size_t(k)].substr(0, 64);
+  }
+  return std::nullopt;
+}
+
+// #rrggbb as r g b in [0, 1].
+std::optional<std::string> parse_hex_color(std::string_view t, std::array<double, 3>& rgb) {
+  unsigned c = 0;
+  const auto [p, ec] = t.size() == 7 && t[0] == '#' ? std::from_chars(t.data() + 1, t.data() + 7, c, 16)
+                                                     : std::from_chars_result{t.data(), std::errc::invalid_argument};
+  if (ec != std::errc() || p != t.data() + 7) return quote_token(t) + " is not a colour (#rrggbb, as #1f77b4)";
+  for (int k = 0; k < 3; ++k) rgb[size_t(k)] = double((c >> (16 - 8 * k)) & 0xff) / 255.0;
+  return std::nullopt;
+}
+
+// NAME=VALUE,NAME=VALUE: a radius or a colour a type.
+std::optional<std::string> parse_type_map(std::string_view text, bool colours,
+                                          std::vector<std::pair<std::string, std::array<double, 3>>>& out) {
+  const char* form = colours ? "NAME=#rrggbb,..." : "NAME=R,...";
+  if (text.empty()) return std::string("empty value (want ") + form + ")";
+  for (size_t start = 0; start <= text.size();) {
+    const size_t end = std::min(text.find(',', start), text.size());
+    const std::string_view item = text.substr(start, end - start);
+    const size_t eq = item.find('=');
+    if (eq == std::string_view::npos || eq == 0)
+      return quote_token(item) + " is not NAME=VALUE (want " + form + ")";
+    std::array<double, 3> x{};
+    const std::string_view rhs = item.substr(eq + 1);
+    if (auto e = colours ? parse_hex_color(rhs, x) : parse_real(rhs, x[0])) return "type " + quote_token(item.substr(0, eq)) + ": " + *e;
+    out.emplace_back(std::string(item.substr(0, eq)), x);
+    start = end + 1;
+  }
+  return std::nullopt;
+}
+
+// K, or A:B[:S] with any of them left out.
+std::optional<std::string> parse_frames(std::string_view text, value& v) {
+  const auto part = [&](std::string_view t, std::optional<int64_t>& out) -> std::optional<std::string> {
+    if (t.empty()) return std::nullopt;
+    int64_t n = 0;
+    if (auto e = parse_int(t, n)) return e;
+    out = n;
+    return std::nullopt;
+  };
+  const size_t c1 = text.find(':');
+  if (c1 == std::string_view::npos) {
+    if (auto e = part(text, v.first)) return e;
+    if (!v.first) return std::string("empty value (want K or A:B[:S])");
+    return std::nullopt;
+  }
+  const size_t c2 = text.find(':', c1 + 1);
+  if (c2 != std::string_view::npos && text.find(':', c2 + 1) != std::string_view::npos)
+    return quote_token(text) + " has more than three parts (want A:B[:S])";
+  if (auto e = part(text.substr(0, c1), v.first)) return e;
+  if (auto e = part(text.substr(c1 + 1, c2 == std::string_view::npos ? std::string_view::npos : c2 - c1 - 1), v.last))
+    return e;
+  std::optional<int64_t> step;
+  if (c2 != std::string_view::npos)
+    if (auto e = part(text.substr(c2 + 1), step)) return e;
+  v.step = step.value_or(1);
+  if (v.step == 0) return quote_token(text) + ": the step must not be 0";
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::optional<std::string> parse_int(std::string_view text, int64_t& value, bool* beyond) {
@@ -160,15 +234,9 @@ std::optional<std::string> parse_value(const setting& row, std::string_view text
     case vt::region: return parse_region(text, v.region);
     case vt::seed: return parse_seed(text, v.seed);
     case vt::text: v.text = std::string(text); return std::nullopt;
-    case vt::interval: {
-      std::array<std::string_view, 4> parts;
-      if (auto e = split(text, 2, "number", "lo,hi", parts)) return e;
-      for (int k = 0; k < 2; ++k) {
-        if (auto e = parse_real(parts[size_t(k)], v.triple[k])) return "number " + std::to_string(k + 1) + ": " + *e;
-        tokens[size_t(k)] = parts[size_t(k)].substr(0, 64);
-      }
-      return std::nullopt;
-    }
+    case vt::interval: return parse_interval(text, v, tokens);
+    case vt::type_map: return parse_type_map(text, row.id == setting_id::type_color, v.pairs);
+    case vt::frames: return parse_frames(text, v);
     case vt::flag:  // the command line's bare option, or a keyword's true / false
       if (!text.empty() && text != "true" && text != "false") return quote_token(text) + " is not true or false";
       v.flag = text != "false";
@@ -190,6 +258,15 @@ std::optional<std::string> check_range(const setting& row, const value& v, const
     case vt::interval:
       if (!(v.triple[0] < v.triple[1]))
         return quote_token(tokens[0]) + " is not below " + quote_token(tokens[1]) + " (want lo,hi with lo < hi)";
+      if (v.flag && !(v.triple[0] >= 0.0 && v.triple[1] <= 100.0))
+        return quote_token(tokens[0] + "," + tokens[1]) + ": percentiles lie from 0 to 100";
+      return std::nullopt;
+    case vt::type_map:
+      for (const auto& [name, x] : v.pairs) {
+        if (row.id == setting_id::type_color) continue;
+        if (auto e = range_error(x[0], row.range, quote_token(number_text(x[0]))))
+          return "type " + quote_token(name) + ": " + *e;
+      }
       return std::nullopt;
     default: return std::nullopt;
   }

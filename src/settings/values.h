@@ -8,6 +8,8 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "settings/table.h"
 #include "text/quote.h"
@@ -23,7 +25,13 @@ struct value {
   std::array<int64_t, 4> region{};
   uint64_t seed = 0;
   std::string text;
-  bool flag = false;
+  bool flag = false;  // a flag's; interval: in percentiles
+  // type_map: each NAME=VALUE (a number in [0], or a colour's r g b in [0, 1]).
+  std::vector<std::pair<std::string, std::array<double, 3>>> pairs;
+  // frames: an index (step 0), or a slice start:stop:step, each end absent
+  // where the text leaves it out (Python's rules, resolved once the count is known).
+  std::optional<int64_t> first, last;
+  int64_t step = 0;
 };
 
 // The parsers, one per type; each returns why the text is not a value.

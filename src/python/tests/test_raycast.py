@@ -301,7 +301,7 @@ def test_light_shadows_and_ao_are_the_clis_bytes(tmp_path):
     (dict(backend="avx"), ValueError,
      "backend: 'avx' is not one of auto, reference, scalar, sse2, avx2, avx512, neon; did you mean avx2?"),
     (dict(scene="wrld"), ValueError, "scene: 'wrld' is not one of sky, red-sphere, normals, world, lit-world, "
-                                     "a .json scene file or a .ply particle file; did you mean world?"),
+                                     "a .json scene file or a particle file (LAMMPS dump, extended XYZ, GSD, PLY); did you mean world?"),
     (dict(dtype="float"), ValueError, "dtype: 'float' is not one of uint8, float32; did you mean float32?"),
     # lit and flat show colours: required, as in a scene file.
     (dict(centers=np.zeros((2, 3)) - [0, 0, 2], radii=np.ones(2), shade="lit"), ValueError,
