@@ -14,9 +14,11 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "formats/registry.h"
 #include "io/module/module_loader.h"
 #include "library/pipeline.h"
 #include "library/source.h"
+#include "python/arrays.h"
 #include "raycast/raycast.h"
 #include "text/names.h"
 #include "settings/table.h"
@@ -26,38 +28,13 @@ namespace rc = raycast::api;
 
 namespace {
 
+using raycast::python::column_of;
+using raycast::python::value_error;
+using raycast::python::wrong_type;
+
 // The address the last render read centres from: the tests' proof that an
 // array was used in place.
 const void* last_centers = nullptr;
-
-[[noreturn]] void value_error(const std::string& field, const std::string& message) {
-  throw rc::error(rc::error::kind::invalid_argument, field, message);
-}
-
-// A value of the wrong type: TypeError, with .field and .message as ValueError's.
-struct wrong_type {
-  std::string field, message;
-};
-
-rc::column column_of(const py::array& a, const char* name, size_t& count) {
-  const bool matrix = std::string(name) != "radii";
-  if (a.ndim() != (matrix ? 2 : 1) || (matrix && a.shape(1) != 3))
-    value_error(name, matrix ? "must have shape (N, 3)" : "must have shape (N,)");
-  if (count != size_t(-1) && size_t(a.shape(0)) != count)
-    value_error(name, "has " + std::to_string(a.shape(0)) + " rows, want " + std::to_string(count) +
-                          " (one per centre)");
-  count = size_t(a.shape(0));
-  rc::column c;
-  c.data = a.data();
-  if (a.dtype().is(py::dtype::of<float>())) c.type = rc::element::f32;
-  else if (a.dtype().is(py::dtype::of<double>())) c.type = rc::element::f64;
-  else throw wrong_type{name, "want a float32 or float64 array"};
-  // Strides as NumPy has them: any layout is read in place (a zero stride,
-  // packed to the library, was made contiguous by __init__.py).
-  c.stride = a.strides(0);
-  c.component_stride = matrix ? a.strides(1) : 0;
-  return c;
-}
 
 // A name from a list (shade, dtype), refused in the input table's words.
 size_t one_of(const char* field, const std::string& got, std::initializer_list<std::string_view> names) {
@@ -102,39 +79,63 @@ raycast::described_scene described(const std::string& kind, const std::string& s
   throw raycast::library_error(r);
 }
 
-// The arrays' spheres, read in place.
-void set_arrays(rc::scene& s, std::optional<py::array> centers, std::optional<py::array> radii,
-                std::optional<py::array> colors, rc::shading sh) {
-  if (!centers && !radii && !colors) {
-    last_centers = nullptr;
-    return;
-  }
-  if (!centers || !radii) value_error(centers ? "radii" : "centers", "is required with centers/radii/colors");
-  if (!s.spheres.empty() || s.arrays) value_error("centers", "the scene has spheres already; give a scene without");
-  rc::sphere_arrays a;
+// Particle data as arrays (raycast/__init__.py's dict: centers, and
+// radii, colors, color_by, types with type_names, a cell where given),
+// read in place, as one frame.
+raycast::particle_frame frame_of(const py::dict& d) {
+  raycast::particle_frame f;
   size_t n = size_t(-1);
-  a.centers = column_of(*centers, "centers", n);
-  a.radii = column_of(*radii, "radii", n);
-  if (colors) a.colors = column_of(*colors, "colors", n);
-  a.count = n;
-  a.shade = sh;
-  s.arrays = a;
-  last_centers = a.centers.data;
+  const auto array = [&](const char* key) -> std::optional<py::array> {
+    if (!d.contains(key) || d[key].is_none()) return std::nullopt;
+    return d[key].cast<py::array>();
+  };
+  f.positions = column_of(*array("centers"), "centers", 3, n);
+  f.count = n;
+  if (auto a = array("radii")) f.radii = column_of(*a, "radii", 1, n);
+  if (auto a = array("colors")) f.colors = column_of(*a, "colors", 3, n, true);
+  if (auto a = array("color_by")) f.properties.push_back({"color_by", column_of(*a, "color_by", 1, n)});
+  if (auto a = array("types")) {
+    f.types = column_of(*a, "types", 1, n, false, true);
+    f.type_names = d["type_names"].cast<std::vector<std::string>>();
+  }
+  if (d.contains("cell") && !d["cell"].is_none()) {
+    const auto v = [](py::handle h) { const auto t = h.cast<std::array<double, 3>>(); return rc::vec3{t[0], t[1], t[2]}; };
+    const py::tuple c = d["cell"].cast<py::tuple>();  // origin, a, b, c
+    f.cell = raycast::particle_cell{v(c[0]), v(c[1]), v(c[2]), v(c[3]), {}};
+  }
+  last_centers = f.positions.data;
+  return f;
 }
 
-py::array render_image(const std::string& kind, const std::string& source, std::optional<py::array> centers,
-                       std::optional<py::array> radii, std::optional<py::array> colors, const std::string& shade,
-                       const std::map<std::string, std::string>& keywords, const std::string& dtype) {
+// A scene source's frame `frame` (none: its first), or the sky.
+raycast::described_scene source_frame(const std::string& kind, const std::string& source, std::optional<int64_t> frame,
+                                      const raycast::settings& layer) {
+  using raycast::front_end;
+  last_centers = nullptr;
+  raycast::scene_source src = kind == "json" ? raycast::scene_source::from_text(source, layer, front_end::library)
+                              : kind == "name" ? raycast::scene_source(source, layer, front_end::library)
+                                               : raycast::scene_source(std::nullopt, layer, front_end::library);
+  if (!frame) return src.frame(0);
+  if (!src.trajectory()) value_error("frame", "applies to a particle file's frames (this scene is one picture)");
+  raycast::value v;
+  v.first = *frame;
+  std::vector<size_t> k;
+  if (auto e = raycast::select_frames(v, src.frame_count(), k)) value_error("frame", *e);
+  return src.frame(k[0]);
+}
+
+py::array render_image(const std::string& kind, const std::string& source, std::optional<int64_t> frame,
+                       std::optional<py::dict> particles, const std::map<std::string, std::string>& keywords,
+                       const std::string& dtype) try {
   const raycast::settings layer = parse_keywords(keywords);
   raycast::run_settings run;
   if (auto e = raycast::resolve_run(layer, run)) throw raycast::library_error(raycast::refused(*e));
-  static constexpr rc::shading shadings[] = {rc::shading::normal, rc::shading::flat, rc::shading::lit};
-  const rc::shading sh = shadings[one_of("shade", shade, {"normal", "flat", "lit"})];
   const rc::pixel_type px = one_of("dtype", dtype, {"uint8", "float32"}) == 0 ? rc::pixel_type::rgb8
                                                                               : rc::pixel_type::rgb_f32;
-  rc::scene s = described(kind, source, layer).scene;
-  set_arrays(s, centers, radii, colors, sh);
-
+  rc::scene s = particles ? raycast::describe_particles(frame_of(*particles), layer, raycast::front_end::library,
+                                                        (*particles)["framed"].cast<bool>())
+                                .scene
+                          : source_frame(kind, source, frame, layer).scene;
   std::optional<rc::job> j;
   {
     py::gil_scoped_release free;  // preparing 10^6 spheres takes a while too
@@ -150,7 +151,44 @@ py::array render_image(const std::string& kind, const std::string& source, std::
     j->render_into(data, stride, px);
   }
   return out;
+} catch (const raycast::refusal& r) {
+  throw raycast::library_error(r);
 }
+
+// A particle file's frames, for raycast.frames(): each read on demand.
+class trajectory {
+ public:
+  explicit trajectory(const std::string& path) try : path_(path) {
+    const raycast::formats::detected f = raycast::formats::detect(path);
+    if (!f.particles) value_error("path", path + ": is not a particle file (a LAMMPS dump, extended XYZ, GSD or PLY file)");
+    t_ = f.particles->open(path);
+    count_ = t_->frame_count();
+  } catch (const raycast::formats::format_error& e) {
+    throw rc::error(e.io ? rc::error::kind::io : rc::error::kind::invalid_argument, "path", path + ": " + e.what());
+  }
+  size_t size() const { return count_; }
+  py::dict read(int64_t k) try {
+    raycast::value v;
+    v.first = k;
+    std::vector<size_t> at;
+    if (auto e = raycast::select_frames(v, count_, at)) value_error("frame", *e);
+    raycast::formats::wanted_columns all;
+    all.all = true;
+    raycast::particle_frame f;
+    {
+      py::gil_scoped_release free;
+      f = t_->read(at[0], all);
+    }
+    return raycast::python::frame_dict(f);
+  } catch (const raycast::formats::format_error& e) {
+    throw rc::error(e.io ? rc::error::kind::io : rc::error::kind::invalid_argument, "path", path_ + ": " + e.what());
+  }
+
+ private:
+  std::string path_;
+  std::unique_ptr<raycast::formats::trajectory> t_;
+  size_t count_ = 0;
+};
 
 void write_image(const std::string& path, const py::array& image, const std::string& format) {
   if (image.ndim() != 3 || image.shape(2) != 3) value_error("image", "must have shape (H, W, 3)");
@@ -182,8 +220,8 @@ void find_image_module() {
 
 // The input table as Python values.
 py::list input_table() {
-  static constexpr const char* types[] = {"integer", "real", "aspect", "triple", "name",
-                                          "region", "seed", "text", "flag", "interval"};
+  static constexpr const char* types[] = {"integer", "real",     "aspect",   "triple", "name", "region",
+                                          "seed",    "text",     "flag",     "interval", "type_map", "frames"};
   py::list rows;
   for (const raycast::setting& r : raycast::input_table()) {
     py::dict row;
@@ -226,6 +264,10 @@ PYBIND11_MODULE(_raycast, m) {
     }
   });
   m.def("render", &render_image);
+  py::class_<trajectory>(m, "trajectory")
+      .def(py::init<const std::string&>())
+      .def("__len__", &trajectory::size)
+      .def("read", &trajectory::read, "Frame k's arrays (negative: from the end), viewing the file's memory.");
   m.def("write", &write_image, py::arg("path"), py::arg("image"), py::arg("format") = "");
   m.def("builtin_scene_names", &rc::builtin_scene_names);
   m.def("input_table", &input_table,

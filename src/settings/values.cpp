@@ -272,4 +272,28 @@ std::optional<std::string> check_range(const setting& row, const value& v, const
   }
 }
 
+std::optional<std::string> select_frames(const value& v, size_t count, std::vector<size_t>& out) {
+  const int64_t n = int64_t(count);
+  out.clear();
+  if (v.step == 0) {  // one index
+    const int64_t k = *v.first < 0 ? *v.first + n : *v.first;
+    if (k < 0 || k >= n)
+      return std::to_string(*v.first) + " is beyond the file's " + std::to_string(n) + " frames (0 to " +
+             std::to_string(n - 1) + ", or -" + std::to_string(n) + " to -1 from the end)";
+    out.push_back(size_t(k));
+    return std::nullopt;
+  }
+  // Python's slice.indices(): each end from the end where negative, clipped.
+  const auto end = [&](std::optional<int64_t> e, int64_t fallback, int64_t lo, int64_t hi) {
+    if (!e) return fallback;
+    const int64_t k = *e < 0 ? *e + n : *e;
+    return std::clamp(k, lo, hi);
+  };
+  const bool up = v.step > 0;
+  const int64_t a = end(v.first, up ? 0 : n - 1, up ? 0 : -1, up ? n : n - 1);
+  const int64_t b = end(v.last, up ? n : -1, up ? 0 : -1, up ? n : n - 1);
+  for (int64_t k = a; up ? k < b : k > b; k += v.step) out.push_back(size_t(k));
+  return std::nullopt;
+}
+
 }  // namespace raycast

@@ -63,4 +63,10 @@ std::optional<std::string> check_range(const setting& row, const value& v, const
 std::optional<std::string> check_region(const std::array<int64_t, 4>& r, int64_t width, int64_t height,
                                         std::string_view token);
 
+// The frames a frames value selects of a trajectory of `count` (Python's
+// rules: an index from the end where negative, a slice clipped to the
+// frames), in order, or why not: an index beyond the frames. A slice may
+// select none.
+std::optional<std::string> select_frames(const value& v, size_t count, std::vector<size_t>& out);
+
 }  // namespace raycast
