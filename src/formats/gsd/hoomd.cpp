@@ -114,7 +114,8 @@ void hoomd_trajectory::positions(size_t k, particle_frame& f) const {
   const std::optional<chunk> c = per_particle(k, "particles/position", f.count, 3);
   if (!c) {
     if (f.count > 0)
-      fail(k, 0, "particles/N is " + std::to_string(f.count) + " but no particles/position (in this frame or frame 0)");
+      fail(k, either(k, "particles/N")->location,
+           "particles/N is " + std::to_string(f.count) + " but there is no particles/position (in this frame or frame 0)");
     f.positions = {zeros, api::element::f32, 0, 4};
     return;
   }
@@ -194,6 +195,7 @@ void hoomd_trajectory::cell(size_t k, particle_frame& f) const {
   cell.origin = {-(cell.a.x + cell.b.x + cell.c.x) / 2, -(cell.b.y + cell.c.y) / 2, -cell.c.z / 2};
   cell.periodic = {true, true, dimensions == 3};
   f.cell = cell;
+  f.timestep = 0;  // the schema's default
   if (const std::optional<chunk> s = either(k, "configuration/step"); s && s->type == gsd::u64)
     f.timestep = int64_t(gsd::load_le<uint64_t>(file_->at(s->location)));
 }

@@ -1,9 +1,10 @@
 // A text frame's decoded numbers: `slots` arrays of `rows` doubles each (a
 // slot is one value of a row: x, y, z, a radius, one component of a
 // property), slot-major so that a column is contiguous, and each row's type
-// index. The arrays are allocated once the count was checked against the
-// file (input::text_trajectory::check_count) and left uninitialized: only the
-// rows the file really holds are ever written, so memory is what was read.
+// index. The arrays hold as many rows as the header promises and the rest of
+// the file can hold (input::text_trajectory::capacity), left uninitialized:
+// only the rows the file really holds are ever written, so memory is what
+// was read.
 #pragma once
 #include <cstddef>
 #include <cstdint>

@@ -1,5 +1,7 @@
 #include "formats/input/text_trajectory.h"
 
+#include <algorithm>
+
 #include "formats/input/fields.h"
 
 namespace raycast::formats::input {
@@ -8,12 +10,12 @@ void fail_at(size_t k, uint64_t line, const std::string& what) {
   throw format_error("frame " + std::to_string(k) + " (line " + std::to_string(line) + "): " + what);
 }
 
-void text_trajectory::check_count(size_t k, uint64_t line, uint64_t rows, uint64_t min_row_bytes) const {
+uint64_t text_trajectory::capacity(uint64_t rows, uint64_t min_row_bytes) const {
   const uint64_t have = src_->max_text_bytes(), at = cur_.offset();
-  const uint64_t most = at < have ? (have - at) / min_row_bytes : 0;
-  if (rows > most)
-    fail_at(k, line, std::to_string(rows) + " atoms promised; the rest of the file can hold at most " +
-                      std::to_string(most));
+  const uint64_t most = at < have ? (have - at + 1) / min_row_bytes : 0;  // the last row may lack its line break
+  // One more: a row past them is malformed (shorter than any whole row), and
+  // parsing it names what is wrong with it.
+  return std::min(rows, most + 1);
 }
 
 // Errors from below (a corrupt gzip stream, an endless line) are named by

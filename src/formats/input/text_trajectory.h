@@ -37,9 +37,12 @@ class text_trajectory : public trajectory {
   // Parses the rows of the header just read, exactly `rows` lines.
   virtual particle_frame read_rows(line_cursor& c, size_t k, uint64_t rows, const wanted_columns& wanted) = 0;
 
-  // Refuses a count of rows (each at least min_row_bytes long) that the rest
-  // of the text cannot hold: nothing is allocated for what the file lacks.
-  void check_count(size_t k, uint64_t line, uint64_t rows, uint64_t min_row_bytes) const;
+  // How many of `rows` rows (each at least min_row_bytes long, its line
+  // break included) the rest of the text can hold, and one more: what a
+  // reader allocates for a frame before reading it, so that a count that
+  // lies is never allocated for. The rows a file really has never exceed it:
+  // the loop meets the file's end or a malformed row first.
+  uint64_t capacity(uint64_t rows, uint64_t min_row_bytes) const;
 
  private:
   struct mark {

@@ -112,13 +112,14 @@ class dump_trajectory final : public input::text_trajectory {
  private:
   uint64_t read_header(line_cursor& c, size_t k) override {
     header_ = lammps::read_dump_header(c, k);
-    check_count(k, header_.columns_line, header_.atoms, 2 * header_.columns.size());
+    room_ = capacity(header_.atoms, 2 * header_.columns.size());
     return header_.atoms;
   }
 
   particle_frame read_rows(line_cursor& c, size_t k, uint64_t rows, const wanted_columns& wanted) override;
 
   dump_header header_;
+  uint64_t room_ = 0;  // the rows the rest of the file can hold
 };
 
 particle_frame dump_trajectory::read_rows(line_cursor& c, size_t k, uint64_t rows, const wanted_columns& wanted) {
@@ -126,10 +127,13 @@ particle_frame dump_trajectory::read_rows(line_cursor& c, size_t k, uint64_t row
   if (!planned.error.empty()) fail_at(k, header_.columns_line, planned.error);
   const dump_plan& plan = planned.plan;
   if (plan.scaled && !header_.box) fail_at(k, header_.columns_line, "scaled positions need ITEM: BOX BOUNDS");
-  auto t = std::make_shared<input::table>(size_t(rows), plan.slots, plan.typed);
+  auto t = std::make_shared<input::table>(size_t(room_), plan.slots, plan.typed);
   row_parser parser(plan, header_.columns, *t, k);
   std::string_view line;
   for (size_t r = 0; r < rows; ++r) {
+    if (r == room_)
+      fail_at(k, c.line() + 1, "the header promises " + std::to_string(rows) +
+                                   " atoms; the rest of the file can hold at most " + std::to_string(r));
     if (!c.next(line))
       fail_at(k, c.line() + 1, "the header promises " + std::to_string(rows) + " atoms; the file ends after " +
                                    std::to_string(r));

@@ -154,13 +154,14 @@ class xyz_trajectory final : public input::text_trajectory {
     header_ = read_xyz_header(c, k);
     size_t fields = 0;
     for (const property_spec& s : header_.specs) fields += s.count;
-    check_count(k, header_.comment_line, header_.atoms, 2 * fields);
+    room_ = capacity(header_.atoms, 2 * fields);
     return header_.atoms;
   }
   particle_frame read_rows(line_cursor& c, size_t k, uint64_t rows, const wanted_columns& wanted) override;
   void parse_row(std::string_view line, const xyz_plan& p, input::table& t, size_t r, uint64_t no, size_t k);
 
   xyz_header header_;
+  uint64_t room_ = 0;  // the rows the rest of the file can hold
   std::vector<std::string> species_;
   std::optional<input::type_namer> namer_;
 };
@@ -192,11 +193,14 @@ void xyz_trajectory::parse_row(std::string_view line, const xyz_plan& p, input::
 
 particle_frame xyz_trajectory::read_rows(line_cursor& c, size_t k, uint64_t rows, const wanted_columns& wanted) {
   const xyz_plan plan = plan_fields(header_, wanted, k);
-  auto t = std::make_shared<input::table>(size_t(rows), plan.slots, plan.typed);
+  auto t = std::make_shared<input::table>(size_t(room_), plan.slots, plan.typed);
   species_.clear();
   namer_.emplace(species_);
   std::string_view line;
   for (size_t r = 0; r < rows; ++r) {
+    if (r == room_)
+      fail_at(k, c.line() + 1, "the header promises " + std::to_string(rows) +
+                                   " atoms; the rest of the file can hold at most " + std::to_string(r));
     if (!c.next(line))
       fail_at(k, c.line() + 1, "the header promises " + std::to_string(rows) + " atoms; the file ends after " +
                                    std::to_string(r));
