@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "formats/format.h"
+#include "formats/input/fields.h"
 
 namespace raycast::formats::gsd {
 namespace {
@@ -95,7 +96,7 @@ void gsd_file::read_index(uint64_t location, uint64_t entries) {
     if (c.frame < last) fail("index", c.entry, "frames out of order");
     if (c.frame >= entries) fail("index", c.entry, "frame " + std::to_string(c.frame) + " past the index's size");
     if (!fits(c.location, c.N, uint64_t(c.M) * each, size_) || uint64_t(c.M) * each > size_)
-      fail("index", c.entry, std::string(names_[c.id]) + " (" + std::to_string(c.N) + " x " + std::to_string(c.M) +
+      fail("index", c.entry, input::printable(names_[c.id]) + " (" + std::to_string(c.N) + " x " + std::to_string(c.M) +
                                  " at byte " + std::to_string(c.location) + ") lies past the file's end");
     last = c.frame;
   }

@@ -72,9 +72,9 @@ std::optional<chunk> hoomd_trajectory::per_particle(size_t k, std::string_view n
   if (!c && k != 0 && n == n0_) c = file_->find(0, name);
   if (!c) return c;
   if (c->N != n)
-    fail(k, c->entry, std::string(name) + " has " + std::to_string(c->N) + " rows; particles/N is " + std::to_string(n));
+    fail(k, c->entry, input::printable(name) + " has " + std::to_string(c->N) + " rows; particles/N is " + std::to_string(n));
   if (components > 0 && c->M != uint32_t(components))
-    fail(k, c->entry, std::string(name) + " has " + std::to_string(c->M) + " columns, not " + std::to_string(components));
+    fail(k, c->entry, input::printable(name) + " has " + std::to_string(c->M) + " columns, not " + std::to_string(components));
   if (map_) map_->will_need(c->location, c->bytes());
   return c;
 }

@@ -31,12 +31,12 @@ bool line_cursor::fill() {
     end_ -= begin_;
     begin_ = 0;
   }
-  if (end_ == buf_.size()) {
+  if (end_ + line_padding == buf_.size()) {
     if (buf_.size() > max_line_bytes)
       throw format_error("a line longer than " + std::to_string(max_line_bytes) + " bytes");
     buf_.resize(buf_.size() * 2);
   }
-  const size_t got = src_->read(buf_.data() + end_, buf_.size() - end_);
+  const size_t got = src_->read(buf_.data() + end_, buf_.size() - line_padding - end_);
   end_ += got;
   if (got == 0) eof_ = true;
   return got > 0;

@@ -15,6 +15,9 @@ namespace raycast::formats::input {
 
 // The longest line read; a longer one is refused ("a line longer than ...").
 inline constexpr size_t max_line_bytes = size_t(1) << 22;
+// Bytes readable after every line the cursor returns (its window's spare
+// end): fields.h's parse_number_padded reads eight bytes at a time.
+inline constexpr size_t line_padding = 16;
 
 class line_cursor {
  public:

@@ -14,25 +14,27 @@
 #include <unordered_map>
 #include <vector>
 
+#include "memory/arrays.h"
 #include "raycast/description.h"
 #include "scene/particles.h"
 
 namespace raycast::formats::input {
 
+// The arrays are the memory room's filled_later_array (memory/arrays.h):
+// written whole before they are read, in the page size that costs less here.
 struct table {
   table(size_t rows_, size_t slots_, bool typed)
-      : rows(rows_), slots(slots_), values(std::make_unique_for_overwrite<double[]>(rows_ * slots_)),
-        types(typed ? std::make_unique_for_overwrite<uint32_t[]>(rows_) : nullptr) {}
+      : rows(rows_), slots(slots_), values(rows_ * slots_), types(typed ? rows_ : 0) {}
   size_t rows, slots;
-  std::unique_ptr<double[]> values;
-  std::unique_ptr<uint32_t[]> types;
+  filled_later_array<double> values;
+  filled_later_array<uint32_t> types;
 
-  double* slot(size_t s) const { return values.get() + s * rows; }
+  double* slot(size_t s) const { return const_cast<double*>(values.data()) + s * rows; }
   // Slots s .. s + components - 1 as one column.
   api::column column(size_t s) const {
     return {slot(s), api::element::f64, sizeof(double), std::ptrdiff_t(rows * sizeof(double))};
   }
-  api::column type_column() const { return api::packed(types.get()); }
+  api::column type_column() const { return api::packed(types.data()); }
 };
 
 // Type names in the order first seen (element symbols, XYZ species): the
@@ -69,7 +71,7 @@ inline particle_frame frame_of(std::shared_ptr<const table> t) {
   particle_frame f;
   f.count = t->rows;
   f.positions = t->column(0);
-  if (t->types) f.types = t->type_column();
+  if (!t->types.empty()) f.types = t->type_column();
   f.owner = std::move(t);
   return f;
 }

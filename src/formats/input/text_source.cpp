@@ -4,7 +4,13 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <condition_variable>
 #include <cstring>
+#include <deque>
+#include <exception>
+#include <mutex>
+#include <system_error>
+#include <thread>
 #include <variant>
 #include <vector>
 
@@ -159,13 +165,142 @@ void gzip_source::seek(uint64_t offset) {
   }
 }
 
+// Another source read ahead by a thread of its own, at most `depth` blocks
+// ahead: a gzip file inflates on one core while its text is parsed on
+// another, and its memory stays those few blocks. Where no thread can be
+// started, the source is read where it is asked.
+class read_ahead final : public text_source {
+ public:
+  explicit read_ahead(std::unique_ptr<text_source> inner) : inner_(std::move(inner)) {}
+  ~read_ahead() override { stop(); }
+  size_t read(char* to, size_t n) override;
+  void seek(uint64_t offset) override;
+  uint64_t position() const override { return pos_; }
+  uint64_t max_text_bytes() const override { return inner_->max_text_bytes(); }
+  bool gzipped() const override { return inner_->gzipped(); }
+
+ private:
+  static constexpr size_t block_bytes = size_t(1) << 18, depth = 4;
+  bool next_block();
+  void work();
+  void stop();
+
+  std::unique_ptr<text_source> inner_;  // the worker's alone while it runs
+  std::thread worker_;
+  std::mutex m_;
+  std::condition_variable cv_;
+  std::deque<std::vector<char>> ready_;  // blocks read, in order
+  std::vector<std::vector<char>> spare_;
+  bool stopping_ = false, finished_ = false, inline_ = false;
+  std::exception_ptr error_;
+  std::vector<char> block_;  // the block being given out, from at_
+  size_t at_ = 0;
+  uint64_t pos_ = 0;
+};
+
+void read_ahead::work() {
+  for (;;) {
+    std::vector<char> b;
+    {
+      std::unique_lock lock(m_);
+      cv_.wait(lock, [&] { return stopping_ || ready_.size() < depth; });
+      if (stopping_) return;
+      if (!spare_.empty()) b = std::move(spare_.back()), spare_.pop_back();
+    }
+    size_t n = 0;
+    std::exception_ptr error;
+    try {
+      b.resize(block_bytes);
+      n = inner_->read(b.data(), b.size());
+      b.resize(n);
+    } catch (...) {
+      error = std::current_exception();
+    }
+    std::lock_guard lock(m_);
+    if (error || n == 0) {
+      error_ = error;
+      finished_ = true;
+      cv_.notify_all();
+      return;
+    }
+    ready_.push_back(std::move(b));
+    cv_.notify_all();
+  }
+}
+
+bool read_ahead::next_block() {
+  if (inline_) {
+    block_.resize(block_bytes);
+    block_.resize(inner_->read(block_.data(), block_.size()));
+    at_ = 0;
+    return !block_.empty();
+  }
+  std::unique_lock lock(m_);
+  if (!worker_.joinable() && !finished_) {
+    try {
+      worker_ = std::thread([this] { work(); });
+    } catch (const std::system_error&) {
+      inline_ = true;
+      lock.unlock();
+      return next_block();
+    }
+  }
+  if (!block_.empty()) spare_.push_back(std::move(block_));
+  block_.clear();
+  at_ = 0;
+  cv_.wait(lock, [&] { return !ready_.empty() || finished_; });
+  if (ready_.empty()) {
+    if (error_) std::rethrow_exception(error_);
+    return false;
+  }
+  block_ = std::move(ready_.front());
+  ready_.pop_front();
+  cv_.notify_all();
+  return true;
+}
+
+size_t read_ahead::read(char* to, size_t n) {
+  if (at_ == block_.size() && !next_block()) return 0;
+  const size_t k = std::min(n, block_.size() - at_);
+  std::memcpy(to, block_.data() + at_, k);
+  at_ += k;
+  pos_ += k;
+  return k;
+}
+
+void read_ahead::stop() {
+  {
+    std::lock_guard lock(m_);
+    stopping_ = true;
+  }
+  cv_.notify_all();
+  if (worker_.joinable()) worker_.join();
+  stopping_ = false;
+}
+
+void read_ahead::seek(uint64_t offset) {
+  if (offset < pos_) {  // behind: the inner source starts again
+    stop();
+    inner_->seek(offset);
+    ready_.clear();
+    block_.clear();
+    at_ = 0;
+    pos_ = inner_->position();
+    finished_ = false;
+    error_ = nullptr;
+  }
+  char scratch[4096];
+  while (pos_ < offset && read(scratch, size_t(std::min<uint64_t>(sizeof scratch, offset - pos_))) > 0) {
+  }
+}
+
 bool is_gzip(const raw_bytes& raw) {
   unsigned char magic[2] = {0, 0};
   return raw.read_at(0, 2, reinterpret_cast<char*>(magic)) == 2 && magic[0] == 0x1f && magic[1] == 0x8b;
 }
 
 std::unique_ptr<text_source> source_of(std::unique_ptr<raw_bytes> raw) {
-  if (is_gzip(*raw)) return std::make_unique<gzip_source>(std::move(raw));
+  if (is_gzip(*raw)) return std::make_unique<read_ahead>(std::make_unique<gzip_source>(std::move(raw)));
   return std::make_unique<plain_source>(std::move(raw));
 }
 

@@ -4,6 +4,10 @@
 // decompressed text, at offsets into it; memory is the caller's window, never
 // the whole file.
 //
+// A gzip file is inflated a few blocks ahead by a thread of the source's
+// own (1 MiB at most), so that inflating and parsing overlap where a second
+// core is free.
+//
 // zlib, not libdeflate: libdeflate decompresses a whole member into a buffer
 // of its final size, which a gzip file does not say (ISIZE is the size modulo
 // 2^32 and may lie), so a frame of a large .gz could only be read after the

@@ -59,18 +59,21 @@ class row_parser {
  private:
   const char* number(const char* p, const char* e, const lammps::column_plan& c, size_t j, size_t r,
                      uint64_t line_no) {
-    const char* b = p + (*p == '+' ? 1 : 0);
     double v = 0;
-    const auto got = fast_float::from_chars(b, e, v);
-    if (got.ec != std::errc() || (got.ptr < e && !input::is_blank(*got.ptr))) {
+    if (const char* got = input::parse_decimal_padded(p, e, v)) {  // the common case: finite
+      t_.slot(c.slot)[r] = v * c.scale;
+      return got;
+    }
+    const char* got = input::parse_number(p, e, v);
+    if (!got || (got < e && !input::is_blank(*got))) {
       const char* end = p;
       while (end < e && !input::is_blank(*end)) ++end;
       fail_at(k_, line_no, names_[j] + " is not a number: " + input::quoted(std::string_view(p, size_t(end - p))));
     }
     if (c.checked && !std::isfinite(v))
-      fail_at(k_, line_no, names_[j] + " is not finite: " + input::quoted(std::string_view(p, size_t(got.ptr - p))));
+      fail_at(k_, line_no, names_[j] + " is not finite: " + input::quoted(std::string_view(p, size_t(got - p))));
     t_.slot(c.slot)[r] = v * c.scale;
-    return got.ptr;
+    return got;
   }
 
   void type_number(std::string_view f, size_t r, uint64_t line_no) {
