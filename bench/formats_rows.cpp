@@ -151,7 +151,8 @@ formats::wanted_columns all_columns() {
 // Open, read frame 0 with every column and count the frames (the scan
 // goes on from where frame 0 ended): what a picture of the file's first
 // frame costs. The text's MB/s.
-void bench_ours(benchmark::State& state, std::string (*file)(int, int64_t), const formats::format* f, int64_t n) {
+void bench_ours(benchmark::State& state, std::string (*file)(int, int64_t), const formats::format* f, int64_t n,
+                bool all) {
   const std::string path = file(1, n);
   if (path.empty()) return state.SkipWithError("cannot write the file in $TMPDIR/raycast-bench-formats");
   double t = 0;
@@ -160,7 +161,7 @@ void bench_ours(benchmark::State& state, std::string (*file)(int, int64_t), cons
     const steady::time_point t0 = steady::now();
     try {
       auto traj = f->open(path);
-      const particle_frame fr = traj->read(0, all_columns());
+      const particle_frame fr = traj->read(0, all ? all_columns() : formats::wanted_columns{});
       count = fr.count * traj->frame_count();  // the scan goes on from frame 0's end
       benchmark::DoNotOptimize(fr.positions.get(fr.count - 1, 2));
     } catch (const formats::format_error& e) {
@@ -315,13 +316,15 @@ void register_formats_rows(bool quick) {
     return "kind=formats family=" + family + " reader=" + reader + " atoms=" + std::to_string(atoms);
   };
   add_row("formats/lammps/" + N + "/ours", fields("lammps", "ours", n), benchmark::kMillisecond, bench_ours, dump_file,
-          &formats::lammps_dump_format(), n);
+          &formats::lammps_dump_format(), n, true);
+  add_row("formats/lammps/" + N + "/ours-render", fields("lammps", "ours-render", n), benchmark::kMillisecond, bench_ours,
+          dump_file, &formats::lammps_dump_format(), n, false);
   for (const char* peer : {"numpy", "ase"})
     add_row("formats/lammps/" + N + "/" + peer, fields("lammps", peer, n), benchmark::kMillisecond, bench_python,
             std::string(peer), n)
         ->Iterations(1);
   add_row("formats/lammps-gz/" + N + "/ours", fields("lammps-gz", "ours", n), benchmark::kMillisecond, bench_ours, gz_file,
-          &formats::lammps_dump_format(), n);
+          &formats::lammps_dump_format(), n, true);
   add_row("formats/lammps-gz/" + N + "/inflate", fields("lammps-gz", "inflate", n), benchmark::kMillisecond, bench_inflate, n);
   add_row("formats/gsd/" + N + "/ours", fields("gsd", "ours", n), benchmark::kMillisecond, bench_gsd, n);
   for (bool gz : {false, true})

@@ -4,6 +4,8 @@
 //       of a LAMMPS text dump of N atoms (9 columns id type x y z vx vy vz
 //       c_pe, written as LAMMPS's dump custom writes them: about 70 bytes an
 //       atom), from the page cache, one thread
+//   formats/lammps/N/ours-render  the same, with the columns a render reads
+//       (positions, types; the other five skipped unparsed)
 //   formats/lammps/N/numpy    numpy.loadtxt of the same file, timed inside
 //       python3 (one run)
 //   formats/lammps/N/ase      ase.io.read(format="lammps-dump-text") of it,

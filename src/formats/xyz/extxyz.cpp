@@ -177,6 +177,11 @@ void xyz_trajectory::parse_row(std::string_view line, const xyz_plan& p, input::
     if (fp.what == role::species) {
       t.types[r] = namer_->index(w);
     } else if (fp.what == role::number) {
+      double fast = 0;  // the common decimal, always finite; else any number
+      if (input::parse_decimal_padded(w.data(), w.data() + w.size(), fast)) {
+        t.slot(fp.slot)[r] = fast;
+        continue;
+      }
       const auto v = input::parse_double(w);
       if (!v) fail_at(k, no, *fp.name + " is not a number: " + input::quoted(w));
       if (fp.checked && !std::isfinite(*v)) fail_at(k, no, *fp.name + " is not finite: " + input::quoted(w));

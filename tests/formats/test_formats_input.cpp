@@ -7,10 +7,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdlib>
+#include <random>
 #include <utility>
 #include <string>
 
+#include "formats/input/fields.h"
+#include "formats/input/line_cursor.h"
 #include "formats/lammps/lammps_dump.h"
 #include "formats/xyz/extxyz.h"
 #include "formats/text_support.h"
@@ -44,6 +49,49 @@ std::string read_refusal(Open open, const std::string& text, size_t k = 0) {
   });
   EXPECT_EQ(direct, scanned);
   return direct;
+}
+
+// The value strtod gives a whole field, or nullopt where it takes less (or
+// reads hexadecimal, which no simulation code writes and we do not take).
+std::optional<double> strtod_of(const std::string& f) {
+  if (f.find_first_of("xX") != std::string::npos) return std::nullopt;
+  char* end = nullptr;
+  const double v = std::strtod(f.c_str(), &end);
+  if (f.empty() || end != f.c_str() + f.size()) return std::nullopt;
+  return v;
+}
+
+TEST(NumberFields, TheFastPathsGiveStrtodsValuesToTheLastBit) {
+  std::mt19937_64 rng(99);
+  std::vector<std::string> cases = {"0", "-0", "0.", "-0.", ".5", "-.5", "1234567.1234567", "12345678", "1.23456789",
+                                    "9999999.9999999", "0.1", "-4.49651", "1e5", "1.5e-300", "nan", "-inf", "+1.5",
+                                    "-", ".", "1.2.3", "--1", "1-", "0x10", "7.", "00000001.5"};
+  for (int k = 0; k < 200000; ++k) {  // what %g, %.8f and %.17g write
+    const double x = std::ldexp(double(rng() >> 11), -int(rng() % 80)) * (rng() % 2 ? 1 : -1);
+    char b[64];
+    std::snprintf(b, sizeof b, k % 3 == 0 ? "%g" : k % 3 == 1 ? "%.8f" : "%.17g", x);
+    cases.push_back(b);
+  }
+  for (const std::string& c : cases) {
+    const std::string padded = c + std::string(input::line_padding, '9');  // digits past the end: never read
+    const char* e = padded.data() + c.size();
+    double fast = 0, slow = 0;
+    const char* f = input::parse_decimal_padded(padded.data(), e, fast);
+    const char* g = input::parse_number(padded.data(), e, slow);
+    const auto want = strtod_of(c);
+    if (f) {
+      ASSERT_EQ(f, e) << c;
+      ASSERT_TRUE(want) << c;
+      ASSERT_EQ(std::bit_cast<uint64_t>(fast), std::bit_cast<uint64_t>(*want)) << c;
+    }
+    if (!want) {
+      ASSERT_TRUE(g == nullptr || g != e) << c;
+      continue;
+    }
+    ASSERT_EQ(g, e) << c;
+    if (std::isnan(*want)) ASSERT_TRUE(std::isnan(slow)) << c;
+    else ASSERT_EQ(std::bit_cast<uint64_t>(slow), std::bit_cast<uint64_t>(*want)) << c;
+  }
 }
 
 TEST(LammpsDumpText, ColumnsInAnyOrderRowsInAnyOrder) {
