@@ -17,12 +17,14 @@
 //       (position, typeid, types, diameter, box), from the page cache
 //   formats/trajectory/lammps/M/F, formats/trajectory/lammps-gz/M/F
 //       frames 0 .. F-1 of an F-frame dump of M atoms a frame, read in order
-//       (F = 1 and F = 12), with the process's memory after each frame
+//       (F = 1 and F = 12), with the process's resident memory while each
+//       frame is alive
 // N = 10^6 and M = 10^5 (--quick: 10^4 and 10^3). The files are written
 // once, deterministically, to $TMPDIR/raycast-bench-formats/ and kept there.
 // Counters: seconds, MB/s (of the text, or of the frame's chunks for GSD),
-// and for the trajectories rss_growth_mb (resident memory after the last
-// frame less after the first) and peak_rss_mb; the ratios are report.py's.
+// and for the trajectories rss_growth_mb (the most resident memory with a
+// frame alive less that with the first) and peak_rss_mb (the most); the
+// ratios are report.py's.
 #pragma once
 
 namespace raycast::bench {
