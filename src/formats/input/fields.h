@@ -13,7 +13,8 @@
 
 namespace raycast::formats::input {
 
-inline bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+// A space or a tab, \v, \f, \r (and \n, which a line never holds): two compares.
+inline bool is_blank(char c) { return c == ' ' || unsigned(c - '\t') <= unsigned('\r' - '\t'); }
 
 // The fields of a line, one after another.
 class fields {
@@ -74,8 +75,9 @@ inline const char* parse_number(const char* p, const char* e, double& v) {
 // The common decimal at p (an optional '-', at most 7 digits, an optional
 // '.' and at most 7 more, then a blank or e) into v, read eight bytes at a
 // time as fast_float reads long mantissas (its eight-digit steps), with no
-// branch per digit; its value is Clinger's, as parse_number's, and always
-// finite. nullptr for anything else (longer, an exponent, nan, not a
+// branch per digit: one word where the number (dot included) fits in eight
+// bytes, as most do, else a word for each side of the dot. Its value is
+// Clinger's, as parse_number's, and always finite. nullptr for anything else (longer, an exponent, nan, not a
 // number): parse_number's then. For a line_cursor's lines, which have
 // line_padding readable bytes after them (p < e).
 inline const char* parse_decimal_padded(const char* p, const char* e, double& v) {
@@ -95,6 +97,32 @@ inline const char* parse_decimal_padded(const char* p, const char* e, double& v)
   };
   const bool negative = *p == '-';
   const char* q = p + (negative ? 1 : 0);
+  if (q < e) {  // a number of at most eight bytes, dot included (most are): one word
+    const uint64_t w = fast_float::read_u64(q);
+    const uint64_t x = w & ~highs, ascii = ~w & highs;  // per byte, without carries between bytes
+    const uint64_t digit = ((x + 0x5050505050505050ull) & ~(x + 0x4646464646464646ull)) & ascii & highs;
+    const uint64_t t = w ^ 0x2E2E2E2E2E2E2E2Eull;
+    const uint64_t dot = ~(((t & ~highs) + ~highs) | t) & highs;
+    uint64_t ok = digit | dot;
+    if (e - q < 8) ok &= ~(highs << (8 * (e - q)));
+    const int end = ok == highs ? 8 : __builtin_ctzll(~ok & highs) / 8;  // the first byte of neither
+    const uint64_t dots = end == 8 ? dot : dot & ((uint64_t(1) << (8 * end)) - 1);
+    const int n = end - (dots ? 1 : 0);
+    if (n > 0 && (dots & (dots - 1)) == 0 && (q + end == e || is_blank(q[end]))) {
+      uint64_t packed = w;
+      int f = 0;
+      if (dots) {  // the bytes after the dot one place down
+        const int d = __builtin_ctzll(dots) / 8;
+        const uint64_t below = (uint64_t(1) << (8 * d)) - 1;
+        packed = (w & below) | ((w >> 8) & ~below);
+        f = end - d - 1;
+      }
+      packed = n == 8 ? packed : (packed << (8 * (8 - n))) | (zeros >> (8 * n));
+      v = double(parse_eight_digits_unrolled(packed)) / tens[f];
+      if (negative) v = -v;
+      return q + end;
+    }
+  }
   uint32_t whole = 0, fraction = 0;
   const int n = q < e ? digits(q, whole) : 0;
   int f = 0;

@@ -28,20 +28,29 @@ constexpr int64_t max_type = 1 << 16;
 class row_parser {
  public:
   row_parser(const dump_plan& p, const std::vector<std::string>& names, input::table& t, size_t k)
-      : plan_(p), names_(names), t_(t), k_(k), namer_(elements_) {}
+      : plan_(p), names_(names), t_(t), k_(k), namer_(elements_) {
+    for (const lammps::column_plan& c : p.columns) to_.push_back(c.what == role::number ? t.slot(c.slot) : nullptr);
+  }
 
   void parse(std::string_view line, size_t r, uint64_t line_no) {
     const char* p = line.data();
     const char* const e = p + line.size();
-    for (size_t j = 0; j < plan_.columns.size(); ++j) {
+    const size_t columns = plan_.columns.size();
+    for (size_t j = 0; j < columns; ++j) {
       while (p < e && input::is_blank(*p)) ++p;
       if (p == e) fail_at(k_, line_no, "the row has " + std::to_string(j) + " values; ITEM: ATOMS names " +
-                                           std::to_string(plan_.columns.size()));
-      const lammps::column_plan& c = plan_.columns[j];
-      if (c.what == role::number) {
-        p = number(p, e, c, j, r, line_no);
+                                           std::to_string(columns));
+      if (double* to = to_[j]) {
+        double v;
+        if (const char* end = input::parse_decimal_padded(p, e, v)) {  // the common case: finite
+          to[r] = v;
+          p = end;
+        } else {
+          p = number(p, e, plan_.columns[j], j, r, line_no);
+        }
         continue;
       }
+      const lammps::column_plan& c = plan_.columns[j];
       const char* b = p;
       while (p < e && !input::is_blank(*p)) ++p;
       if (c.what == role::type_number) type_number(std::string_view(b, size_t(p - b)), r, line_no);
@@ -60,10 +69,6 @@ class row_parser {
   const char* number(const char* p, const char* e, const lammps::column_plan& c, size_t j, size_t r,
                      uint64_t line_no) {
     double v = 0;
-    if (const char* got = input::parse_decimal_padded(p, e, v)) {  // the common case: finite
-      t_.slot(c.slot)[r] = v * c.scale;
-      return got;
-    }
     const char* got = input::parse_number(p, e, v);
     if (!got || (got < e && !input::is_blank(*got))) {
       const char* end = p;
@@ -72,7 +77,7 @@ class row_parser {
     }
     if (c.checked && !std::isfinite(v))
       fail_at(k_, line_no, names_[j] + " is not finite: " + input::quoted(std::string_view(p, size_t(got - p))));
-    t_.slot(c.slot)[r] = v * c.scale;
+    t_.slot(c.slot)[r] = v;
     return got;
   }
 
@@ -92,6 +97,7 @@ class row_parser {
   std::vector<std::string> elements_;
   input::type_namer namer_;
   int64_t largest_ = 0;
+  std::vector<double*> to_;  // each column's slot, for the numbers
 };
 
 // Scaled positions to the box's space: lo + xs a + ys b + zs c.
@@ -142,6 +148,9 @@ particle_frame dump_trajectory::read_rows(line_cursor& c, size_t k, uint64_t row
                                    std::to_string(r));
     parser.parse(line, r, c.line());
   }
+  for (const lammps::column_plan& col : plan.columns)  // a diameter column is halved into the radius
+    if (col.what == role::number && col.slot == 3 && col.scale != 1.0)
+      for (size_t r = 0; r < t->rows; ++r) t->slot(3)[r] *= col.scale;
   if (plan.scaled) unscale(*t, *header_.box);
   particle_frame f = input::frame_of(t);
   if (plan.radius) f.radii = t->column(3);
