@@ -44,7 +44,7 @@ class row_parser {
         double v;
         if (const char* end = input::parse_decimal_padded(p, e, v)) {  // the common case: finite
           to[r] = v;
-          p = end;
+          p = end + (end < e ? 1 : 0);  // past the blank it ends at
         } else {
           p = number(p, e, plan_.columns[j], j, r, line_no);
         }
