@@ -2,9 +2,11 @@
 // (tests/formats/make_files.sh, CTest's fixture formats.files): LAMMPS's
 // dump atom and dump custom (plain and gzipped by LAMMPS, orthogonal and
 // triclinic boxes, an atom count that changes), ASE's extended XYZ writer
-// and gsd's HOOMD writer, the last two given LAMMPS's frames.
+// and gsd's HOOMD writer, the last two given LAMMPS's frames; and gsd's own
+// file of its 1.0 layer.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -211,6 +213,29 @@ TEST(Gsd, ChunksAFrameLacksAreFrameZerosElseTheSchemasDefaults) {
   // Positions are the file's float32 chunk, viewed in place.
   EXPECT_EQ(f0.positions.type, api::element::f32);
   EXPECT_EQ(f0.positions.stride, 12);
+}
+
+TEST(Gsd, ReadsTheVersionOneLayerOfGsdsOwnFile) {
+  std::ifstream listing(file("v1_chunks.txt"));
+  if (!listing) GTEST_SKIP() << "this gsd package ships no test_gsd_v1.gsd";
+  auto map = input::mapped_file::open(file("v1.gsd"));
+  const gsd::gsd_file layer(map->data(), map->size(), map);
+  size_t frames = 0, chunks = 0;
+  uint64_t k = 0;
+  std::string name;
+  int32_t value = 0;
+  while (listing >> k >> name >> value) {
+    const auto c = layer.find(size_t(k), name);
+    ASSERT_TRUE(c) << "frame " << k << " " << name;
+    ASSERT_EQ(c->type, gsd::i32);
+    ASSERT_EQ(c->N * c->M, 1u);
+    EXPECT_EQ(int32_t(gsd::load_le<uint32_t>(layer.at(c->location))), value) << "frame " << k << " " << name;
+    frames = std::max(frames, size_t(k) + 1);
+    ++chunks;
+  }
+  EXPECT_GT(chunks, 100u);
+  EXPECT_EQ(layer.frames(), frames);
+  EXPECT_FALSE(layer.find(0, "no such chunk"));
 }
 
 }  // namespace

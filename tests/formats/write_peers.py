@@ -15,14 +15,22 @@ Written there:
                 chunk; frame 1 changes only positions and the step (gsd.hoomd
                 leaves out what equals frame 0's); frame 2 has six particles,
                 not four, and neither diameters nor typeids (the defaults)
+  v1.gsd        gsd's own file of its 1.0 file layer (its test suite's,
+                test_gsd_v1.gsd, written by gsd 1.x; no schema), and
+  v1_chunks.txt what gsd.fl reads of it: "frame name value" a chunk (each an
+                int32)
 Positions are rounded to float32 first, as GSD stores them, so that every
 file holds the same numbers.
 """
+import os
+import shutil
 import sys
 
 import numpy as np
 import ase
 import ase.io
+import gsd
+import gsd.fl
 import gsd.hoomd
 
 
@@ -98,9 +106,24 @@ def write_inherit(path):
         t.append(u)
 
 
+def write_v1(d):
+    src = os.path.join(os.path.dirname(gsd.__file__), "test", "test_gsd_v1.gsd")
+    if not os.path.exists(src):
+        return
+    shutil.copyfile(src, d + "/v1.gsd")
+    with gsd.fl.open(name=d + "/v1.gsd", mode="rb") as f, open(d + "/v1_chunks.txt", "w") as out:
+        for k in range(f.nframes):
+            for name in f.find_matching_chunk_names(""):
+                if f.chunk_exists(frame=k, name=name):
+                    data = f.read_chunk(frame=k, name=name)
+                    assert data.dtype == np.int32 and data.shape == (1,)
+                    out.write(f"{k} {name} {int(data[0])}\n")
+
+
 if __name__ == "__main__":
     d = sys.argv[1]
     frames = dump_frames(d + "/melt-elements.lammpstrj")
     write_extxyz(frames, d + "/melt.extxyz")
     write_gsd(frames, d + "/melt.gsd")
     write_inherit(d + "/inherit.gsd")
+    write_v1(d)
