@@ -7,6 +7,7 @@
 #include <zlib.h>
 
 #include <charconv>
+#include <ctime>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -26,8 +27,33 @@ namespace raycast::bench {
 namespace {
 
 using steady = std::chrono::steady_clock;
-double seconds_since(steady::time_point t0) { return std::chrono::duration<double>(steady::now() - t0).count(); }
 benchmark::Counter per_iteration(double v) { return {v, benchmark::Counter::kAvgIterations}; }
+
+// The process's CPU seconds, all its threads (a .gz's read-ahead too).
+double cpu_now() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+// Wall and CPU seconds of the spans between start() and stop(), added up:
+// on a machine shared with other work the CPU seconds are less swayed by it.
+struct stopwatch {
+  steady::time_point t0;
+  double c0 = 0, wall = 0, cpu = 0;
+  void start() {
+    t0 = steady::now();
+    c0 = cpu_now();
+  }
+  void stop() {
+    wall += std::chrono::duration<double>(steady::now() - t0).count();
+    cpu += cpu_now() - c0;
+  }
+  void report(benchmark::State& state) const {
+    state.counters["seconds"] = per_iteration(wall);
+    state.counters["cpu_seconds"] = per_iteration(cpu);
+  }
+};
 
 std::string cache_dir() {
   const char* t = std::getenv("TMPDIR");
@@ -155,10 +181,10 @@ void bench_ours(benchmark::State& state, std::string (*file)(int, int64_t), cons
                 bool all) {
   const std::string path = file(1, n);
   if (path.empty()) return state.SkipWithError("cannot write the file in $TMPDIR/raycast-bench-formats");
-  double t = 0;
+  stopwatch w;
   size_t count = 0;
   for (auto _ : state) {
-    const steady::time_point t0 = steady::now();
+    w.start();
     try {
       auto traj = f->open(path);
       const particle_frame fr = traj->read(0, all ? all_columns() : formats::wanted_columns{});
@@ -167,12 +193,12 @@ void bench_ours(benchmark::State& state, std::string (*file)(int, int64_t), cons
     } catch (const formats::format_error& e) {
       return state.SkipWithError(e.what());
     }
-    t += seconds_since(t0);
+    w.stop();
   }
   if (count != size_t(n)) return state.SkipWithError("the frame is not the file's");
   const double bytes = path.ends_with(".gz") ? file_bytes(dump_file(1, n)) : file_bytes(path);
-  state.counters["seconds"] = per_iteration(t);
-  state.counters["MBps"] = t > 0 ? bytes * double(state.iterations()) / t * 1e-6 : 0.0;
+  w.report(state);
+  state.counters["MBps"] = w.wall > 0 ? bytes * double(state.iterations()) / w.wall * 1e-6 : 0.0;
   state.counters["file_MB"] = file_bytes(path) * 1e-6;
 }
 
@@ -182,9 +208,10 @@ void bench_inflate(benchmark::State& state, int64_t n) {
   const std::string path = gz_file(1, n);
   if (path.empty()) return state.SkipWithError("cannot write the file in $TMPDIR/raycast-bench-formats");
   std::vector<unsigned char> in(size_t(1) << 18), out(size_t(1) << 18);
-  double t = 0, text = 0;
+  stopwatch w;
+  double text = 0;
   for (auto _ : state) {
-    const steady::time_point t0 = steady::now();
+    w.start();
     const int fd = ::open(path.c_str(), O_RDONLY);
     z_stream z{};
     inflateInit2(&z, 15 + 16);
@@ -206,11 +233,11 @@ void bench_inflate(benchmark::State& state, int64_t n) {
     }
     inflateEnd(&z);
     ::close(fd);
-    t += seconds_since(t0);
+    w.stop();
     if (r != Z_STREAM_END) return state.SkipWithError("zlib could not inflate the file");
   }
-  state.counters["seconds"] = per_iteration(t);
-  state.counters["MBps"] = t > 0 ? text * double(state.iterations()) / t * 1e-6 : 0.0;
+  w.report(state);
+  state.counters["MBps"] = w.wall > 0 ? text * double(state.iterations()) / w.wall * 1e-6 : 0.0;
   state.counters["file_MB"] = file_bytes(path) * 1e-6;
 }
 
@@ -219,10 +246,13 @@ void bench_inflate(benchmark::State& state, int64_t n) {
 void bench_python(benchmark::State& state, const std::string& peer, int64_t n) {
   const std::string path = dump_file(1, n);
   if (path.empty()) return state.SkipWithError("cannot write the file in $TMPDIR/raycast-bench-formats");
-  const std::string load = peer == "numpy" ? "import numpy\nt = time.perf_counter()\na = numpy.loadtxt(p, skiprows=9)\nn = len(a)\n"
-                                           : "import ase.io\nt = time.perf_counter()\na = ase.io.read(p, format='lammps-dump-text')\nn = len(a)\n";
+  const std::string load = peer == "numpy" ? "import numpy\nt, c = time.perf_counter(), time.process_time()\n"
+                                             "a = numpy.loadtxt(p, skiprows=9)\nn = len(a)\n"
+                                           : "import ase.io\nt, c = time.perf_counter(), time.process_time()\n"
+                                             "a = ase.io.read(p, format='lammps-dump-text')\nn = len(a)\n";
   const std::string script = "import sys, time\np = sys.argv[1]\ntry:\n  exec(sys.argv[2])\nexcept ImportError as e:\n"
-                             "  print('missing', e.name); sys.exit(0)\nprint(time.perf_counter() - t, n)\n";
+                             "  print('missing', e.name); sys.exit(0)\n"
+                             "print(time.perf_counter() - t, time.process_time() - c, n)\n";
   const char* python = access("/usr/bin/python3", X_OK) == 0 ? "/usr/bin/python3" : "python3";
   auto quote = [](const std::string& w) {
     std::string q = "'";
@@ -237,20 +267,21 @@ void bench_python(benchmark::State& state, const std::string& peer, int64_t n) {
     text.clear();
     while (p && std::fgets(buf, sizeof buf, p.get())) text += buf;
   }
-  double s = 0;
+  double s = 0, cpu = 0;
   long long rows = 0;
-  if (text.starts_with("missing") || std::sscanf(text.c_str(), "%lf %lld", &s, &rows) != 2 || rows != n)
+  if (text.starts_with("missing") || std::sscanf(text.c_str(), "%lf %lf %lld", &s, &cpu, &rows) != 3 || rows != n)
     return state.SkipWithError(("python3 " + peer + ": " + text.substr(0, 160)).c_str());
   state.counters["seconds"] = s;
+  state.counters["cpu_seconds"] = cpu;
   state.counters["MBps"] = file_bytes(path) / s * 1e-6;
 }
 
 void bench_gsd(benchmark::State& state, int64_t n) {
   const std::string path = cached("frame-" + std::to_string(n) + ".gsd", [&](const std::string& p) { return write_gsd_frame(p, n); });
   if (path.empty()) return state.SkipWithError("cannot write the file in $TMPDIR/raycast-bench-formats");
-  double t = 0;
+  stopwatch w;
   for (auto _ : state) {
-    const steady::time_point t0 = steady::now();
+    w.start();
     try {
       auto traj = formats::gsd_format().open(path);
       const particle_frame f = traj->read(0, {});
@@ -259,11 +290,11 @@ void bench_gsd(benchmark::State& state, int64_t n) {
     } catch (const formats::format_error& e) {
       return state.SkipWithError(e.what());
     }
-    t += seconds_since(t0);
+    w.stop();
   }
   const double chunks = double(n) * (12 + 4 + 4);  // position, typeid, diameter
-  state.counters["seconds"] = per_iteration(t);
-  state.counters["MBps"] = t > 0 ? chunks * double(state.iterations()) / t * 1e-6 : 0.0;
+  w.report(state);
+  state.counters["MBps"] = w.wall > 0 ? chunks * double(state.iterations()) / w.wall * 1e-6 : 0.0;
 }
 
 // VmRSS and VmHWM of /proc/self/status, in bytes.
@@ -285,28 +316,30 @@ double status_bytes(const char* key) {
 void bench_trajectory(benchmark::State& state, bool gz, int frames, int64_t n) {
   const std::string path = gz ? gz_file(frames, n) : dump_file(frames, n);
   if (path.empty()) return state.SkipWithError("cannot write the file in $TMPDIR/raycast-bench-formats");
-  double t = 0, growth = 0, peak = 0;
+  stopwatch w;
+  double growth = 0, peak = 0;
   for (auto _ : state) {
     double first = 0;
     try {
-      steady::time_point t0 = steady::now();
+      w.start();
       auto traj = formats::lammps_dump_format().open(path);
       for (int k = 0; k < frames; ++k) {
         const particle_frame f = traj->read(size_t(k), all_columns());
         benchmark::DoNotOptimize(f.positions.get(f.count - 1, 0));
-        t += seconds_since(t0);
+        w.stop();
         const double rss = status_bytes("VmRSS:");  // with the frame alive (untimed)
         if (k == 0) first = rss;
         growth = std::max(growth, rss - first);
         peak = std::max(peak, rss);
-        t0 = steady::now();
+        w.start();
       }
+      w.stop();
     } catch (const formats::format_error& e) {
       return state.SkipWithError(e.what());
     }
   }
-  state.counters["seconds"] = per_iteration(t);
-  state.counters["seconds_per_frame"] = per_iteration(t / frames);
+  w.report(state);
+  state.counters["seconds_per_frame"] = per_iteration(w.wall / frames);
   state.counters["rss_growth_mb"] = growth * 1e-6;
   state.counters["peak_rss_mb"] = peak * 1e-6;
 }

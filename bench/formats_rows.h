@@ -21,7 +21,8 @@
 //       frame is alive
 // N = 10^6 and M = 10^5 (--quick: 10^4 and 10^3). The files are written
 // once, deterministically, to $TMPDIR/raycast-bench-formats/ and kept there.
-// Counters: seconds, MB/s (of the text, or of the frame's chunks for GSD),
+// Counters: seconds and cpu_seconds (the process's, every thread of it; the
+// python peers' own), MB/s (of the text, or of the frame's chunks for GSD),
 // and for the trajectories rss_growth_mb (the most resident memory with a
 // frame alive less that with the first) and peak_rss_mb (the most); the
 // ratios are report.py's.

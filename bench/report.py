@@ -640,9 +640,9 @@ def print_formats(rows):
         return
     by = {(r.family, r.reader): r for r in frame}
     print("\nParticle formats (formats/): one frame from the page cache, every column, one thread (a .gz: one more\n"
-          "inflating ahead); medians. Goals: 0.1 s and 5x numpy, 40x ASE for the 10^6-atom dump; 0.8x zlib's own\n"
-          "speed gzipped; 1 GB/s for GSD")
-    print("  family       atoms  reader         seconds      MB/s   against")
+          "inflating ahead); medians; cpu: the CPU seconds of the process (less swayed by other work on the machine).\n"
+          "Goals: 0.1 s and 5x numpy, 40x ASE for the 10^6-atom dump; 0.8x zlib's own speed gzipped; 1 GB/s for GSD")
+    print("  family       atoms  reader         seconds       cpu      MB/s   against")
     for r in sorted(frame, key=lambda r: (r.family, r.reader != "ours", r.reader)):
         if r.error:
             print(f"  {r.family:10s} {r.atoms:>7s}  {r.reader:12s}  {r.error}")
@@ -651,11 +651,14 @@ def print_formats(rows):
         against = ""
         if r.reader in ("numpy", "ase") and ours and not ours.error and ours.get("seconds"):
             against = f"ours {r.seconds / ours.seconds:.1f}x faster"
+            if r.get("cpu_seconds") and ours.get("cpu_seconds"):
+                against += f" ({r.cpu_seconds / ours.cpu_seconds:.1f}x in CPU seconds)"
         if r.reader == "ours" and r.family == "lammps-gz":
             z = by.get(("lammps-gz", "inflate"))
             if z and not z.error and z.get("MBps"):
                 against = f"{r.MBps / z.MBps:.2f}x zlib's own speed"
-        print(f"  {r.family:10s} {r.atoms:>7s}  {r.reader:12s} {r.get('seconds', 0):8.4f} {r.get('MBps', 0):9.0f}   {against}")
+        print(f"  {r.family:10s} {r.atoms:>7s}  {r.reader:12s} {r.get('seconds', 0):8.4f}  {r.get('cpu_seconds', 0):8.4f}"
+              f" {r.get('MBps', 0):9.0f}   {against}")
     traj = {(r.family, int(r.frames)): r for r in of_kind(rows, "formats") if r.family.startswith("trajectory")}
     for family in sorted({f for f, _ in traj}):
         one, many = traj.get((family, 1)), [traj[k] for k in sorted(traj) if k[0] == family and k[1] > 1]
