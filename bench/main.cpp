@@ -22,6 +22,7 @@
 #include "embree_peer.h"
 #include "embree_rows.h"
 #include "errors.h"
+#include "formats_rows.h"
 #include "gbench_flags.h"
 #include "rows.h"
 #include "light_rows.h"
@@ -464,6 +465,7 @@ int run(int argc, char** argv) {
   register_embree_rows(scene_sizes);
   register_scale_rows(opt.quick);
   register_ply_rows(opt.quick, opt.big);
+  register_formats_rows(opt.quick);
   register_light_rows(opt.quick);
   register_stiff_rows();
   add_context(opt);

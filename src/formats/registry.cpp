@@ -5,7 +5,11 @@
 #include <algorithm>
 #include <cctype>
 
+#include "formats/gsd/hoomd.h"
+#include "formats/input/text_source.h"
+#include "formats/lammps/lammps_dump.h"
 #include "formats/ply.h"
+#include "formats/xyz/extxyz.h"
 #include "formats/regular_file.h"
 #include "scene/builtin.h"
 
@@ -23,7 +27,7 @@ constexpr scene_format json{"json", json_extensions, json_sniff, read_scene_file
 constexpr const scene_format* scene_list[] = {&json};
 
 const std::vector<const format*>& particle_list() {
-  static const std::vector<const format*> list = {&ply_format()};
+  static const std::vector<const format*> list = {&ply_format(), &gsd_format(), &lammps_dump_format(), &xyz_format()};
   return list;
 }
 
@@ -46,14 +50,20 @@ detected by_name(std::string_view name) {
   return {by_extension(scene_formats(), name), by_extension(particle_formats(), name)};
 }
 
-// The file's first bytes, or "" where it cannot be read as a regular file.
+// The file's first bytes (a gzip file's, inflated), or "" where it cannot be
+// read as a regular file.
 std::string head_of(const std::string& path) {
-  auto opened = regular_file::open(path);
-  auto* f = std::get_if<std::unique_ptr<regular_file>>(&opened);
-  if (!f) return {};
   std::string head(4096, '\0');
-  const ptrdiff_t got = (*f)->read_at(0, head.size(), head.data());
-  head.resize(got > 0 ? size_t(got) : 0);
+  try {
+    const std::unique_ptr<input::text_source> text = input::open_text(path);
+    size_t got = 0;
+    while (got < head.size())
+      if (const size_t n = text->read(head.data() + got, head.size() - got)) got += n;
+      else break;
+    head.resize(got);
+  } catch (const format_error&) {
+    head.clear();
+  }
   return head;
 }
 

@@ -1,4 +1,4 @@
-// Runs a harness's (fuzz_cli.cpp's, fuzz_ply.cpp's) LLVMFuzzerTestOneInput once on each file given (or on
+// Runs a harness's (fuzz_cli.cpp's, fuzz_ply.cpp's, fuzz_particles.cpp's) LLVMFuzzerTestOneInput once on each file given (or on
 // every file of a directory given), as libFuzzer does with file arguments, so
 // the test suite replays the seed corpus with any compiler: the corpus stays
 // valid and the harness keeps building. A failed check aborts.
