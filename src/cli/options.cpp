@@ -9,7 +9,9 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
+#include <cstdio>
 #include <string>
 #include <vector>
 #include <ostream>
@@ -145,29 +147,119 @@ usage_error in_cli_words(const refusal& r) {
   return {"--scene", why + r.why, code};
 }
 
-// The run: the scene described (--scene's file read, the options merged over
-// its keys), the output's format, and the region within the image.
+// Whether name holds one frame-number conversion (%d, %05d; %% is a
+// percent sign), or why it holds a broken one.
+bool frame_pattern(const std::string& name) {
+  int conversions = 0;
+  for (size_t k = 0; k < name.size(); ++k) {
+    if (name[k] != '%') continue;
+    if (k + 1 < name.size() && name[k + 1] == '%') {
+      ++k;
+      continue;
+    }
+    size_t e = k + 1;
+    while (e < name.size() && std::isdigit(static_cast<unsigned char>(name[e]))) ++e;
+    if (e >= name.size() || name[e] != 'd' || e - k > 4)
+      throw usage_error{"--output", quote_token(name) + ": a frame's number is written %d or %05d (and % itself %%)"};
+    ++conversions;
+    k = e;
+  }
+  if (conversions > 1) throw usage_error{"--output", quote_token(name) + " has more than one %d"};
+  return conversions == 1;
+}
+
+// The frames to render: --frames of a trajectory (all of them without it).
+std::vector<size_t> frames_of(const settings& cli, scene_source& src) {
+  std::vector<size_t> frames;
+  if (!src.trajectory()) {
+    if (cli.has(setting_id::frames))
+      throw usage_error{"--frames", "applies to a trajectory (a particle file's frames); this scene is one picture"};
+    return {0};
+  }
+  if (!cli.has(setting_id::frames)) {  // every frame, read as they come: here the first two, to know if one is all
+    for (size_t k = 0; k < 2 && src.has_frame(k); ++k) frames.push_back(k);
+    if (frames.empty()) throw usage_error{"--scene", "the file holds no frame"};
+    return frames;
+  }
+  const size_t n = src.frame_count();
+  if (auto e = select_frames(cli[setting_id::frames]->v, n, frames)) throw usage_error{"--frames", *e};
+  if (frames.empty()) throw usage_error{"--frames", "selects none of the file's " + std::to_string(n) + " frames"};
+  return frames;
+}
+
+// Where the frames go: one image, an image a frame (a pattern), or a movie.
+void output_of(const settings& cli, const run_settings& run, job& j) {
+  j.output = run.output;
+  j.movie = io::movie_kind_of(run.output);
+  j.pattern = frame_pattern(run.output);
+  if (j.movie) {
+    if (auto why = io::movie_unavailable()) throw usage_error{"--output", *why};
+    if (j.pattern) throw usage_error{"--output", "a movie holds every frame: no %d in its name"};
+  } else {
+    j.format = output_format(run.output, run.options.format, front_end::command_line);
+  }
+  if (cli.has(fps)) j.fps = int(cli[fps]->v.integer);
+  if (j.frames.size() > 1 && !j.pattern && !j.movie)
+    throw usage_error{"--output", (j.every_frame ? std::string("the file's frames") : std::to_string(j.frames.size()) +
+                                                                                      " frames") +
+                                      " to one file: give a pattern such as f_%05d.png (the frame's index in the "
+                                      "file), a movie (.mp4, .webm, .gif), or --frames K"};
+  if (j.pattern && j.output == "-") throw usage_error{"--output", "standard output takes one image, not a pattern"};
+}
+
+// The run: --scene opened, the frames chosen, the first described (the
+// options merged over its keys or framing), the output's format and names,
+// and the region within the image.
 job job_of(const settings& cli) {
   run_settings run;
   if (auto e = resolve_run(cli, run)) throw usage_error{e->source, e->message};
   if (!cli.has(output)) throw usage_error{"--output", "is required (a file name, or - for standard output)"};
   job j;
-  described_scene d = describe(run.scene, cli, front_end::command_line);
-  j.format = output_format(run.output, run.options.format, front_end::command_line);
-  const camera cam = make_camera(d.scene.cam);
+  j.source = std::make_shared<scene_source>(run.scene, cli, front_end::command_line);
+  j.frames = frames_of(cli, *j.source);
+  j.every_frame = j.source->trajectory() && !cli.has(setting_id::frames);
+  output_of(cli, run, j);
+  j.first = j.source->frame(j.frames[0]);
+  const camera cam = make_camera(j.first.scene.cam);
   j.region = output_region(run.options, cam.image_width, cam.image_height, front_end::command_line);
-  check_sides(j.format, j.region, {cli.has(region), d.scene.cam.height.has_value()}, front_end::command_line);
-  j.description = std::move(d.scene);
+  if (!j.movie)
+    check_sides(j.format, j.region, {cli.has(region), j.first.scene.cam.height.has_value()}, front_end::command_line);
   j.options = std::move(run.options);
-  j.options.format = std::string(io::to_string(j.format));
-  j.output = std::move(run.output);
+  j.options.format = j.movie ? "ppm" : std::string(io::to_string(j.format));
   j.quiet = run.quiet;
   j.stats = run.stats;
-  j.load_seconds = d.load_seconds;
+  j.skip_existing = cli.has(skip_existing);
   return j;
 }
 
 }  // namespace
+
+std::string refusal_text(const refusal& r, int& exit_code) {
+  const usage_error e = in_cli_words(r);
+  exit_code = e.exit_code;
+  return e.option + ": " + e.why;
+}
+
+std::string output_name(const job& j, size_t k) {
+  if (!j.pattern) return j.output;
+  std::string name;
+  for (size_t i = 0; i < j.output.size(); ++i) {
+    if (j.output[i] != '%') {
+      name += j.output[i];
+    } else if (j.output[i + 1] == '%') {
+      name += '%';
+      ++i;
+    } else {
+      size_t e = i + 1;
+      while (j.output[e] != 'd') ++e;
+      char buf[40];
+      std::snprintf(buf, sizeof buf, ("%" + j.output.substr(i + 1, e - i - 1) + "zu").c_str(), k);
+      name += buf;
+      i = e;
+    }
+  }
+  return name;
+}
 
 std::string printable(std::string_view s) {
   static constexpr char hex[] = "0123456789abcdef";

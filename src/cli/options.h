@@ -9,7 +9,12 @@
 #include <string>
 #include <string_view>
 
+#include <memory>
+#include <vector>
+
 #include "io/format.h"
+#include "io/movie.h"
+#include "library/source.h"
 #include "raycast/description.h"
 
 namespace raycast::cli {
@@ -18,16 +23,33 @@ using io::file_format;
 using io::is_float_format;
 using io::to_string;
 
+// A run: what --scene names, open, and the frames to render of it (one for
+// a scene; a trajectory's --frames, or all of them), each to an image (a
+// pattern's name for each frame) or to one movie.
 struct job {
-  std::string output;  // "-": binary PPM on standard output
+  std::shared_ptr<scene_source> source;
+  std::vector<size_t> frames;  // indices in the file, in order; with every_frame, the first two at most
+  bool every_frame = false;    // a trajectory without --frames: each frame as it comes, to the file's end
+  described_scene first;       // frames[0]'s, described while the options were checked
+  std::string output;          // "-": binary PPM on standard output; a pattern f_%05d.png; a movie
   file_format format = file_format::png;
-  api::scene description;
+  std::optional<io::movie_kind> movie;
+  bool pattern = false;  // output holds the frame's index (printf's %d)
+  int fps = 30;
   api::options options;
   api::region region;  // the whole image unless --region
   bool quiet = false;
-  bool stats = false;         // --stats: timings and memory on standard error after the run
-  double load_seconds = 0.0;  // reading and parsing the scene file, if any
+  bool stats = false;  // --stats: timings and memory on standard error after the run
+  bool skip_existing = false;
 };
+
+// A refusal of the pipeline in the command line's words ("--width: ...",
+// "--scene: FILE: frame 3 (line 12): ..."), and its exit code (1: the file
+// could not be read; 2: bad input).
+std::string refusal_text(const refusal& r, int& exit_code);
+
+// Frame k's output name: the pattern with k, or the output itself.
+std::string output_name(const job& j, size_t k);
 
 // Either a job to run, or the exit code to leave with: 0 after --help or
 // --version, 2 after a usage error (already printed to err).

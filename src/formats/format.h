@@ -49,6 +49,11 @@ class trajectory {
   // The number of frames: the file scanned once (or the format's own index
   // read) for where each frame begins. Throws format_error.
   virtual size_t frame_count() = 0;
+  // Whether frame k exists, the file scanned only as far as frame k (a text
+  // trajectory); a frame before it that the scan cannot pass throws
+  // format_error. A run over every frame reads them as they come, so that
+  // the frames before a damaged one are rendered.
+  virtual bool has_frame(size_t k) { return k < frame_count(); }
   // Frame k (k < frame_count()), reading only its own bytes. Throws
   // format_error naming the frame: cut short, a count that lies, missing
   // position columns, NaN or infinite coordinates, a value that is not a

@@ -169,6 +169,15 @@ size_t scene_source::frame_count() {
   }
 }
 
+bool scene_source::has_frame(size_t k) {
+  if (!traj_) return k == 0;
+  try {
+    return traj_->has_frame(k);
+  } catch (const formats::format_error& e) {
+    throw refusal{e.io ? kind::io : kind::invalid_argument, "", file_, e.what()};
+  }
+}
+
 described_scene scene_source::frame(size_t k) {
   if (traj_) return particle_frame_scene(k);
   scene_file_contents c = *whole_;  // a scene is the same every frame

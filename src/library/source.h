@@ -36,10 +36,13 @@ class scene_source {
 
   bool trajectory() const { return traj_ != nullptr; }
   size_t frame_count();  // 1 but for a trajectory: its frames, the file scanned once
+  bool has_frame(size_t k);  // the file scanned only as far as frame k
   // Frame k's scene (k < frame_count()). Throws refusal: a frame the file
   // cannot give names the frame and where in the file.
   described_scene frame(size_t k);
   const std::string& file() const { return file_; }
+  // A scene file's camera, sky and light keys (none for the rest).
+  settings keys() const { return whole_ ? whole_->keys : settings{}; }
 
  private:
   scene_source(front_end fe, settings over) : fe_(fe), over_(std::move(over)) {}

@@ -41,6 +41,10 @@ const element_style* element_named(std::string_view name) {
   return nullptr;
 }
 
+std::string_view element_symbol(int z) {
+  return z >= 1 && size_t(z) <= std::size(element_rows) ? element_rows[z - 1].symbol : std::string_view();
+}
+
 std::array<float, 3> palette_color(size_t k) {
   const unsigned c = tab10[k % std::size(tab10)];
   return {float((c >> 16) & 0xff) / 255.0f, float((c >> 8) & 0xff) / 255.0f, float(c & 0xff) / 255.0f};

@@ -17,6 +17,8 @@ struct element_style {
 // The element a type name is, as files spell it ("Cu"; also "CU", "cu"), or
 // null where the name is no element's symbol.
 const element_style* element_named(std::string_view name);
+// Element Z's symbol (1: "H", ... 118: "Og"), or "" outside them.
+std::string_view element_symbol(int z);
 
 inline constexpr float default_element_radius = 2.0f;    // where Alvarez gives none
 inline constexpr float default_type_radius = 0.5f;       // types that are no element: touching at a spacing of 1

@@ -15,6 +15,7 @@
 #include <pybind11/stl.h>
 
 #include "formats/registry.h"
+#include "particles/elements.h"
 #include "io/module/module_loader.h"
 #include "library/pipeline.h"
 #include "library/source.h"
@@ -68,17 +69,6 @@ raycast::settings parse_keywords(const std::map<std::string, std::string>& keywo
   return layer;
 }
 
-// The scene a render() call names, with the keywords over its keys.
-raycast::described_scene described(const std::string& kind, const std::string& source,
-                                   const raycast::settings& layer) try {
-  using raycast::front_end;
-  if (kind == "json") return raycast::describe_text(source, layer, front_end::library);
-  if (kind == "name") return raycast::describe(source, layer, front_end::library);
-  return raycast::describe(std::nullopt, layer, front_end::library);
-} catch (const raycast::refusal& r) {
-  throw raycast::library_error(r);
-}
-
 // Particle data as arrays (raycast/__init__.py's dict: centers, and
 // radii, colors, color_by, types with type_names, a cell where given),
 // read in place, as one frame.
@@ -124,6 +114,25 @@ raycast::described_scene source_frame(const std::string& kind, const std::string
   return src.frame(k[0]);
 }
 
+// The arrays' particles as a scene, under the camera and sky keys of a scene
+// given with them (which must have no spheres of its own).
+rc::scene arrays_scene(const std::string& kind, const std::string& source, const py::dict& particles,
+                       const raycast::settings& layer) {
+  raycast::settings over = layer;
+  if (!kind.empty()) {
+    raycast::scene_source src = kind == "json"
+                                    ? raycast::scene_source::from_text(source, {}, raycast::front_end::library)
+                                    : raycast::scene_source(source, {}, raycast::front_end::library);
+    if (src.trajectory() || src.frame(0).scene.sphere_count() > 0)
+      value_error("centers", "the scene has spheres already; give a scene without");
+    over = src.keys();
+    raycast::merge(over, layer);
+  }
+  return raycast::describe_particles(frame_of(particles), over, raycast::front_end::library,
+                                     particles["framed"].cast<bool>())
+      .scene;
+}
+
 py::array render_image(const std::string& kind, const std::string& source, std::optional<int64_t> frame,
                        std::optional<py::dict> particles, const std::map<std::string, std::string>& keywords,
                        const std::string& dtype) try {
@@ -132,10 +141,7 @@ py::array render_image(const std::string& kind, const std::string& source, std::
   if (auto e = raycast::resolve_run(layer, run)) throw raycast::library_error(raycast::refused(*e));
   const rc::pixel_type px = one_of("dtype", dtype, {"uint8", "float32"}) == 0 ? rc::pixel_type::rgb8
                                                                               : rc::pixel_type::rgb_f32;
-  rc::scene s = particles ? raycast::describe_particles(frame_of(*particles), layer, raycast::front_end::library,
-                                                        (*particles)["framed"].cast<bool>())
-                                .scene
-                          : source_frame(kind, source, frame, layer).scene;
+  rc::scene s = particles ? arrays_scene(kind, source, *particles, layer) : source_frame(kind, source, frame, layer).scene;
   std::optional<rc::job> j;
   {
     py::gil_scoped_release free;  // preparing 10^6 spheres takes a while too
@@ -270,6 +276,7 @@ PYBIND11_MODULE(_raycast, m) {
       .def("read", &trajectory::read, "Frame k's arrays (negative: from the end), viewing the file's memory.");
   m.def("write", &write_image, py::arg("path"), py::arg("image"), py::arg("format") = "");
   m.def("builtin_scene_names", &rc::builtin_scene_names);
+  m.def("element_symbol", [](int z) { return std::string(raycast::element_symbol(z)); });
   m.def("input_table", &input_table,
         "The input table's rows (keyword, option, file_key, type, names): what the keywords, the command line's "
         "options and the scene file's keys are, for docstrings and tests.");

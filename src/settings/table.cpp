@@ -134,7 +134,7 @@ void run_rows(std::vector<setting>& t) {
   t.push_back({frames, "--frames", "", "", "frame", vt::frames, {}, {}, "K|A:B[:S]", "every frame",
                "The frames of a trajectory to render: frame K, or a slice as Python's (-1: the last); -o takes a "
                "pattern such as f_%05d.png (the frame's index) or a movie (.mp4, .webm, .gif)"});
-  t.push_back({fps, "--fps", "", "", "fps", vt::integer, {1, 1000}, {}, "N", "30", "A movie's frames per second"});
+  t.push_back({fps, "--fps", "", "", "", vt::integer, {1, 1000}, {}, "N", "30", "A movie's frames per second"});
   t.push_back({skip_existing, "--skip-existing", "", "", "", vt::flag, {}, {}, "", "",
                "Render only the frames whose image is not there yet (a rerun after an interrupted run)"});
   t.push_back({quiet, "--quiet", "-q", "", "", vt::flag, {}, {}, "", "", "No progress on standard error"});

@@ -66,7 +66,7 @@ void check_finite(const rendered& img, const std::string& where) {
 
 // `some_shortcuts`: a set of the plan's shortcuts picked by the input.
 void render_everywhere(const cli::job& j, unsigned some_shortcuts) {
-  scene s = make_scene(j.description);
+  scene s = make_scene(j.first.scene);
   s.cam.image_width = std::min(s.cam.image_width, max_width);
   const int64_t H = s.cam.image_height;
   // Row bands in the image's own coordinates, so v = j / (H - 1) is the real one.
@@ -162,7 +162,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (parsed.exit_code != 0) fail("a job came with exit code " + std::to_string(parsed.exit_code));
   if (!err.str().empty()) fail("an accepted job printed: " + err.str());
   const cli::job& j = *parsed.run;
-  const camera c = make_camera(j.description.cam);
+  const camera c = make_camera(j.first.scene.cam);
   if (c.image_width < 1 || c.image_width > max_dimension || c.image_height < 1 ||
       c.image_height > max_dimension)
     fail("accepted a camera of " + std::to_string(c.image_width) + "x" +

@@ -62,6 +62,11 @@ size_t text_trajectory::frame_count() {
   return marks_.size() - 1;
 }
 
+bool text_trajectory::has_frame(size_t k) {
+  while (!complete_ && marks_.size() - 1 <= k) scan_one();
+  return k < marks_.size() - 1;
+}
+
 particle_frame text_trajectory::read(size_t k, const wanted_columns& wanted) {
   while (!complete_ && marks_.size() - 1 < k) scan_one();
   return framed(k, [&] {

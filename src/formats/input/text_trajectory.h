@@ -28,6 +28,7 @@ class text_trajectory : public trajectory {
  public:
   explicit text_trajectory(std::unique_ptr<text_source> src) : src_(std::move(src)), cur_(*src_) {}
   size_t frame_count() override;
+  bool has_frame(size_t k) override;
   particle_frame read(size_t k, const wanted_columns& wanted) override;
 
  protected:

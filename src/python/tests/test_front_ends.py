@@ -101,7 +101,7 @@ def test_every_keyword_is_a_table_row_and_every_row_a_keyword():
     import inspect
     table = {r["keyword"] for r in _raycast.input_table() if r["keyword"]} - {"format", "path"}
     params = set(inspect.signature(raycast.render).parameters)
-    own = {"scene", "centers", "radii", "colors", "shade", "dtype"}
+    own = {"scene", "atoms", "centers", "radii", "colors", "dtype"}
     assert params - own == table
 
 

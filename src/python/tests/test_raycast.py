@@ -296,16 +296,16 @@ def test_light_shadows_and_ao_are_the_clis_bytes(tmp_path):
     (dict(lookfrom=[[1, 2, 3]]), TypeError, "camera.lookfrom: want a number, a str or a flat sequence, got list"),
     (dict(vfov=object()), TypeError, "camera.vfov: want a number or a str, got object"),
     (dict(centers=np.zeros((1, 3)), radii=np.array([True])), TypeError, "radii: want real numbers, got dtype bool"),
-    (dict(shade=3), TypeError, "shade: want a str, got int"),
+    (dict(shade=3), ValueError, "shade: '3' is not one of normal, flat, lit"),
     # Names: the nearest one suggested, as on the command line.
     (dict(backend="avx"), ValueError,
      "backend: 'avx' is not one of auto, reference, scalar, sse2, avx2, avx512, neon; did you mean avx2?"),
     (dict(scene="wrld"), ValueError, "scene: 'wrld' is not one of sky, red-sphere, normals, world, lit-world, "
                                      "a .json scene file or a particle file (LAMMPS dump, extended XYZ, GSD, PLY); did you mean world?"),
     (dict(dtype="float"), ValueError, "dtype: 'float' is not one of uint8, float32; did you mean float32?"),
-    # lit and flat show colours: required, as in a scene file.
-    (dict(centers=np.zeros((2, 3)) - [0, 0, 2], radii=np.ones(2), shade="lit"), ValueError,
-     "spheres[0].color: is required for lit shading"),
+    # Colours with a shading that cannot show them.
+    (dict(centers=np.zeros((2, 3)) - [0, 0, 2], radii=np.ones(2), colors=np.ones((2, 3)), shade="normal"), ValueError,
+     'colors: normal shading shows no colours (give shade="lit" or "flat", or no colors)'),
 ])
 def test_mistakes_are_answered_in_the_command_lines_words(kwargs, exc, message):
     with pytest.raises(exc) as e:
