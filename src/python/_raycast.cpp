@@ -15,6 +15,7 @@
 #include <pybind11/stl.h>
 
 #include "formats/registry.h"
+#include "particles/colormap.h"
 #include "particles/elements.h"
 #include "io/module/module_loader.h"
 #include "library/pipeline.h"
@@ -277,6 +278,15 @@ PYBIND11_MODULE(_raycast, m) {
   m.def("write", &write_image, py::arg("path"), py::arg("image"), py::arg("format") = "");
   m.def("builtin_scene_names", &rc::builtin_scene_names);
   m.def("element_symbol", [](int z) { return std::string(raycast::element_symbol(z)); });
+  m.def("_element_style", [](const std::string& symbol) -> py::object {
+    const raycast::element_style* e = raycast::element_named(symbol);
+    if (!e) return py::none();
+    return py::make_tuple(e->radius, py::make_tuple(e->color[0], e->color[1], e->color[2]));
+  }, "The radius and colour the tables give an element (for the tables' tests).");
+  m.def("_colormap_color", [](const std::string& name, double t) {
+    const auto c = raycast::colormap_color(raycast::colormap_named(name), t, 0.0, 1.0);
+    return py::make_tuple(c[0], c[1], c[2]);
+  }, "A colormap's colour at t in [0, 1] (for the tables' tests).");
   m.def("input_table", &input_table,
         "The input table's rows (keyword, option, file_key, type, names): what the keywords, the command line's "
         "options and the scene file's keys are, for docstrings and tests.");
