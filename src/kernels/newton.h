@@ -1,7 +1,5 @@
-// Fast mode's Newton step on the reciprocal-square-root estimate r of n2:
+// Fast mode's biased Newton step on the estimate r of 1 / sqrt(n2) (kernels/scalar.h):
 //   y / |d| = (y * r) * (fast_nr_a - ((n2 * r) * r) * fast_nr_b)
-// biased up by 2^-20 so that straight up and down land on exactly +-1
-// (kernels/scalar.h); the sky kernel's fast mode on every target.
 #pragma once
 
 namespace raycast {
