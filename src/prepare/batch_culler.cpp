@@ -4,6 +4,7 @@
 #include <bit>
 #include <cassert>
 #include <cstdlib>
+#include <initializer_list>
 #include <optional>
 
 #include "prepare/culling_geometry.h"
@@ -36,12 +37,7 @@ batch_culler::batch_culler(const float_scene& f, size_t most, int shift, int bat
 batch_culler::~batch_culler() { release(); }
 
 void batch_culler::release() {
-  std::free(spans_);
-  std::free(list_);
-  std::free(first_);
-  std::free(fill_);
-  std::free(count_);
-  std::free(slot_start_);
+  for (void* p : std::initializer_list<void*>{spans_, list_, first_, fill_, count_, slot_start_}) std::free(p);
   spans_ = nullptr;
   list_ = first_ = fill_ = count_ = slot_start_ = nullptr;
 }
@@ -71,8 +67,7 @@ bool each_entry(const float_scene& f, float sv, double spread, int shift, const 
 size_t batch_culler::row(float sv, const row_entry* entries, size_t count) {
   b0_ = 0;
   if (row_in_slots(sv, entries, count)) return kept_;
-  // A slot would overflow (rare: spheres that each cover much of the frame): the spans, which
-  // build() counts and then places.
+  // A slot would overflow (rare): the spans, which build() counts and then places.
   const int64_t last_batch = batches_ - 1;
   kept_ = 0;
   entries_ = 0;

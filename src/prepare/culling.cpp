@@ -56,9 +56,7 @@ class occlusion {
     return true;
   }
 
-  // Marks the pixels of sphere k's box whose rays surely hit it. With many samples (spread > 0) a
-  // pixel's sample rays lie between its corners' and the sure rays form a convex set: a pixel is
-  // covered where its four corners' rays are.
+  // Marks the pixels whose rays surely hit sphere k (with samples: all four corners' rays).
   void cover(uint32_t k, const frame_box& b) {
     const sphere_record& e = f_.spheres.rec[k];
     const double r = std::sqrt(double(e.r2)), sure = 2.0 * r - double(f_.spheres.cull_radius[k]);
@@ -101,8 +99,8 @@ class occlusion {
   }
 
  private:
-  // The box's rows: where across(sv, s0, s1) gives the su interval of a row's sure rays, the pixels
-  // inside it (with samples: inside both corner rows' intervals, both corner columns) get depth.
+  // The box's rows: where across(sv, s0, s1) gives a row's sure su interval, the pixels inside it
+  // (with samples: inside both corner rows' intervals, both corner columns) get depth.
   template <class Across>
   void cover_rows(const frame_box& b, float depth, const Across& across) {
     const bool corners = spread_ > 0.0;
@@ -148,11 +146,9 @@ class occlusion {
   std::vector<float> depth_;      // per tile: far_ once every pixel is covered, else infinity
 };
 
-// Boxes that hold box_of's, cheaper (no square root), for the spheres [k0, k0 + m), m <=
-// rough_block: ok[i] false where a box is empty or too tall to be worth a test. Per family of
-// planes, plane s comes within w of the sphere only where |fk.n(s)| = |p1| |s - s_c| <= w n_max,
-// s_c the plane through the centre: the indices of [s_c - delta, s_c + delta], one slack each way.
-// The block's arithmetic comes first, in branch-free loops, then its boxes.
+// Boxes that hold box_of's, without square roots, for spheres [k0, k0 + m), m <= rough_block: ok[i]
+// false where empty or too tall. Plane s comes within w of the sphere only where
+// |fk.n(s)| = |p1| |s - s_c| <= w n_max: the indices of [s_c - delta, s_c + delta], slack one.
 constexpr uint32_t rough_block = 32;
 void rough_boxes(const float_scene& f, const frame_vectors& fv, uint32_t k0, uint32_t m, double spread, frame_box* box,
                  bool* ok) {
@@ -189,7 +185,6 @@ void rough_boxes(const float_scene& f, const frame_vectors& fv, uint32_t k0, uin
   }
 }
 
-// A sphere in some row of the frame, and its box.
 struct placed_box {
   uint32_t sphere;
   frame_box box;
@@ -217,10 +212,8 @@ void append_boxes(const float_scene& f, const frame_vectors& fv, double spread, 
             out.end());
 }
 
-// The spheres in some row of the frame, in order, with their boxes; in a depth-ordered scene
-// without those occlusion hides (rough boxes first), counted in `hidden`. Where the nearest
-// sixteenth hides less than an eighth of itself (a lattice seen along its axis), the rest are
-// boxed as in any other scene.
+// The spheres in some row, with their boxes, less those occlusion hides (in depth order, while
+// the nearest sixteenth hides an eighth of itself; a lattice seen along its axis hides little).
 placed_boxes boxes(const float_scene& f, double spread, int team, size_t& hidden) {
   const size_t n = f.spheres.size();
   const frame_vectors fv(f);

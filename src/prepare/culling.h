@@ -19,27 +19,22 @@
 
 namespace raycast {
 
-// A sphere some ray of a row may hit, and the batches lo .. hi (inclusive) of `batch` columns
-// whose rays may.
+// A sphere some ray of a row may hit, and the batches lo .. hi (inclusive) whose rays may.
 struct sphere_span {
   uint32_t sphere;
   int32_t lo, hi;
 };
 
-// The spheres a ray of the row with this sv (kernels/scalar.h) may hit, in the float scene's
-// order, with their batches, into out (room for every candidate); returns how many. A row's rays
-// lie in the plane through the origin spanned by centre + sv vertical and horizontal: a sphere
-// farther than its radius from it is hit by none; of the others, a column's ray can hit only where
-// its line comes within the radius of the centre, a quadratic in the column. In double on the
-// float constants, with cull_radius's margin. With candidates, only those spheres (in order).
-// With spread (pixel_spread, for many samples), for the pixels' whole squares of samples: each
-// radius widened by spread |f|.
+// The spheres a ray of the row with this sv may hit, in order, with their batches, into out (room
+// for every candidate); returns how many. A row's rays lie in the plane through the origin spanned
+// by centre + sv vertical and horizontal, and a column's ray can hit only where its line comes
+// within the radius of the centre (a quadratic in the column). With candidates, only those; with
+// spread (pixel_spread), for the pixels' whole squares of samples (radii widened by spread |f|).
 size_t spheres_in_row(const float_scene& f, float sv, int batch, sphere_span* out,
                       const uint32_t* candidates = nullptr, size_t n_candidates = 0,
                       double spread = 0.0);
 
-// The rows j (0 at the bottom) whose plane may come near sphere k: every row where spheres_in_row's
-// plane test could keep it, and a little more; false when none does.
+// The rows j (0 at the bottom) whose plane may come near sphere k (a superset); false when none.
 bool sphere_rows(const float_scene& f, uint32_t k, int64_t& j_lo, int64_t& j_hi, double spread = 0.0);
 
 // A sphere in a row of the row index, with the columns its box may touch, lo << shift ..
@@ -75,7 +70,7 @@ class batch_culler {
   batch_culler& operator=(const batch_culler&) = delete;
   bool ok() const { return spans_ != nullptr; }
 
-  // The row with this sv, from its entries in the row index; returns how many spheres it keeps.
+  // The row with this sv from its index entries; returns how many spheres it keeps.
   size_t row(float sv, const row_entry* entries, size_t count);
   // How many batches one run of lists may cover (within the lists' memory).
   int64_t run_length() const;

@@ -1,5 +1,4 @@
-// The geometry of the primary rays' culling (culling.h): which rows and columns may see a sphere,
-// in double, with margins far above the float rounding. For culling.cpp and batch_culler.cpp.
+// The culling's geometry (culling.h): which rows and columns may see a sphere, in double.
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -45,8 +44,7 @@ inline bool below_zero(double alpha, double beta, double gamma, double& s0, doub
   return r.kind != solved::empty;
 }
 
-// The indices [i0, i1] (whole numbers in double) clamped to [0, count) as
-// [lo, hi]; false when none is inside.
+// The indices [i0, i1] (whole numbers in double) clamped to [0, count); false when none is inside.
 inline bool clamp_indices(double i0, double i1, int64_t count, int64_t& lo, int64_t& hi) {
   if (i1 < 0.0 || i0 > double(count - 1) || i0 > i1) return false;
   lo = i0 > 0.0 ? int64_t(i0) : 0;  // (NaN: 0)
@@ -85,7 +83,6 @@ inline bool columns_near(const float_scene& fs, const row_rays& rr, const double
     else if (g0 > m) return false;
   }
   if (fs.width == 1) return !(s0 > 0.0 || s1 < 0.0);
-  // su = (i - mid_col) / last_col; one column of slack each way.
   return index_range(s0, s1, fs.last_col, fs.mid_col, 1.0, fs.width, lo, hi);
 }
 
@@ -96,8 +93,7 @@ inline double widened(const float_spheres& sp, uint32_t k, double spread) {
   return sp.cull_radius[k] + spread * std::sqrt(f2);
 }
 
-// An orthographic camera's rays start at (px, py) = (su plane_width, sv plane_height): sphere k's
-// centre and reach on the plane in world units, widened by the (lateral) spread.
+// Sphere k's centre and reach on an orthographic camera's plane in world units, widened by spread.
 struct plane_disc {
   double cx, cy, w;
   bool behind;  // entirely behind the image plane: no ray meets it
@@ -108,8 +104,7 @@ inline plane_disc disc_of(const float_scene& f, uint32_t k, double spread) {
   return {double(e.fx) * scale, double(e.fy) * scale, w, double(e.fz) * scale + f.plane_offset + w < 0.0};
 }
 
-// The indices whose plane position ((i - mid) / last extent) lies within [lo, hi], with a slack of
-// one each way; false when none does.
+// The indices whose plane position ((i - mid) / last extent) is in [lo, hi], one slack each way.
 inline bool plane_range(double lo, double hi, double extent, float last, float mid, int64_t count, int64_t& a, int64_t& b) {
   if (count == 1) {
     a = b = 0;
@@ -138,7 +133,7 @@ struct plane_family {
   }
 
   // The indices whose plane comes within w of the sphere at fk: (fk.n)^2 <= w^2 |n|^2, a quadratic
-  // in s, rounded outwards; false when none does. In two steps: near(), then indices().
+  // in s, rounded outwards (near(), then indices()); false when none does.
   bool range(const double* fk, double w, int64_t& lo, int64_t& hi) const { return indices(near(fk, w), lo, hi); }
   solved near(const double* fk, double w) const {
     const double w2 = w * w, p0 = dot(fk, N0), p1 = dot(fk, N1);
@@ -169,7 +164,7 @@ struct frame_vectors {
         cols(c, h, v, f.last_col, f.mid_col, f.width) {}
 };
 
-// Per row, what the exact test of a sphere against the row's rays needs.
+// The exact test of a sphere against a row's rays.
 struct row_test {
   const float_scene& f;
   double spread;
@@ -190,7 +185,6 @@ struct row_test {
     d_len = std::sqrt(dot(rr.a, rr.a)) + std::sqrt(dot(rr.h, rr.h));  // >= |d| in the row
   }
 
-  // The columns [lo, hi] of the row whose rays may hit sphere k; false when none.
   bool columns(uint32_t k, int64_t& lo, int64_t& hi) const {
     if (f.orthographic) {  // the row's line across the plane through the sphere's disc
       const plane_disc d = disc_of(f, k, spread);
@@ -211,12 +205,10 @@ struct row_test {
   }
 };
 
-// The index keeps a column box for spheres under this many rows tall; taller ones get the exact
-// test in each row they cross (row_test).
+// The index keeps a column box for spheres under this many rows tall; taller get row_test per row.
 constexpr int64_t boxed_rows = 64;
 
-// A sphere's place in the frame: its rows and, for a short one, its columns. (No member
-// initializers: the frame's array of them is filled, not zeroed first.)
+// A sphere's rows and, if short, columns (no member initializers: arrays of them are not zeroed).
 struct frame_box {
   int32_t r_lo, r_hi;  // rows, top-down (r = H - 1 - j); empty when r_lo > r_hi
   int32_t c_lo, c_hi;  // columns; -1: tested per row
@@ -235,8 +227,7 @@ inline frame_box box_of_ortho(const float_scene& f, uint32_t k, double spread) {
   return box;
 }
 
-// The boxes of spheres [k0, k0 + n) of a perspective camera's frame, into out, a block at a time
-// with their quadratics solved together.
+// The boxes of a perspective frame's spheres [k0, k0 + n), a block's quadratics solved together.
 inline void boxes_of(const float_scene& f, const frame_vectors& fv, uint32_t k0, uint32_t n, double spread, frame_box* out) {
   constexpr uint32_t block = 32;
   const float_spheres& sp = f.spheres;
@@ -259,8 +250,7 @@ inline void boxes_of(const float_scene& f, const frame_vectors& fv, uint32_t k0,
       const double fk[3] = {e.fx, e.fy, e.fz}, r = std::sqrt(double(e.r2));
       int64_t j_lo = 0, j_hi = 0, c_lo = 0, c_hi = 0;
       if (!fv.rows.indices(rows[i], j_lo, j_hi)) continue;
-      // A sphere the camera is outside of is hit only ahead, f.d < 0; f.d is linear over the
-      // viewport, so its least value is at a corner (with columns_near's slack).
+      // Outside a sphere, it is hit only ahead, f.d < 0: f.d's least is at a corner (with slack).
       if (dot(fk, fk) > sp.cull_radius[k] * sp.cull_radius[k]) {
         const double least = dot(fk, fv.c) - 0.5 * std::abs(dot(fk, fv.h)) - 0.5 * std::abs(dot(fk, fv.v));
         if (least > (wide[i] - r) * fv.d_len) continue;  // behind every ray: NaN kept

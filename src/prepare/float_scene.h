@@ -17,8 +17,7 @@ struct float_scene {
   float last_col = 0, last_row = 0;  // W - 1 and H - 1
   float mid_col = 0, mid_row = 0;    // (W - 1) / 2 and (H - 1) / 2, exact in float
   float du = 0, dv = 0;  // one pixel in su and sv: 1 / (W - 1), 1 / (H - 1); 0 for one column or row
-  // How far, as a fraction of the distance, a sample's ray may pass from the pixel's one-sample
-  // ray (one pixel each way over the viewport's distance, and 1 % more): culling widens radii by it.
+  // How far a sample's ray may pass from its pixel's, over the distance (a pixel each way, +1 %).
   double pixel_spread = 0;
   float center[3] = {};      // viewport centre - origin = -focal_length * w, scaled
   float horizontal[3] = {};  // scaled
@@ -26,19 +25,15 @@ struct float_scene {
   float bottom[3] = {}, top[3] = {};
   float delta[3] = {};          // top - bottom, in float
   float lo[3] = {}, hi[3] = {};  // min and max of bottom and top
-  // The sky as affine in u = d.y / |d|: bottom + (u + 1) / 2 delta = sky_mid + u sky_half (in
-  // double from bottom and delta; the sampled path, kernels/sampled_sky.h).
+  // The sky affine in u = d.y / |d|: bottom + (u + 1) / 2 delta = sky_mid + u sky_half (double).
   float sky_mid[3] = {}, sky_half[3] = {};
   // Fast mode's 8-bit shading: 255.999 lerp(bottom, top, (uy + 1) / 2) = uy fast_qa + fast_qb.
   float fast_qa[3] = {}, fast_qb[3] = {};
-  // horizontal = (hx, 0, 0), vertical = (0, vy, 0): a direction's y depends on the row only and z
-  // is constant (shortcuts `lanes` and `mirror`, render/plan.h).
+  // horizontal = (hx, 0, 0), vertical = (0, vy, 0): shortcuts `lanes` and `mirror` (render/plan.h).
   bool axis_aligned_camera = false;
-  // Some ray's |d|^2 may be below 2^-64 (|center| is that short): the sphere kernel guards each
-  // batch (sphere_hit.inl, set_length).
+  // Some |d|^2 may be below 2^-64 (|center| is): the sphere kernel guards batches (set_length).
   bool tiny_directions = false;
-  // centre / its largest component: the centre ray's direction where centre itself is too short
-  // for float (a focal length below 2^-100 of the viewport).
+  // centre / its largest component: the centre ray's direction where centre is too short for float.
   float centre_unit[3] = {};
   // An orthographic camera: every ray has direction center (-w, scaled; horizontal and vertical
   // are 0) and starts on the image plane at lookfrom + px u + py v, px = su plane_width, py = sv
@@ -51,8 +46,7 @@ struct float_scene {
   float_spheres spheres;  // empty for the sky alone
 };
 
-// su and sv of column i and row j (kernels/scalar.h). Always inlined: the per-target kernels call
-// them, and no copy built with one target's flags may stand in for another's.
+// su and sv of column i and row j (kernels/scalar.h), always inlined into the per-target kernels.
 RAYCAST_INLINE float pixel_su(const float_scene& f, int64_t i) {
   return f.width == 1 ? 0.0f : (float(i) - f.mid_col) / f.last_col;
 }
@@ -73,7 +67,7 @@ inline constexpr double deep_from = 3.5, deep_from_small = 2.0;
 inline constexpr size_t small_scene = size_t(1) << 18;
 
 // With up to `threads` threads for large scenes; the same bytes for any count. Memory: 36 bytes a
-// sphere (record and culling radius), 52 where flat or lit spheres differ in looks, 4 more in depth order.
+// sphere (record, culling radius), 52 where flat or lit spheres look different, 4 more in depth order.
 inline constexpr size_t sorted_from = size_t(1) << 15;
 float_scene prepare_float_scene(const scene& s, int threads = 1, size_t sort_from = sorted_from,
                                 sphere_order order = sphere_order::automatic);

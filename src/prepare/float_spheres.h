@@ -1,11 +1,9 @@
-// The spheres as the float renderers see them, and the order in which every float renderer
-// (kernels/sphere_kernel.cpp, at any width) intersects and shades them: exact mode is this order on
-// every backend, bit for bit.
+// The spheres as the float renderers see them, and the order in which every one (the sphere kernel
+// at any width) intersects and shades them: exact mode is this order on every backend, bit for bit.
 //
-// Every primary ray starts at the camera origin O, so what depends on O and a sphere only is a
-// per-sphere constant, computed in double and rounded to float once (prepare_float_scene), in the
-// sphere's own unit 2^e with max(|f|, r) 2^-e in [0.5, 1), f = O - C (exact; it changes nothing but
-// overflow and underflow, so a tiny, huge or far sphere is as accurate as a unit one next door):
+// Every primary ray starts at the camera origin O, so what depends on O and a sphere only is
+// computed in double and rounded to float once, in the sphere's own unit 2^e with max(|f|, r) 2^-e
+// in [0.5, 1), f = O - C (exact: a tiny, huge or far sphere is as accurate as a unit one nearby):
 //   f = (O - C) 2^-e,  c = |f|^2 - r^2 (double),  r2 = r^2,  inv_r = 1 / r,  scale = 2^e,
 //   near = |f|^2 < 2 r^2,  inside = c <= 0 (in double: the camera inside the sphere or on it)
 // Per pixel, d is kernels/scalar.h's direction (not normalized) and
@@ -34,11 +32,9 @@
 //           colour_k = (n_k + 1) 0.5
 // Where nothing is hit: kernels/scalar.h's exact sky. 8-bit: int(clamp(colour, 0, 1) * 255.999f).
 //
-// Why: a far sphere's r^2 - |v|^2 errs relative to r^2, where b^2 - c cancels (a small sphere far
-// away); a near one's b^2 - n2 c does not cancel, as c is formed in double once (the shared
-// origin's gain over per-ray origins); s0 = c / q takes the near root from the roots' product
-// rather than -b - sqrt(disc), which cancels near the surface; d is not normalized, so a pixel costs
-// no square root and one division (inv_n2).
+// Why: a far sphere's r^2 - |v|^2 errs relative to r^2, where b^2 - c cancels; a near one's
+// b^2 - n2 c does not, as c is formed in double once (the shared origin's gain); s0 = c / q takes
+// the near root without -b - sqrt(disc)'s cancellation; an unnormalized d costs no square root.
 //
 // An orthographic camera has no shared origin: per sphere, in its own 2^e (of max(|cx|, |cy|, |cz|,
 // r)), its centre in the camera's frame relative to lookfrom (cx, cy across the view, cz its depth
@@ -52,7 +48,6 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
-#include <vector>
 
 #include "memory/arrays.h"
 #include "simd/inline.h"
@@ -66,8 +61,7 @@ namespace shading_kind {
 inline constexpr float normal = 0.0f, flat = 1.0f, lit = 2.0f;
 }
 
-// What the intersection reads of one sphere, in half a cache line: the float scene's order jumps
-// about memory, so a test costs one line rather than one per constant.
+// What the intersection reads of one sphere, in half a cache line: one miss a test.
 struct alignas(32) sphere_record {
   float fx, fy, fz;  // f = (O - C) 2^-e
   float c;           // |f|^2 - r^2, in double, in the scaled unit
@@ -81,16 +75,13 @@ struct alignas(32) sphere_record {
 
 // One record per sphere in the float scene's order, and what shading reads of a hit.
 struct float_spheres {
-  template <class T>
-  using array = std::vector<T, page_allocator<T>>;  // memory/arrays.h
-  array<sphere_record> rec;
+  filled_array<sphere_record> rec;
   // Each sphere's colour (0 for normal-shaded) and shading_kind: empty when every sphere is
   // normal-shaded, one entry for all where every sphere has the same shading and colour.
-  array<float> red, green, blue;
-  array<float> kind;
+  filled_array<float> red, green, blue, kind;
   bool any_flat = false, any_normal = false, any_lit = false, any_inside = false;
   // For culling (culling.h), in the sphere's unit: r + 1e-5 (|f| + r), far above float's rounding.
-  array<float> cull_radius;
+  filled_array<float> cull_radius;
   // A depth-ordered scene's index in the scene of each sphere, for the tie rule. Empty: ties go
   // to the later in the float scene's order, which keeps the scene's among coincident spheres.
   out_of_order_array<uint32_t> order;
@@ -98,7 +89,7 @@ struct float_spheres {
   // every distance in bucket b times (1 - 2^-15), in world units. A batch's walk stops once every
   // lane has hit something nearer than the next sphere's key (kernels/sphere_hit.inl).
   static constexpr size_t depth_buckets = size_t(1) << 16;
-  array<float> depth_key;
+  filled_array<float> depth_key;
 
   size_t size() const { return rec.size(); }
   // Sphere k's entry in the colours is k & look_mask(): 0 where they hold one for all.
@@ -106,8 +97,7 @@ struct float_spheres {
   bool empty() const { return rec.empty(); }
 };
 
-// The same arrays as plain pointers, for the kernels: compiled per instruction set, they must
-// instantiate no standard-library template (the linker could pick an AVX-512 copy for all).
+// The same arrays as plain pointers: the per-target kernels instantiate no standard-library template.
 struct kernel_spheres {
   const sphere_record* rec = nullptr;
   const float *red = nullptr, *green = nullptr, *blue = nullptr, *kind = nullptr;
