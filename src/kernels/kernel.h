@@ -12,36 +12,31 @@
 
 namespace raycast::kernels {
 
-// Everything a kernel reads, prepared once per render by the plan (render/plan.h), which also
-// decides the shortcuts.
+// Everything a kernel reads, prepared once per render by the plan (render/plan.h).
 struct kernel_args {
   const float_scene* scene = nullptr;
   precision prec = precision::exact;
   // Per column i, column_part[k][i] = centre[k] + su_i * horizontal[k] (scalar.h's inner bracket;
   // sv * vertical[k] is per row), padded with zeros to a multiple of 16 columns.
   const float* column_part[3] = {};
-  // Shortcut `lanes` (axis-aligned camera): d.y and d.z are per row; the sky kernel carries no x or
-  // z lanes but column_x2[i] = column_part[0][i]^2.
+  // Shortcut `lanes` (axis-aligned camera): d.y and d.z per row; column_x2[i] = column_part[0][i]^2.
   bool lanes = false;
   const float* column_x2 = nullptr;
-  // Shortcut `mirror` (with `lanes`): mirrored columns (and, `paired`, rows) share one |d|; the
-  // sphere kernel shades the sky-only batches at a row's two ends once.
+  // Shortcut `mirror` (with `lanes`): mirrored columns (and, `paired`, rows) share one |d|.
   bool mirror = false;
   // Shortcut `channels`: channel k's two sky colours are equal, written as a constant.
   bool constant[3] = {};
   float constant_value[3] = {};
   int32_t constant_byte[3] = {};
-  // Shortcut `clamps`: bottom + 1 * delta == top in every channel, so scalar.h's select and clamp
-  // change nothing; and for 8-bit output, sky colours in [0, 1], so the clamp before quantizing.
+  // Shortcut `clamps`: bottom + 1 * delta == top in every channel (scalar.h's select and clamp are
+  // no-ops), and for 8-bit output sky colours in [0, 1] (so is the clamp before quantizing).
   bool lerp_exact = false;
   bool colors_in_unit_range = false;
-  // An orthographic camera's ray start per column, su_i * plane_width (the row's: sv plane_height);
-  // null for a perspective camera.
+  // Orthographic: the ray start per column, su_i * plane_width (the row's: sv plane_height).
   const float* ortho_x = nullptr;
   kernel_spheres spheres;  // n = 0 for the sky
-  // The frame's row index (prepare/culling.h; with the sampled path's spread when samples is set):
-  // row r's candidates are row_list[row_first[r] .. row_first[r + 1]), at most row_most, their
-  // columns in units of 2^row_shift.
+  // The frame's row index (prepare/culling.h): row r's candidates are row_list[row_first[r] ..
+  // row_first[r + 1]), at most row_most, their columns in units of 2^row_shift.
   const uint64_t* row_first = nullptr;
   const row_entry* row_list = nullptr;
   size_t row_most = 0;
@@ -50,8 +45,7 @@ struct kernel_args {
   const sampling::sample_plan* samples = nullptr;
 };
 
-// The kernels of each target of simd/targets.h (namespace raycast::kernels::<target>), each
-// single-threaded:
+// The kernels of each target of simd/targets.h (namespace raycast::kernels::<target>):
 // - render_sky_rows fills rows [r0, r1) of the band (its column window); with `paired` (shortcut
 //   `mirror`; the band must hold both) each row r also fills its mirror row H-1-r;
 // - render_sphere_rows: scenes with spheres, and every render of many samples; the same rows, in

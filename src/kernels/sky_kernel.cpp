@@ -1,14 +1,14 @@
-// The sky kernel, written once against the width-generic vector layer and compiled per target
-// (kernels/target.inl). A batch is vfloat::size pixels of a row in registers: the rays, t, the
-// channels, then bytes or floats stored interleaved. Exact mode is scalar.h's operations in its
-// order; fast mode swaps sqrt and divide for an estimate refined by Newton.
+// The sky kernel, compiled per target: batches of a row quantized and interleaved in registers.
 #include <type_traits>
 
-#include "kernels/newton.h"
 #include "kernels/sky_shade.inl"
 
 namespace raycast::kernels::RAYCAST_ISA {
 namespace {
+
+// Fast mode's Newton step's constants, biased up by 2^-20 (kernels/scalar.h).
+constexpr float fast_nr_a = 1.5f * (1.0f + 0x1p-20f);
+constexpr float fast_nr_b = 0.5f * (1.0f + 0x1p-20f);
 
 // Per row: sv * vertical[k], and for the axis-aligned camera the row's d.y and squares; fast mode
 // adds y2 + z2 first (it need not keep exact mode's order) and folds d.y into the Newton constants.
@@ -18,8 +18,7 @@ struct row_setup {
   float yz2, nr_a, nr_b;
 };
 
-// A batch's rays: the sky reads only d.y and |d|^2 (for the lesson camera x^2 comes from a
-// per-column table, y and z are constant along the row).
+// A batch's rays: the sky reads only d.y and |d|^2.
 struct ray_batch {
   vfloat dir_y;  // d.y
   vfloat len2;   // |d|^2 = (d.x^2 + d.y^2) + d.z^2, in scalar.h's order for exact mode
@@ -55,7 +54,6 @@ inline vfloat fast_uy(const row_setup& rs, const ray_batch& b) {
 constexpr int all_channels = 0b111;
 constexpr int red_green = 0b011;  // the lesson's sky: blue is 1 at both ends
 
-// The shading constants in registers, loaded once per call.
 template <bool NoClamps, int Computed>
 struct shader {
   sky_colors sky;

@@ -16,13 +16,8 @@ RAYCAST_INLINE vfloat sky_t(vfloat uy) { return (uy + 1.0f) * 0.5f; }
 struct sky_colors {
   vfloat bottom[3], top[3], delta[3], lo[3], hi[3];
   explicit sky_colors(const float_scene& s) {
-    for (int k = 0; k < 3; ++k) {
-      bottom[k] = s.bottom[k];
-      top[k] = s.top[k];
-      delta[k] = s.delta[k];
-      lo[k] = s.lo[k];
-      hi[k] = s.hi[k];
-    }
+    for (int k = 0; k < 3; ++k)
+      bottom[k] = s.bottom[k], top[k] = s.top[k], delta[k] = s.delta[k], lo[k] = s.lo[k], hi[k] = s.hi[k];
   }
   // Channel k: clamp(t == 1 ? top : bottom + t delta, lo, hi); the lerp is monotone in t, so with
   // exact end points (shortcut `clamps`) the select and the clamp are no-ops.

@@ -1,5 +1,4 @@
-// The sphere kernel's intersection: the batch's rays, the closest hit per lane, and
-// float_spheres.h's intersection for one ray batch or M at once.
+// The sphere kernel's intersection (float_spheres.h), for one ray batch or M at once.
 #pragma once
 #include <cfloat>
 #include <cstddef>
@@ -32,7 +31,6 @@ struct closest_hit {
   vfloat kind = 0.0f;  // float_spheres::kind, for mixed scenes
 };
 
-// The batch's rays: d and what every sphere reads of it.
 struct rays {
   vfloat d[3];
   vfloat n2;  // |d|^2 in scalar.h's order
@@ -77,8 +75,7 @@ struct rays {
   bool have_inv_ = false, have_len_ = false;
 };
 
-// Records sphere k's hit in h where m. f: what the normal (f + s d) inv_r is formed from, the
-// sphere's own f or an orthographic hit's offset from the centre (with s = 0).
+// Records sphere k's hit in h where m; the normal is (f + s d) inv_r (orthographic: s = 0).
 template <int Shades>
 RAYCAST_INLINE void record(const kernel_spheres& sp, size_t k, vmask m, vfloat s, const vfloat (&f)[3],
                            closest_hit<Shades>& h) {
@@ -147,8 +144,7 @@ RAYCAST_INLINE void keep_nearer(const kernel_spheres& sp, size_t k, vmask ahead,
   record(sp, k, m, s, f, h);
 }
 
-// Where sphere k can hit (disc >= 0): its nearest root not behind the camera, kept as
-// keep_nearer does. The lanes where disc < 0 are not read: no max(disc, 0) here.
+// Where sphere k can hit: its nearest root not behind (lanes with disc < 0 unread: no max(disc, 0)).
 template <int Shades>
 RAYCAST_INLINE void take_nearest(const kernel_spheres& sp, size_t k, rays& r, vfloat b, vfloat disc, vmask can_hit,
                                  closest_hit<Shades>& h) {
@@ -163,10 +159,9 @@ RAYCAST_INLINE void take_nearest(const kernel_spheres& sp, size_t k, rays& r, vf
   keep_nearer(sp, k, can_hit & (s >= 0.0f), s, s * vfloat(e.scale), f, h);
 }
 
-// An orthographic camera's rays (float_spheres.h): no term as large as the distance from the camera
-// enters a sum that must come out as small as the radius. A sphere the image plane cuts (inside) is
-// hit at its far root by the rays that start in it. The normal's offset from the centre,
-// (dx, dy, -+sqrt(disc)) in the camera's axes, is turned to the world's here.
+// An orthographic camera's rays (float_spheres.h): no term as large as the camera's distance
+// enters the sum that comes out as small as the radius. The normal's offset from the centre,
+// (dx, dy, -+sqrt(disc)), is turned from the camera's axes to the world's here.
 template <int Shades>
 RAYCAST_INLINE void take_nearest_ortho(const kernel_spheres& sp, size_t k, const rays& r, closest_hit<Shades>& h) {
   const sphere_record& e = sp.rec[k];
@@ -200,9 +195,7 @@ RAYCAST_INLINE bool nearer_than(const kernel_spheres& sp, const sphere_record& e
   return all(!(h.t * r.length() >= vfloat(sp.depth_key[e.depth])));
 }
 
-// A batch's candidates are scattered over the records: the record (and scene index) six candidates
-// ahead is fetched now, so its cache miss overlaps the tests before it, and a batch's first six
-// while the batch before it works (prefetch_list).
+// Candidates are scattered: the record six ahead is fetched now, a batch's first six the batch before.
 constexpr size_t prefetch_distance = 6;
 RAYCAST_INLINE void prefetch_sphere(const kernel_spheres& sp, uint32_t k) {
   __builtin_prefetch(&sp.rec[k]);
@@ -216,9 +209,8 @@ RAYCAST_INLINE void prefetch_list(const kernel_spheres& sp, const uint32_t* list
   for (size_t x = 0; x < m; ++x) prefetch_sphere(sp, list[x]);
 }
 
-// Tests the spheres list[0 .. count) (0 .. count when list is null) against M ray batches at once,
-// each step for all M before the next. fz_dz: each sphere's f.z d.z where every ray's d.z is the
-// same (the lesson's camera), else null.
+// Tests the spheres list[0 .. count) (0 .. count if list is null) against M ray batches, each step
+// for all M before the next. fz_dz: each sphere's f.z d.z where every d.z is the same, or null.
 template <int Shades, int M, bool Ortho, bool Deep>
 RAYCAST_INLINE void walk(const kernel_spheres& sp, const uint32_t* list, size_t count, rays (&r)[M],
                          closest_hit<Shades> (&h)[M], const float* fz_dz) {

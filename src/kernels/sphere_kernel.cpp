@@ -1,11 +1,7 @@
-// The sphere kernel, written once against the width-generic vector layer and compiled per target
-// (kernels/target.inl). A batch is vfloat::size pixels of a row: the rays' directions in registers,
-// each sphere's record broadcast to every lane, the closest hit kept with masks. Both precisions
-// perform prepare/float_spheres.h's operations in its order: the same bits on every target.
-// A batch tests only its culling list (prepare/culling.h); one with none computes the sky alone, a
-// sphere no lane can hit costs no square root or division, a batch whose every lane hit computes no
-// sky, and a scene's shadings decide what a hit carries. Many samples per pixel (render_samples)
-// run the same batches with each sample as one pass.
+// The sphere kernel, written once against the vector layer and compiled per target: a batch is
+// vfloat::size pixels of a row, each sphere's record broadcast to every lane, the closest hit kept
+// with masks; both precisions give prepare/float_spheres.h's bits. A batch tests only its culling
+// list (prepare/culling.h); many samples per pixel run the same batches, a pass a sample.
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -18,13 +14,10 @@
 namespace raycast::kernels::RAYCAST_ISA {
 namespace {
 
-// Samples per pass of the sampled path: two overlap their dependency chains where the registers
-// hold both passes' rays and hits.
+// Samples per pass: two overlap their dependency chains where the registers hold both passes.
 constexpr int samples_per_pass = vfloats_in_registers >= 16 ? 2 : 1;
 
-// Shortcut `mirror` of the one-sample path: a row's leading sky-only batches, and the columns they
-// mirror to, shaded once and stored at both ends (building the whole row's lists). Returns how
-// many batches at each end it stored.
+// Shortcut `mirror`: a row's leading sky-only batches stored at both ends; returns how many.
 template <bool Float, class RaysAt>
 int64_t store_mirrored_ends(const float_scene& s, const sky_shader& sky, batch_culler& lists, unsigned char* out,
                             const RaysAt& rays_at) {
@@ -53,7 +46,6 @@ RAYCAST_INLINE void prefetch_next_batch(const kernel_spheres& sp, const batch_cu
   if (const size_t n = lists.tests(b + 1)) prefetch_list(sp, lists.list(b + 1), n);
 }
 
-// One sample per pixel: each batch's rays against its list, shaded, stored.
 template <int Shades, bool Float, bool Lanes, bool Ortho>
 void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
   const float_scene& s = *a.scene;
@@ -116,13 +108,11 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
   }
 }
 
-// What every batch of a sampled render shares: scalar.h's steps of one offset count, and the
-// lesson camera's shortcuts.
+// What every batch of a sampled render shares: scalar.h's steps, and the lesson camera's shortcuts.
 template <sampler_kind K>
 struct sample_camera {
   vfloat step_x[3], step_y[3];
-  // Orthographic: a sample's ray start moves across the plane (base[3] + xi step_px, base[4] +
-  // eta step_py), its direction does not.
+  // Orthographic: a sample's ray start moves (base[3] + xi step_px, base[4] + eta step_py).
   bool ortho = false;
   vfloat step_px = 0.0f, step_py = 0.0f;
   // The lesson's camera (centre = (+0, +0, -f), horizontal = (h, 0, 0), vertical = (0, v, 0)):
@@ -130,8 +120,7 @@ struct sample_camera {
   // a sum that is never -0 unchanged), d.y likewise, and d.z = base.z = -f.
   bool lesson = false;
   vfloat z2 = 0.0f;
-  // The lesson's camera: each sphere's f.z d.z, once (raw memory: no standard-library template;
-  // null: intersect forms it per ray, the same bits).
+  // The lesson's camera: each sphere's f.z d.z, once (null: formed per ray, the same bits).
   float* fz_dz = nullptr;
   const float* centre_unit;  // set_length's guard (float_scene::centre_unit)
 
@@ -155,8 +144,7 @@ struct sample_camera {
   sample_camera(const sample_camera&) = delete;
   sample_camera& operator=(const sample_camera&) = delete;
 
-  // The ray of sample xi, eta (counts of offset_unit) from the pixels' one-sample base (and an
-  // orthographic ray's start, base[3] and base[4]).
+  // The ray of sample xi, eta (counts of offset_unit) from the pixels' one-sample base.
   RAYCAST_INLINE rays ray(const vfloat base[5], vfloat xi, vfloat eta) const {
     rays ry;
     if (ortho) {
@@ -176,8 +164,8 @@ struct sample_camera {
   }
 };
 
-// M samples t0 .. t0 + M of one batch, each step for all M before the next, added to the sums in
-// sample order. Always inlined (GCC would keep SSE2's two-sample pass out of line).
+// M samples t0 .. t0 + M of one batch, each step for all M before the next, summed in order.
+// Always inlined (GCC would keep SSE2's two-sample pass out of line).
 template <int Shades, sampler_kind K, int M, bool Ortho>
 __attribute__((always_inline)) inline void sample_pass(const sampling::sample_plan& plan,
                                                        const sampling::pixel_seeds<vuint>& seeds,
@@ -201,9 +189,7 @@ __attribute__((always_inline)) inline void sample_pass(const sampling::sample_pl
   for (int u = 0; u < M; ++u) sums.add(sp, h[u], ry[u], {at.i0, at.j, t0 + uint32_t(u)});
 }
 
-// Many samples per pixel (kernels/scalar.h's order): a batch is N pixels of a row, its list the
-// spheres any ray of its pixels' squares may come near (radii widened by pixel_spread); each sample
-// is one pass of the one-sample batch, added to per-lane sums in sample order.
+// Many samples per pixel (kernels/scalar.h): each sample one pass, added to per-lane sums in order.
 template <int Shades, sampler_kind K, bool Ortho>
 void render_samples(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
   const float_scene& s = *a.scene;

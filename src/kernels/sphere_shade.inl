@@ -1,5 +1,4 @@
-// The sphere kernel's shading (float_spheres.h): the sky where nothing was hit, a hit's normal,
-// light and colour, and the sampled path's per-lane sums.
+// The sphere kernel's shading (float_spheres.h), and the sampled path's per-lane sums.
 #pragma once
 #include <cfloat>
 
@@ -65,9 +64,7 @@ RAYCAST_INLINE vfloat lit_light(const kernel_spheres& sp, const closest_hit<Shad
   if (!sp.secondary) return vfloat(lit_ambient) + vfloat(lit_diffuse) * diffuse;
   alignas(64) float bits[2][N], light[lit_lanes::most > N ? lit_lanes::most : N] = {};
   lit_lanes ls;
-  ls.i0 = at.i0;
-  ls.j = at.j;
-  ls.sample = at.sample;
+  ls.i0 = at.i0, ls.j = at.j, ls.sample = at.sample;
   store(bits[0], select(lit, vfloat(1.0f), vfloat(0.0f)));
   store(bits[1], select(back, vfloat(1.0f), vfloat(0.0f)));
   store(light, as_float(h.index));
@@ -109,7 +106,6 @@ RAYCAST_INLINE void hit_color(const kernel_spheres& sp, const closest_hit<Shades
   }
 }
 
-// The colour of one batch: the closest hit's shading, the sky where nothing was hit.
 template <int Shades>
 RAYCAST_INLINE void shade(const sky_shader& sky, const kernel_spheres& sp, const closest_hit<Shades>& h,
                           const rays& r, const pixel_at& at, vfloat out[3]) {
@@ -134,7 +130,7 @@ struct sample_sums {
   vfloat flat[3] = {0.0f, 0.0f, 0.0f}, normals[3] = {0.0f, 0.0f, 0.0f}, normal_count = 0.0f;
   vfloat sky_sum = 0.0f, sky_count = 0.0f;
 
-  // The sky in the lanes where this sample hit nothing; then in every lane.
+  // The sky where this sample hit nothing; then in every lane.
   RAYCAST_INLINE void add_sky(const rays& r, vmask hit) {
     const vfloat sky = sampling::sky_u<vfloat, vuint>(r.d[1], r.n2);
     sky_sum = sky_sum + select(hit, 0.0f, sky);

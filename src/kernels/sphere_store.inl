@@ -1,5 +1,4 @@
-// The sphere kernel's stores: a batch's colours as 8-bit or float pixels, whole, cut at the row's
-// end, in mirrored lane order, or clipped to a band's column window.
+// The sphere kernel's stores of a batch's colours, as 8-bit or float pixels.
 #pragma once
 #include <cstddef>
 #include <cstdint>
