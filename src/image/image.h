@@ -1,5 +1,4 @@
-// Caller-owned pixel memory: a band of rows of an interleaved RGB image,
-// rows top first (the lesson's PPM order).
+// Caller-owned pixel memory: a band of rows of an interleaved RGB image, rows top first.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -13,11 +12,8 @@ enum class pixel_format : uint8_t {
 
 constexpr size_t bytes_per_pixel(pixel_format f) { return f == pixel_format::rgb8 ? 3 : 12; }
 
-// Rows [row_begin, row_end) of the image, and of each its columns
-// [col_begin, col_end) (col_end < 0: to the image's last column); row 0 is the
-// top row. `data` points at the first byte of row_begin, row r starts at
-// data + (r - row_begin) * stride, and its first pixel is column col_begin (a
-// region of the image: --region).
+// Rows [row_begin, row_end) of the image (0 at the top), columns [col_begin, col_end) of each
+// (col_end < 0: to the last). Row r starts at data + (r - row_begin) * stride, at column col_begin.
 struct image_band {
   void* data = nullptr;
   size_t stride = 0;
@@ -30,11 +26,8 @@ struct image_band {
   unsigned char* row(int64_t r) const {
     return static_cast<unsigned char*>(data) + size_t(r - row_begin) * stride;
   }
-  // The end of the column window in an image `width` pixels wide.
   int64_t cols_end(int64_t width) const { return col_end < 0 ? width : col_end; }
-  // Whether the band holds whole rows of an image `width` pixels wide.
   bool whole_rows(int64_t width) const { return col_begin == 0 && cols_end(width) == width; }
-  // Pixel column i of row r.
   unsigned char* pixel(int64_t r, int64_t i) const {
     return row(r) + size_t(i - col_begin) * bytes_per_pixel(format);
   }

@@ -30,12 +30,6 @@ std::optional<file_format> format_from_name(std::string_view name) {
   return std::nullopt;
 }
 
-std::string format_names_text(std::string_view separator) {
-  std::string r;
-  for (const format_name& f : format_names) r += (r.empty() ? "" : std::string(separator)) + std::string(f.name);
-  return r;
-}
-
 std::string supported_extensions() {
   std::string r;
   for (const format_name& f : format_names) r += (r.empty() ? "." : ", .") + std::string(f.name);

@@ -1,7 +1,4 @@
-// Where rendered rows go: a binary PPM written by raycast itself (ppm.h), or a
-// PNG, JPEG, TIFF or EXR encoded by the image module (module_loader.h). The
-// caller says where, in which format and how large; nothing here knows the
-// command line.
+// Where rendered rows go: a PPM written by raycast itself (ppm.h), or the image module's encoders.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -22,17 +19,10 @@ class image_sink {
   virtual void finish() = 0;
 };
 
-// A width x height image in `format` at `path`, written atomically
-// (atomic_file.h). Checks the destination and loads the image module when the
-// format needs it. Throws io_error naming the file and the cause.
-std::unique_ptr<image_sink> open_file_sink(const std::string& path, file_format format,
-                                           int64_t width, int64_t height);
-
-// A binary PPM on standard output (errors name "standard output").
-std::unique_ptr<image_sink> open_stdout_sink(int64_t width, int64_t height);
-
-// Where a path is taken, "-" is standard output (format: PPM, checked by the
-// caller, format.h's stdout_format_error); any other path, a file.
+// A width x height image in `format` at `path`, written atomically (atomic_file.h), after checking
+// the destination and loading the image module if the format needs it; "-" is a binary PPM on
+// standard output (the caller checks the format: stdout_format_error). Throws io_error naming the
+// file ("standard output") and the cause.
 std::unique_ptr<image_sink> open_sink(const std::string& path, file_format format, int64_t width, int64_t height);
 
 }  // namespace raycast::io

@@ -1,6 +1,4 @@
-// The one kind of failure the writing code reports: a runtime error to print
-// as "raycast: error: <what>" with exit status 1. The message names the file
-// and the cause.
+// The writing code's one failure: "raycast: error: <file>: <cause>", exit status 1.
 #pragma once
 #include <stdexcept>
 

@@ -11,8 +11,7 @@ namespace raycast::io {
 // Header and pixels, in bytes.
 uint64_t ppm_file_size(int64_t width, int64_t height);
 
-// Writes to fd, reporting errors under `name`; commits `file` (when given) at
-// the end. The header is written at once.
+// Writes to fd (the header at once), errors under `name`; commits `file`, if any, at the end.
 std::unique_ptr<image_sink> make_ppm_sink(int fd, std::string name, int64_t width, int64_t height,
                                           std::unique_ptr<atomic_file> file);
 

@@ -1,6 +1,4 @@
-// SOURCE_DATE_EPOCH (https://reproducible-builds.org/specs/source-date-epoch/):
-// the time EXR and TIFF record as the image's DateTime instead of now, so two
-// runs give the same bytes.
+// SOURCE_DATE_EPOCH (reproducible-builds.org): the DateTime EXR and TIFF record instead of now.
 #pragma once
 #include <cstdint>
 #include <optional>

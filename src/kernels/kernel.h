@@ -12,73 +12,45 @@
 
 namespace raycast::kernels {
 
-// Everything a kernel reads, prepared once per render by the plan
-// (render/plan.h), which also decides which shortcuts this render takes.
+// Everything a kernel reads, prepared once per render by the plan (render/plan.h).
 struct kernel_args {
   const float_scene* scene = nullptr;
   precision prec = precision::exact;
-  // Per column i, the part of the direction that depends on su only:
-  // column_part[k][i] = centre[k] + su_i * horizontal[k] (scalar.h's inner
-  // bracket; the rest, sv * vertical[k], is per row). Padded with zeros to a
-  // multiple of 16 columns.
+  // Per column i, column_part[k][i] = centre[k] + su_i * horizontal[k] (scalar.h's inner bracket;
+  // sv * vertical[k] is per row), padded with zeros to a multiple of 16 columns.
   const float* column_part[3] = {};
-  // Shortcut `lanes` (the camera is axis-aligned): a batch carries no x or z
-  // lanes; direction y and z are per row, column_x2[i] = column_part[0][i]^2.
+  // Shortcut `lanes` (axis-aligned camera): d.y and d.z per row; column_x2[i] = column_part[0][i]^2.
   bool lanes = false;
   const float* column_x2 = nullptr;
-  // For the sphere kernel, `lanes` means d.y and d.z per row (from the
-  // tables' first column: the same bits in every column) and no x2 table.
-  // Shortcut `mirror` (with `lanes`): mirrored columns (and, with `paired`,
-  // rows) share one |d|. For the sphere kernel: the sky-only batches at both
-  // ends of a row are shaded once for both ends.
+  // Shortcut `mirror` (with `lanes`): mirrored columns (and, `paired`, rows) share one |d|.
   bool mirror = false;
-  // Shortcut `channels`: channel k's two sky colours are equal, so it never
-  // varies and is written as a constant.
+  // Shortcut `channels`: channel k's two sky colours are equal, written as a constant.
   bool constant[3] = {};
   float constant_value[3] = {};
   int32_t constant_byte[3] = {};
-  // Shortcut `clamps`, in two parts. bottom + 1 * delta == top in float for
-  // every channel: the lerp reaches its end points exactly, so scalar.h's
-  // select and clamp never change a value...
+  // Shortcut `clamps`: bottom + 1 * delta == top in every channel (scalar.h's select and clamp are
+  // no-ops), and for 8-bit output sky colours in [0, 1] (so is the clamp before quantizing).
   bool lerp_exact = false;
-  // ...and, for 8-bit output, sky colours within [0, 1]: the clamp to [0, 1]
-  // before quantizing is a no-op.
   bool colors_in_unit_range = false;
-  // An orthographic camera's ray starts across the image plane, per column:
-  // ortho_x[i] = su_i * plane_width (float_scene.h); the row's is sv *
-  // plane_height. Null for a perspective camera.
+  // Orthographic: the ray start per column, su_i * plane_width (the row's: sv plane_height).
   const float* ortho_x = nullptr;
-  // The sphere kernel's spheres (kernels/float_spheres.h); n = 0 for the sky.
-  kernel_spheres spheres;
-  // The frame's row index (kernels/culling.h; built by the renderer, with the
-  // sampled path's spread when samples is set): row r's candidate spheres
-  // are row_list[row_first[r] .. row_first[r + 1]), at most row_most, their
-  // columns in units of 2^row_shift.
+  kernel_spheres spheres;  // n = 0 for the sky
+  // The frame's row index (prepare/culling.h): row r's candidates are row_list[row_first[r] ..
+  // row_first[r + 1]), at most row_most, their columns in units of 2^row_shift.
   const uint64_t* row_first = nullptr;
   const row_entry* row_list = nullptr;
   size_t row_most = 0;
   int row_shift = 0;
-  // Many samples per pixel (scene/sampler.h): the sphere kernel's sampled
-  // path, for every scene, the sky alone included; null for one sample.
+  // Many samples per pixel: the sphere kernel's sampled path, for every scene; null for one sample.
   const sampling::sample_plan* samples = nullptr;
 };
 
-// The kernels of each target of simd/targets.h (namespace raycast::kernels::<target>;
-// sky_kernel.cpp and sphere_kernel.cpp, compiled once per target):
-//
-// render_sky_rows: the sky kernel; fills rows [r0, r1) of the band (its
-// column window: image_band); single-threaded. With `paired` (shortcut
-// `mirror` only; the band must hold both), each row r also fills its mirror
-// row H-1-r, which shares every |d|.
-//
-// render_sphere_rows: scenes with spheres, and every render of many samples
-// per pixel; the same rows. The plan builds the three per-column direction
-// tables and takes the shortcuts that apply to the sky (`channels`,
-// `clamps`, `mirror`); both precisions give float_spheres.h's bits.
-//
-// trace_pixel: what the ray through pixel (i, j) hits (scalar.h's scalar_hit),
-// every sphere of sp (arrays_of the scene's) tested in order; every target
-// gives the same answer.
+// The kernels of each target of simd/targets.h (namespace raycast::kernels::<target>):
+// - render_sky_rows fills rows [r0, r1) of the band (its column window); with `paired` (shortcut
+//   `mirror`; the band must hold both) each row r also fills its mirror row H-1-r;
+// - render_sphere_rows: scenes with spheres, and every render of many samples; the same rows, in
+//   float_spheres.h's bits in both precisions;
+// - trace_pixel: what the ray through pixel (i, j) hits, every sphere of sp tested in order.
 using sky_rows_fn = void (*)(const kernel_args& args, const image_band& band, int64_t r0, int64_t r1,
                              bool paired);
 using sphere_rows_fn = void (*)(const kernel_args& args, const image_band& band, int64_t r0, int64_t r1);

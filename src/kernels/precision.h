@@ -1,4 +1,4 @@
-// How the float renderers compute y / |d| (kernels/scalar.h has the details).
+// How the float renderers compute y / |d| (kernels/scalar.h).
 #pragma once
 #include <cstdint>
 

@@ -1,38 +1,13 @@
-// The sky of a render with many samples per pixel, written once for a lane
-// type (float and uint32_t for the scalar renderer, vfloat and vuint for the
-// kernels) so that every backend computes the same bits.
-//
-// A sample that hits no sphere adds u = d.y / |d| to the pixel's sky sum and
-// 1 to its sky count; the sky's colour, affine in u (bottom + t delta with
-// t = (u + 1) / 2 = sky_mid + u * sky_half), is applied once per pixel:
-//   pixel = ((flat + (normals + normal count) 0.5) + (sky count * sky_mid + sky sum * sky_half)) / N
-// (kernels/scalar.h: the hits' sums). u comes without the divider: 1/|d| is a bit-level
-// first guess refined by two Newton steps -- plain IEEE multiplies and
-// subtractions, so every instruction set gives the same bits -- accurate to
-// a few float ulp (the first guess is within 3.5e-3, each step squares
-// that), far below the noise of any sample count.
+// The sampled path's sky (kernels/scalar.h): a miss adds u = d.y / |d| to the pixel's sky sum, with
+// 1/|d| a bit-level first guess (within 3.5e-3) refined by two Newton steps of plain IEEE
+// operations, so every backend computes the same bits (a few ulp, far below sample noise).
 #pragma once
 #include <cfloat>
 #include <cstdint>
-#include <cstring>
 
 #include "sampling/sampler.h"
 
 namespace raycast::sampling {
-
-// The scalar lane type's operations, as the vector layers spell them (min:
-// scene/sampler.h).
-inline uint32_t as_uint(float x) {
-  uint32_t u;
-  std::memcpy(&u, &x, sizeof u);
-  return u;
-}
-inline float as_float(uint32_t u) {
-  float x;
-  std::memcpy(&x, &u, sizeof x);
-  return x;
-}
-inline float max(float a, float b) { return a > b ? a : b; }
 
 // 1 / sqrt(x) for a positive normal float x.
 template <class F, class U>

@@ -1,35 +1,24 @@
-// The sky kernel, written once against the width-generic vector layer and
-// compiled per target (kernels/target.inl).
-//
-// One batch is vfloat::size pixels of a row (1, 8 or 16), a structure of
-// arrays in registers: the rays (ray_batch), then t, then the channels, then
-// bytes or floats stored interleaved -- no float image in memory for 8-bit
-// output. Exact mode performs scalar.h's operations in scalar.h's order, so
-// every target's output is the same bits; fast mode swaps sqrt + divide for
-// an estimate refined by Newton.
+// The sky kernel, compiled per target: batches of a row quantized and interleaved in registers.
 #include <type_traits>
 
-#include "kernels/newton.h"
 #include "kernels/sky_shade.inl"
 
 namespace raycast::kernels::RAYCAST_ISA {
 namespace {
 
+// Fast mode's Newton step's constants, biased up by 2^-20 (kernels/scalar.h).
+constexpr float fast_nr_a = 1.5f * (1.0f + 0x1p-20f);
+constexpr float fast_nr_b = 0.5f * (1.0f + 0x1p-20f);
+
+// Per row: sv * vertical[k], and for the axis-aligned camera the row's d.y and squares; fast mode
+// adds y2 + z2 first (it need not keep exact mode's order) and folds d.y into the Newton constants.
 struct row_setup {
-  // Per row: sv * vertical[k] (the rest of scalar.h's direction), and for the
-  // axis-aligned camera the row's constant direction y and squares.
   float row_part[3];
   float dy, y2, z2;
-  // Fast mode, lesson camera: y2 + z2 in one (fast mode need not keep exact
-  // mode's order), and the Newton constants times the row's y.
   float yz2, nr_a, nr_b;
 };
 
-// A batch of N rays of one row as a structure of arrays in registers. The sky
-// reads only the direction's y and its squared length, so that is all a batch
-// carries: no origin lanes (the sky never reads the origin), and for the lesson
-// camera no x or z lanes either (x^2 comes from a per-column table, y and z
-// are constant along the row).
+// A batch's rays: the sky reads only d.y and |d|^2.
 struct ray_batch {
   vfloat dir_y;  // d.y
   vfloat len2;   // |d|^2 = (d.x^2 + d.y^2) + d.z^2, in scalar.h's order for exact mode
@@ -49,9 +38,7 @@ inline ray_batch generate(const kernel_args& a, const row_setup& rs, int64_t i0)
   }
 }
 
-// Fast mode: y / |d| from the estimate and one (biased) Newton step, clamped
-// to [-1, 1] (scalar.h). The lesson camera's y is constant along the row, so
-// it is folded into the Newton constants.
+// Fast mode: y / |d| from the estimate and one biased Newton step, clamped to [-1, 1] (scalar.h).
 template <bool Lanes>
 inline vfloat fast_uy(const row_setup& rs, const ray_batch& b) {
   const vfloat n2 = max(b.len2, FLT_MIN);
@@ -63,12 +50,10 @@ inline vfloat fast_uy(const row_setup& rs, const ray_batch& b) {
   return clamp(uy, -1.0f, 1.0f);
 }
 
-// Channel sets the kernel has loops for (bit k: channel k is computed per
-// pixel; otherwise shortcut `channels` writes it as a constant).
+// Channel sets the kernel has loops for (bit k: channel k is computed; else a constant).
 constexpr int all_channels = 0b111;
 constexpr int red_green = 0b011;  // the lesson's sky: blue is 1 at both ends
 
-// The shading constants in registers, loaded once per call.
 template <bool NoClamps, int Computed>
 struct shader {
   sky_colors sky;
@@ -86,7 +71,6 @@ struct shader {
     }
   }
 
-  // sky_colors' channel; a constant channel is not computed.
   template <int K>
   vfloat channel(vfloat t) const {
     if constexpr (!(Computed & (1 << K))) return constant_value[K];
@@ -97,9 +81,7 @@ struct shader {
     if constexpr (!(Computed & (1 << K))) return constant_byte[K];
     return to_int((NoClamps ? c : clamp(c, 0.0f, 1.0f)) * 255.999f);
   }
-  // Fast mode, 8-bit: shading and quantization in one multiply-add on uy. With
-  // colours in [0, 1] and uy in [-1, 1] the result stays inside [0, 256), so
-  // the clamp is left out.
+  // Fast mode, 8-bit: one multiply-add on uy; with colours in [0, 1] the result is in [0, 256).
   template <int K>
   vint fast_byte(vfloat uy) const {
     if constexpr (!(Computed & (1 << K))) return constant_byte[K];
@@ -108,8 +90,7 @@ struct shader {
   }
 };
 
-// 8-bit: shades one batch of one row from its uy and interleaves it in a
-// register; Reversed puts its pixels in the opposite order (the mirrored batch).
+// 8-bit: one batch shaded from its uy and interleaved; Reversed, in the opposite order.
 template <bool Fast, bool Reversed, bool NoClamps, int Computed>
 inline rgb8_pack shade_rgb8(const shader<NoClamps, Computed>& sh, vfloat uy) {
   if constexpr (Fast) {
@@ -123,9 +104,7 @@ inline rgb8_pack shade_rgb8(const shader<NoClamps, Computed>& sh, vfloat uy) {
   }
 }
 
-// Float: shades one batch of one row and stores n pixels at column i0;
-// mirrored, with its lanes reversed so that lane L lands on column
-// i0 + N - 1 - L.
+// Float: one batch shaded and n pixels stored at column i0; mirrored, lane L at i0 + N - 1 - L.
 template <bool NoClamps, int Computed>
 inline void shade_store_f32(const shader<NoClamps, Computed>& sh, vfloat uy, unsigned char* out,
                             int64_t i0, int n, bool mirrored) {
@@ -165,8 +144,7 @@ inline void shade_store_rgb8(const shader<NoClamps, Computed>& sh, vfloat uy, un
   }
 }
 
-// Four packs side by side: as whole cache-line writes where the instruction
-// set has them (store4), else one pack at a time.
+// Four packs side by side: whole cache-line writes where the target has them (store4).
 inline void store_four(unsigned char* dst, rgb8_pack a, rgb8_pack b, rgb8_pack c, rgb8_pack d) {
 #ifdef RAYCAST_HAS_STORE4
   store4(dst, a, b, c, d);
@@ -178,32 +156,24 @@ inline void store_four(unsigned char* dst, rgb8_pack a, rgb8_pack b, rgb8_pack c
 #endif
 }
 
-// Rows [r0, r1); with `paired`, each row r together with its mirror H-1-r.
-//
-// The lesson camera's image is symmetric bit for bit (scalar.h: su(W-1-i) =
-// -su(i), sv(H-1-j) = -sv(j)): column W-1-i has the same |d| and y as column
-// i, and row H-1-r has the same |d| and -y. So a batch's |d| (the square root
-// and divide, or the estimate and Newton step) serves up to four batches:
-// itself, its mirror in the row, and both of those in the mirrored row. Only
-// the middle of a row, less than two batches wide, is computed unmirrored.
-// 8-bit rows go four batches at a time where they can, so a backend can store
-// them as whole cache-line-sized writes (store4).
+// Rows [r0, r1); with `paired`, each row r together with its mirror H-1-r. The lesson camera's
+// column W-1-i has column i's |d| and y, row H-1-r the same |d| and -y: a batch's |d| serves up to
+// four batches; only a row's middle, under two batches wide, is unmirrored. 8-bit rows go four
+// batches at a time where they can (store4).
 template <bool Lanes, bool Fast, bool Float, bool NoClamps, int Computed>
 void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1, bool paired) {
   const float_scene& s = *a.scene;
   const shader<NoClamps, Computed> sh(a);
   const int64_t W = s.width, c0 = band.col_begin, c1 = band.cols_end(W);
   const bool whole_rows = band.whole_rows(W);
-  // Pixels at each end of a row computed once for both ends (whole batches).
   const int64_t mirrored = Lanes && a.mirror && whole_rows ? W / (2 * N) * N : 0;
   for (int64_t r = r0; r < r1; ++r) {
     const int64_t j = s.height - 1 - r;
     const float sv = pixel_sv(s, j);
     row_setup rs;
     for (int k = 0; k < 3; ++k) rs.row_part[k] = sv * s.vertical[k];
-    // Lesson camera: centre = (0, 0, -f), horizontal = (hx, 0, 0), vertical =
-    // (0, vy, 0), so scalar.h's d.y = (0 + su*0) + sv*vy and d.z = (-f + su*0)
-    // + sv*0: sv*vy and -f up to the sign of a zero, which no square sees.
+    // Lesson camera: scalar.h's d.y = (0 + su*0) + sv*vy and d.z = (-f + su*0) + sv*0 are sv*vy
+    // and -f up to the sign of a zero, which no square sees.
     rs.dy = (s.center[1] + 0.0f) + rs.row_part[1];
     rs.y2 = rs.dy * rs.dy;
     rs.z2 = s.center[2] * s.center[2];
@@ -216,7 +186,6 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
       const ray_batch rays = generate<Lanes, Fast>(a, rs, i0);
       return Fast ? fast_uy<Lanes>(rs, rays) : exact_uy(rays.dir_y, rays.len2);
     };
-    // The mirrored row's y is -y (and so its uy is -uy, sign for sign).
     const auto row_uy = [](vfloat uy, int k) { return k == 0 ? uy : -uy; };
 
     if (!whole_rows) {  // a region (image_band's column window): batches on the row's grid
@@ -266,8 +235,7 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
   }
 }
 
-// Calls f with a compile-time copy of a run-time flag, so that each
-// combination of flags is its own loop and no per-batch branch asks again.
+// Calls f with a compile-time copy of a run-time flag: each combination is its own loop.
 template <class F>
 inline void with_flag(bool flag, F&& f) {
   if (flag) f(std::true_type{});
@@ -279,15 +247,11 @@ inline void with_flag(bool flag, F&& f) {
 void render_sky_rows(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1, bool paired) {
   const bool fast = a.prec == precision::fast;
   const bool f32 = band.format == pixel_format::rgb_f32;
-  // Shortcut `clamps`: float output needs only the exact lerp; 8-bit output
-  // also needs colours in [0, 1].
   const bool no_clamps = a.lerp_exact && (f32 || a.colors_in_unit_range);
   int computed = 0;
   for (int k = 0; k < 3; ++k) computed |= a.constant[k] ? 0 : 1 << k;
   paired = paired && a.lanes && a.mirror;
-  // Channel sets other than "all" and the lesson's "red and green" run the
-  // all-channels loop, which is exact for them too (a constant channel's lerp
-  // is bottom + t * 0 = bottom).
+  // Other channel sets run the all-channels loop, exact for them too (bottom + t * 0 = bottom).
   with_flag(a.lanes, [&](auto lanes) {
     with_flag(fast, [&](auto fast_mode) {
       with_flag(f32, [&](auto float_out) {

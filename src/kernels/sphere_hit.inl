@@ -1,6 +1,4 @@
-// Ray-sphere intersection of the sphere kernel (sphere_kernel.inl), per
-// instruction set: the batch's rays, the closest hit per lane, and the one
-// body of float_spheres.h's intersection, for one ray batch or M at once.
+// The sphere kernel's intersection (float_spheres.h), for one ray batch or M at once.
 #pragma once
 #include <cfloat>
 #include <cstddef>
@@ -11,8 +9,7 @@
 namespace raycast::kernels::RAYCAST_ISA {
 namespace {
 
-// Which shadings the scene's spheres use (bit 0: normal, bit 1: flat, bit 2:
-// lit). A scene with lit spheres runs the general path, all three.
+// Which shadings the scene's spheres use; a scene with lit spheres runs all three.
 constexpr int normal_shading = 1;
 constexpr int flat_shading = 2;
 constexpr int lit_shading = 4;
@@ -29,30 +26,21 @@ struct closest_hit {
   vuint index = vuint(0u);     // the hit sphere's index in the scene (the tie rule)
   vfloat s = 0.0f;             // the hit's s, in its sphere's unit
   vfloat fx = 0.0f, fy = 0.0f, fz = 0.0f, inv_r = 0.0f;  // normal shading
-  vfloat inside = 0.0f;  // 1 where the camera is inside the hit sphere (scenes with such a sphere)
+  vfloat inside = 0.0f;  // 1 where the camera is inside the hit sphere
   vfloat red = 0.0f, green = 0.0f, blue = 0.0f;  // flat and lit shading
   vfloat kind = 0.0f;  // float_spheres::kind, for mixed scenes
 };
 
-// The batch's rays: d and what every sphere reads of it.
 struct rays {
   vfloat d[3];
   vfloat n2;  // |d|^2 in scalar.h's order
   vfloat px = 0.0f, py = 0.0f;  // an orthographic ray's start on the image plane (float_scene.h)
 
-  // n2 from d, and the guard of everything the intersection and shading
-  // divide by it (centre_unit: float_scene::centre_unit, or null where the
-  // frame has no short direction: float_scene::tiny_directions). Only a
-  // degenerate camera's rays near the viewport's centre are short: a focal
-  // length 10^-19 of the viewport or less. A lane whose n2 is below 2^-64
-  // has its d scaled by 2^64: exact, and it changes nothing a ray shows (hits
-  // compare s along one ray, the normal and the sky are homogeneous in d),
-  // but no n2 is then denormal: the far root, 1 / n2 and the headlight are
-  // those of the reference's direction, on every target and under FTZ/DAZ.
-  // A lane whose d is 0 even so is a ray through the viewport's centre when
-  // the centre lies below float's range of the viewport (su horizontal + sv
-  // vertical is exactly 0 there, and nothing is left of the centre in
-  // float): its direction is the centre's own, centre_unit.
+  // n2 from d, guarded where the frame has short directions (centre_unit: float_scene's, or null
+  // without tiny_directions). A lane whose n2 is below 2^-64 has its d scaled by 2^64: exact, and
+  // nothing a ray shows changes (hits compare s along one ray; normal and sky are homogeneous in
+  // d), but no n2 is denormal, on any target or under FTZ/DAZ. A lane whose d is 0 even so is the
+  // centre ray of a centre below float's range of the viewport: its direction is centre_unit.
   RAYCAST_INLINE void set_length(const float* centre_unit) {
     n2 = (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2];
     if (!centre_unit) return;
@@ -65,8 +53,7 @@ struct rays {
     for (int k = 0; k < 3; ++k) d[k] = select(zero, vfloat(centre_unit[k]), d[k]);
     n2 = select(zero, (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2], n2);
   }
-  // 1 / n2, computed the first time a far sphere needs it: a division is a
-  // large part of a batch's cost.
+  // 1 / n2, the first time a far sphere needs it.
   vfloat inv_n2() {
     if (!have_inv_) {
       inv_ = 1.0f / n2;
@@ -88,9 +75,7 @@ struct rays {
   bool have_inv_ = false, have_len_ = false;
 };
 
-// Records sphere k's hit where m (its s and t already chosen) in h.
-// f: what the normal is formed from, (f + s d) inv_r: the sphere's own f, or
-// an orthographic hit's offset from the centre (with s = 0).
+// Records sphere k's hit in h where m; the normal is (f + s d) inv_r (orthographic: s = 0).
 template <int Shades>
 RAYCAST_INLINE void record(const kernel_spheres& sp, size_t k, vmask m, vfloat s, const vfloat (&f)[3],
                            closest_hit<Shades>& h) {
@@ -134,8 +119,7 @@ RAYCAST_INLINE void record(const kernel_spheres& sp, size_t k, vmask m, vfloat s
   }
 }
 
-// Sphere k's discriminant for one ray batch (float_spheres.h: the textbook
-// form for near spheres, Hearn & Baker's for far ones), from b = f . d.
+// Sphere e's discriminant (float_spheres.h: textbook where near, Hearn & Baker where far).
 RAYCAST_INLINE vfloat discriminant(const sphere_record& e, rays& r, vfloat fx, vfloat fy, vfloat fz, vfloat b) {
   if (e.near) return b * b - r.n2 * vfloat(e.c);
   const vfloat kb = b * r.inv_n2();
@@ -143,10 +127,8 @@ RAYCAST_INLINE vfloat discriminant(const sphere_record& e, rays& r, vfloat fx, v
   return r.n2 * (vfloat(e.r2) - ((vx * vx + vy * vy) + vz * vz));
 }
 
-// Sphere k's hit at s (its t = s scale) where `ahead`, kept in the lanes
-// where it is nearer than the closest hit, or as near and later in the
-// scene (the tie rule: spheres are tested in the float scene's order, which
-// need not be the scene's).
+// Sphere k's hit at s, t where `ahead`, kept where nearer than the closest hit, or as near and
+// later in the scene (the tie rule: the float scene's order need not be the scene's).
 template <int Shades>
 RAYCAST_INLINE void keep_nearer(const kernel_spheres& sp, size_t k, vmask ahead, vfloat s, vfloat t,
                                 const vfloat (&f)[3], closest_hit<Shades>& h) {
@@ -162,11 +144,7 @@ RAYCAST_INLINE void keep_nearer(const kernel_spheres& sp, size_t k, vmask ahead,
   record(sp, k, m, s, f, h);
 }
 
-// Where sphere k can hit (disc >= 0): its nearest root not behind the camera,
-// and the closest hit updated with it: where it is nearer, or as near and
-// later in the scene (the tie rule: spheres are tested in the float scene's
-// order, which need not be the scene's). The lanes where disc < 0 are not
-// read: no max(disc, 0) here.
+// Where sphere k can hit: its nearest root not behind (lanes with disc < 0 unread: no max(disc, 0)).
 template <int Shades>
 RAYCAST_INLINE void take_nearest(const kernel_spheres& sp, size_t k, rays& r, vfloat b, vfloat disc, vmask can_hit,
                                  closest_hit<Shades>& h) {
@@ -181,15 +159,9 @@ RAYCAST_INLINE void take_nearest(const kernel_spheres& sp, size_t k, rays& r, vf
   keep_nearer(sp, k, can_hit & (s >= 0.0f), s, s * vfloat(e.scale), f, h);
 }
 
-// An orthographic camera's rays (float_spheres.h): from the image plane at
-// (px, py) in world units, along the view. In the sphere's unit (c = 2^-e),
-// the ray's offset from the centre across the view is (px c - cx, py c - cy),
-// disc = r^2 - its squared length, and the hit's depth beyond the plane
-// offset s = cz - sqrt(disc): no term as large as the distance from the
-// camera enters the sum that must come out as small as the radius. A sphere
-// the image plane cuts (inside) is hit at its far root by the rays that
-// start in it. The normal is formed here: the hit's offset from the centre,
-// (dx, dy, -+sqrt(disc)) in the camera's axes, turned to the world's.
+// An orthographic camera's rays (float_spheres.h): no term as large as the camera's distance
+// enters the sum that comes out as small as the radius. The normal's offset from the centre,
+// (dx, dy, -+sqrt(disc)), is turned from the camera's axes to the world's here.
 template <int Shades>
 RAYCAST_INLINE void take_nearest_ortho(const kernel_spheres& sp, size_t k, const rays& r, closest_hit<Shades>& h) {
   const sphere_record& e = sp.rec[k];
@@ -212,14 +184,10 @@ RAYCAST_INLINE void take_nearest_ortho(const kernel_spheres& sp, size_t k, const
   keep_nearer(sp, k, ahead, vfloat(0.0f), s * vfloat(e.scale), f, h);
 }
 
-// A depth-ordered walk (float_spheres::depth_key): whether every lane has
-// hit something nearer than sphere e -- and so than every sphere after it in
-// the float scene's order -- can be: t |d| (the hit's distance in world
-// units) below e's bucket's key. The key holds a margin of 2^-15 against the
-// rounding of both distances (each within 10^-6 relative, src/kernels/README.md),
-// so a sphere left out would have been strictly farther: never a tie, and
-// the image is the same bits as a walk over the whole list.
-// (An orthographic hit's t is its depth in world units already.)
+// A depth-ordered walk: whether every lane has hit something nearer than sphere e, and so than
+// every sphere after it, can be: t |d| below e's bucket's key (an orthographic t is a depth already).
+// The key's 2^-15 margin exceeds both distances' rounding (README.md), so a sphere left out would
+// be strictly farther: never a tie, the same bits as a walk over the whole list.
 template <bool Ortho, int Shades>
 RAYCAST_INLINE bool nearer_than(const kernel_spheres& sp, const sphere_record& e, rays& r, const closest_hit<Shades>& h) {
   if (!all(h.hit)) return false;
@@ -227,17 +195,7 @@ RAYCAST_INLINE bool nearer_than(const kernel_spheres& sp, const sphere_record& e
   return all(!(h.t * r.length() >= vfloat(sp.depth_key[e.depth])));
 }
 
-// A batch's candidates are spheres of its columns, scattered over the
-// records (a deep scene's kept spheres, in depth order; a large cloud's
-// centres in several rows, whose records lie a row's worth apart): the
-// record six candidates ahead is asked for now, so that its cache miss
-// overlaps the tests before it, and a batch's first six while the batch
-// before it works (prefetch_list). One thread, render at 1920x1080: the
-// box of 10^6, six ahead 20.8 to 18.5 ms, the next batch's 15.8 to 14.5
-// (after the culler's one-pass lists); both, in every walk: dense cloud of
-// 10^6 121 to 107 ms, sparse 96 to 86 ms. Three ahead gave less, ten no
-// more, and scenes of 10^3 spheres take what they took. With the record,
-// its index in the scene (a hit in a reordered scene records it).
+// Candidates are scattered: the record six ahead is fetched now, a batch's first six the batch before.
 constexpr size_t prefetch_distance = 6;
 RAYCAST_INLINE void prefetch_sphere(const kernel_spheres& sp, uint32_t k) {
   __builtin_prefetch(&sp.rec[k]);
@@ -251,11 +209,8 @@ RAYCAST_INLINE void prefetch_list(const kernel_spheres& sp, const uint32_t* list
   for (size_t x = 0; x < m; ++x) prefetch_sphere(sp, list[x]);
 }
 
-// Tests the spheres list[0 .. count) (every sphere, 0 .. count, when list is
-// null) against M independent ray batches at once, each step for all M
-// before the next (the sampled path takes samples_per_pass samples at a
-// time: their long dependency chains overlap). fz_dz: each sphere's f.z d.z
-// where every ray's d.z is the same (the lesson's camera), else null.
+// Tests the spheres list[0 .. count) (0 .. count if list is null) against M ray batches, each step
+// for all M before the next. fz_dz: each sphere's f.z d.z where every d.z is the same, or null.
 template <int Shades, int M, bool Ortho, bool Deep>
 RAYCAST_INLINE void walk(const kernel_spheres& sp, const uint32_t* list, size_t count, rays (&r)[M],
                          closest_hit<Shades> (&h)[M], const float* fz_dz) {
@@ -294,11 +249,8 @@ RAYCAST_INLINE void intersect(const kernel_spheres& sp, const uint32_t* list, si
   else walk<Shades, M, Ortho, false>(sp, list, count, r, h, fz_dz);
 }
 
-// One ray batch (the one-sample path): the same steps without arrays --
-// SSE2's two-half vectors in one-element arrays are not kept in registers by
-// GCC 12 (+40 % on sse2/world).
-// (Deep: a depth-ordered walk, which may stop early; its own loop, so that
-// other scenes ask nothing of the depth keys.)
+// One ray batch (the one-sample path): the same steps without arrays, which GCC does not keep in
+// registers for SSE2's two-half vectors. Deep: a depth-ordered walk, which may stop early.
 template <bool Ortho, bool Deep, int Shades>
 RAYCAST_INLINE void walk(const kernel_spheres& sp, const uint32_t* list, size_t count, rays& r, closest_hit<Shades>& h) {
   for (size_t x = 0; x < count; ++x) {

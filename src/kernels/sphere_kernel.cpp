@@ -1,29 +1,7 @@
-// The sphere kernel, written once against the width-generic vector layer and
-// compiled per target (kernels/target.inl), as the sky kernel is.
-//
-// One batch is vfloat::size pixels of a row (1, 8 or 16). The rays
-// are a structure of arrays in registers (the camera direction d, not
-// normalized; the origin is shared by every primary ray and lives in the
-// spheres' constants); the spheres are a structure of arrays in memory
-// (kernels/float_spheres.h), each sphere's constants broadcast to every lane.
-// Closest hit with masks: per lane, the nearest t so far and what shading
-// needs of the sphere that gave it. Both precisions perform
-// kernels/float_spheres.h's operations in its order, so the output is
-// the same bits on every target.
-//
-// Left out where the scene does not need it: the frame's row index lists,
-// per row, the spheres that may come near it (kernels/culling.h, built once
-// by the renderer); each row turns its entries into a list per batch
-// (batch_culler, compiled once), and a batch tests only those; a
-// batch with none computes the sky alone, with no division but the sky's; a
-// sphere that no lane of the batch can hit (every disc < 0) costs no square
-// root or division; a batch where every lane hit something computes no sky; a
-// flat-shaded scene tracks no centres and computes no normals, a
-// normal-shaded one tracks no colours.
-//
-// Many samples per pixel (render_samples, below; every scene, the sky alone
-// included) run the same batches with each sample as one pass, the lists
-// widened to the pixels' squares of samples.
+// The sphere kernel, written once against the vector layer and compiled per target: a batch is
+// vfloat::size pixels of a row, each sphere's record broadcast to every lane, the closest hit kept
+// with masks; both precisions give prepare/float_spheres.h's bits. A batch tests only its culling
+// list (prepare/culling.h); many samples per pixel run the same batches, a pass a sample.
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -36,18 +14,10 @@
 namespace raycast::kernels::RAYCAST_ISA {
 namespace {
 
-// Samples per pass of the sampled path (render_samples): two overlap their
-// dependency chains where the registers hold both passes' rays and hits
-// (AVX-512's 32 zmm, AVX2's 16 ymm, NEON's 32 q registers as 8-lane pairs);
-// SSE2's 16 xmm registers, two per vector, do not, and it takes one (on
-// `world` one sample at a time is 7 % faster there).
+// Samples per pass: two overlap their dependency chains where the registers hold both passes.
 constexpr int samples_per_pass = vfloats_in_registers >= 16 ? 2 : 1;
 
-// Shortcut `mirror` of the one-sample path (the lesson camera: the sky is
-// symmetric about the row's middle, bit for bit): the first batches of a row
-// that are sky only, and the columns they mirror to, are shaded once and
-// stored at both ends. Needs the whole row's lists (built here). Returns how
-// many batches at each end it stored.
+// Shortcut `mirror`: a row's leading sky-only batches stored at both ends; returns how many.
 template <bool Float, class RaysAt>
 int64_t store_mirrored_ends(const float_scene& s, const sky_shader& sky, batch_culler& lists, unsigned char* out,
                             const RaysAt& rays_at) {
@@ -70,14 +40,12 @@ int64_t store_mirrored_ends(const float_scene& s, const sky_shader& sky, batch_c
   return ends;
 }
 
-// The next batch's first candidates, asked for while batch b works
-// (sphere_hit.inl: prefetch_list); b + 1 in the lists' run [.., b1).
+// The next batch's first candidates, fetched while batch b works (b + 1 in the run [.., b1)).
 RAYCAST_INLINE void prefetch_next_batch(const kernel_spheres& sp, const batch_culler& lists, int64_t b, int64_t b1) {
   if (b + 1 >= b1) return;
   if (const size_t n = lists.tests(b + 1)) prefetch_list(sp, lists.list(b + 1), n);
 }
 
-// One sample per pixel: each batch's rays against its list, shaded, stored.
 template <int Shades, bool Float, bool Lanes, bool Ortho>
 void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
   const float_scene& s = *a.scene;
@@ -85,7 +53,6 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
   const sky_shader sky(a);
   const int64_t W = s.width, c0 = band.col_begin, c1 = band.cols_end(W);
   const int64_t batches = (W + N - 1) / N;
-  // The batches that hold the band's columns.
   const int64_t first_batch = c0 / N, end_batch = (c1 + N - 1) / N;
   batch_culler lists(s, a.row_most, a.row_shift, N, 0.0);
   const bool cull = a.row_first && lists.ok();  // else every batch tests every sphere
@@ -97,9 +64,7 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
     const int64_t run = cull ? lists.run_length() : batches;
     const vfloat row_part[3] = {sv * s.vertical[0], sv * s.vertical[1], sv * s.vertical[2]};
     unsigned char* const out = band.row(r);
-    // Shortcut `lanes` (the axis-aligned camera): every column's d.y and d.z
-    // are the first column's, bit for bit (scalar.h: centre + su * 0), so
-    // they and their squares are per row.
+    // Shortcut `lanes`: every column's d.y and d.z are the first column's (centre + su * 0).
     const float dy = a.column_part[1][0] + sv * s.vertical[1], dz = a.column_part[2][0] + sv * s.vertical[2];
     const vfloat row_y = dy, row_z = dz, row_py = sv * s.plane_height;
     const auto rays_at = [&](int64_t i0) {
@@ -126,7 +91,6 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
       for (int64_t b = b0; b < b1; ++b) {
         const int64_t i0 = b * N;
         if (i0 >= W - ends * N) break;  // the mirrored end, already stored
-        // The ray batch: scalar.h's direction and its squared length.
         rays ry = rays_at(i0);
         const size_t tests = cull ? lists.tests(b) : sp.n;
         if (cull) prefetch_next_batch(sp, lists, b, b1);
@@ -144,30 +108,23 @@ void render(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1
   }
 }
 
-// What every batch of a sampled render shares: scalar.h's steps of one
-// offset count, and the lesson camera's shortcuts.
+// What every batch of a sampled render shares: scalar.h's steps, and the lesson camera's shortcuts.
 template <sampler_kind K>
 struct sample_camera {
   vfloat step_x[3], step_y[3];
-  // An orthographic camera's: a sample's ray start moves across the plane
-  // (base[3] + xi step_px, base[4] + eta step_py), its direction does not.
+  // Orthographic: a sample's ray start moves (base[3] + xi step_px, base[4] + eta step_py).
   bool ortho = false;
   vfloat step_px = 0.0f, step_py = 0.0f;
-  // The lesson's camera (centre = (+0, +0, -f), horizontal = (h, 0, 0),
-  // vertical = (0, v, 0)): scalar.h's d.x = (base.x + xi step_x.x) + eta 0
-  // is base.x + xi step_x.x bit for bit (adding +0 leaves a sum that is
-  // never -0 unchanged: base.x starts from centre.x = +0), d.y = base.y + eta step_y.y
-  // likewise, and d.z = base.z = -f exactly.
+  // The lesson's camera (centre = (+0, +0, -f), horizontal = (h, 0, 0), vertical = (0, v, 0)):
+  // scalar.h's d.x = (base.x + xi step_x.x) + eta 0 is base.x + xi step_x.x bit for bit (+0 leaves
+  // a sum that is never -0 unchanged), d.y likewise, and d.z = base.z = -f.
   bool lesson = false;
   vfloat z2 = 0.0f;
-  // The lesson's camera: each sphere's f.z d.z, once (raw memory: the
-  // kernels instantiate no standard-library template; without it,
-  // intersect forms f.z d.z per ray, the same bits).
+  // The lesson's camera: each sphere's f.z d.z, once (null: formed per ray, the same bits).
   float* fz_dz = nullptr;
   const float* centre_unit;  // set_length's guard (float_scene::centre_unit)
 
   sample_camera(const float_scene& s, const kernel_spheres& sp) : centre_unit(s.centre_unit) {
-    // du and dv times the sampler's unit (exact), times horizontal and vertical.
     const float du = s.du * sampling::offset_unit<K>, dv = s.dv * sampling::offset_unit<K>;
     for (int k = 0; k < 3; ++k) {
       step_x[k] = du * s.horizontal[k];
@@ -187,8 +144,7 @@ struct sample_camera {
   sample_camera(const sample_camera&) = delete;
   sample_camera& operator=(const sample_camera&) = delete;
 
-  // The direction of a sample xi, eta (counts of offset_unit) from the
-  // pixels' one-sample base (and an orthographic ray's start, base[3] and base[4]).
+  // The ray of sample xi, eta (counts of offset_unit) from the pixels' one-sample base.
   RAYCAST_INLINE rays ray(const vfloat base[5], vfloat xi, vfloat eta) const {
     rays ry;
     if (ortho) {
@@ -208,9 +164,8 @@ struct sample_camera {
   }
 };
 
-// M samples t0 .. t0 + M of one batch, each step for all M before the next,
-// added to the batch's sums in sample order. Always inlined: GCC 12 kept
-// SSE2's two-sample pass out of line (+40 % per sample).
+// M samples t0 .. t0 + M of one batch, each step for all M before the next, summed in order.
+// Always inlined (GCC would keep SSE2's two-sample pass out of line).
 template <int Shades, sampler_kind K, int M, bool Ortho>
 __attribute__((always_inline)) inline void sample_pass(const sampling::sample_plan& plan,
                                                        const sampling::pixel_seeds<vuint>& seeds,
@@ -228,21 +183,13 @@ __attribute__((always_inline)) inline void sample_pass(const sampling::sample_pl
     return;
   }
   closest_hit<Shades> h[M];
-  // One sphere (most batches that test any): its own copy, in which the
-  // compiler knows the closest hit starts empty.
+  // One sphere (most batches that test any): its own copy, where the hit is known to start empty.
   if (tests == 1) intersect<Shades, M, Ortho>(sp, list, 1, ry, h, cam.fz_dz);
   else intersect<Shades, M, Ortho>(sp, list, tests, ry, h, cam.fz_dz);
   for (int u = 0; u < M; ++u) sums.add(sp, h[u], ry[u], {at.i0, at.j, t0 + uint32_t(u)});
 }
 
-// Many samples per pixel (scene/sampler.h; the order is kernels/scalar.h's
-// scalar_pixel_samples). A batch is still N pixels of a row, each lane one
-// pixel: the batch's sphere list holds the spheres any ray of its pixels'
-// squares may come near (the culling radii widened by the scene's
-// pixel_spread), and each sample is one pass of the one-sample batch --
-// offsets, direction, intersection, normal -- added to a per-lane sum in
-// sample order. The random numbers are drawn per lane with the vector
-// layer's integer operations.
+// Many samples per pixel (kernels/scalar.h): each sample one pass, added to per-lane sums in order.
 template <int Shades, sampler_kind K, bool Ortho>
 void render_samples(const kernel_args& a, const image_band& band, int64_t r0, int64_t r1) {
   const float_scene& s = *a.scene;
@@ -318,7 +265,6 @@ void render_shades(const kernel_args& a, const image_band& band, int64_t r0, int
   else render_projection<Shades, false>(a, band, r0, r1);
 }
 
-// A lane's sphere index, from its bits as a float (trace_pixel).
 uint32_t scene_index(const float* bits) {
   uint32_t k = 0;
   __builtin_memcpy(&k, bits, sizeof k);
@@ -332,7 +278,7 @@ scalar_hit trace_pixel(const float_scene& s, const kernel_spheres& sp, int64_t i
   rays r;
   for (int k = 0; k < 3; ++k) r.d[k] = (s.center[k] + su * s.horizontal[k]) + sv * s.vertical[k];
   r.set_length(s.centre_unit);
-  closest_hit<normal_shading> h;  // every sphere, in the float scene's order
+  closest_hit<normal_shading> h;
   if (s.orthographic) {
     r.px = su * s.plane_width;
     r.py = sv * s.plane_height;
@@ -345,8 +291,7 @@ scalar_hit trace_pixel(const float_scene& s, const kernel_spheres& sp, int64_t i
   store(t, h.t);
   store(index, as_float(h.index));
   for (int k = 0; k < 3; ++k) store(d[k], r.d[k]);
-  // P = O + t d in world units, so the distance is t |d|; orthographic: t is
-  // the depth beyond the plane offset.
+  // The distance is t |d|; orthographic: t is the depth beyond the plane offset.
   const double d_len = std::sqrt(double(d[0][0]) * d[0][0] + double(d[1][0]) * d[1][0] + double(d[2][0]) * d[2][0]);
   if (s.orthographic) return {int64_t(scene_index(index)), double(t[0]) + s.plane_offset};
   return {int64_t(scene_index(index)), double(t[0]) * d_len};

@@ -1,6 +1,4 @@
-// Shading of the sphere kernel (sphere_kernel.inl), per instruction set:
-// the sky where no sphere was hit, a hit's normal, headlight and colour
-// (float_spheres.h; the light of lit ones: scene/light.h), and the per-lane sums of the sampled path.
+// The sphere kernel's shading (float_spheres.h), and the sampled path's per-lane sums.
 #pragma once
 #include <cfloat>
 
@@ -12,9 +10,7 @@
 namespace raycast::kernels::RAYCAST_ISA {
 namespace {
 
-// The sky of the sphere kernel's misses (sky_shade.inl), with the sky
-// kernel's shortcuts `channels` and `clamps` (render/plan.h), which the plan
-// decides for sphere scenes too.
+// The sky of the misses, with the shortcuts `channels` and `clamps`.
 struct sky_shader {
   sky_colors colors;
   bool constant[3];
@@ -32,8 +28,7 @@ struct sky_shader {
   }
 };
 
-// The normal of each lane that hit a normal-shaded sphere (float_spheres.h):
-// N, facing the ray inside a sphere; `back`, where it was turned so.
+// The normal of each lane's hit, facing the ray inside a sphere; `back`: where it was turned.
 template <int Shades>
 RAYCAST_INLINE void hit_normal(const kernel_spheres& sp, const closest_hit<Shades>& h, const rays& r, vfloat n[3],
                                vmask* back = nullptr) {
@@ -47,17 +42,15 @@ RAYCAST_INLINE void hit_normal(const kernel_spheres& sp, const closest_hit<Shade
   }
 }
 
-// Which pixels a batch's lanes are (lane l: column i0 + l of row j), and
-// which antialiasing sample: what ambient occlusion draws its numbers from.
+// A batch's pixels (lane l: column i0 + l of row j) and sample: ambient occlusion's numbers' key.
 struct pixel_at {
   int64_t i0, j;
   uint32_t sample;
 };
 
-// The light of lit spheres (scene/light.h): lit_ambient + lit_diffuse
-// max(N . L, 0), L the directional light's, or the headlight's -d / sqrt(n2):
-// max(-(N . d) / sqrt(n2), 0). With shadow or ambient-occlusion rays, each
-// lit lane's S and A come from light/secondary.h, compiled once.
+// The light of lit spheres (scene/light.h): lit_ambient + lit_diffuse max(N . L, 0), L the
+// directional light's, or the headlight's: max(-(N . d) / sqrt(n2), 0). With shadow or ambient-
+// occlusion rays, the lit lanes' light comes from light/secondary.h, compiled once.
 template <int Shades>
 RAYCAST_INLINE vfloat lit_light(const kernel_spheres& sp, const closest_hit<Shades>& h, const rays& r,
                                 const vfloat n[3], vmask back, vmask lit, const pixel_at& at) {
@@ -71,9 +64,7 @@ RAYCAST_INLINE vfloat lit_light(const kernel_spheres& sp, const closest_hit<Shad
   if (!sp.secondary) return vfloat(lit_ambient) + vfloat(lit_diffuse) * diffuse;
   alignas(64) float bits[2][N], light[lit_lanes::most > N ? lit_lanes::most : N] = {};
   lit_lanes ls;
-  ls.i0 = at.i0;
-  ls.j = at.j;
-  ls.sample = at.sample;
+  ls.i0 = at.i0, ls.j = at.j, ls.sample = at.sample;
   store(bits[0], select(lit, vfloat(1.0f), vfloat(0.0f)));
   store(bits[1], select(back, vfloat(1.0f), vfloat(0.0f)));
   store(light, as_float(h.index));
@@ -92,8 +83,7 @@ RAYCAST_INLINE vfloat lit_light(const kernel_spheres& sp, const closest_hit<Shad
   return vfloat::load(light);
 }
 
-// The hit colour of each lane that hit (float_spheres.h): 0.5 (N + 1), the
-// sphere's flat colour, or its lit colour.
+// The hit colour of each lane that hit: 0.5 (N + 1), the flat colour, or the lit colour.
 template <int Shades>
 RAYCAST_INLINE void hit_color(const kernel_spheres& sp, const closest_hit<Shades>& h, const rays& r,
                                const pixel_at& at, vfloat out[3]) {
@@ -116,8 +106,6 @@ RAYCAST_INLINE void hit_color(const kernel_spheres& sp, const closest_hit<Shades
   }
 }
 
-// The colour of one batch (float_spheres.h): the closest hit's shading, the
-// sky where nothing was hit.
 template <int Shades>
 RAYCAST_INLINE void shade(const sky_shader& sky, const kernel_spheres& sp, const closest_hit<Shades>& h,
                           const rays& r, const pixel_at& at, vfloat out[3]) {
@@ -136,15 +124,13 @@ RAYCAST_INLINE void shade(const sky_shader& sky, const kernel_spheres& sp, const
   for (int k = 0; k < 3; ++k) out[k] = select(h.hit, hit[k], sky_color[k]);
 }
 
-// The per-lane sums of a sampled batch (kernels/scalar.h's order): flat and
-// lit colours, normals and their count, the sky's u and count
-// (kernels/sampled_sky.h). A lane adds only what its sample gave: + 0 leaves
-// a sum that is never -0 unchanged, so the other lanes' adds change nothing.
+// The per-lane sums of a sampled batch (kernels/scalar.h's order). A lane adds only what its sample
+// gave: + 0 leaves a sum that is never -0 unchanged.
 struct sample_sums {
   vfloat flat[3] = {0.0f, 0.0f, 0.0f}, normals[3] = {0.0f, 0.0f, 0.0f}, normal_count = 0.0f;
   vfloat sky_sum = 0.0f, sky_count = 0.0f;
 
-  // The sky in the lanes where this sample hit nothing; then in every lane.
+  // The sky where this sample hit nothing; then in every lane.
   RAYCAST_INLINE void add_sky(const rays& r, vmask hit) {
     const vfloat sky = sampling::sky_u<vfloat, vuint>(r.d[1], r.n2);
     sky_sum = sky_sum + select(hit, 0.0f, sky);
@@ -194,7 +180,7 @@ struct sample_sums {
   // The pixels' colours from `count` samples (kernels/sampled_sky.h).
   template <int Shades>
   RAYCAST_INLINE void average(const float_scene& s, vfloat count, vfloat c[3]) {
-    // A normal-shaded scene's normal count is what the sky did not take (exact: below 2^24).
+    // A normal-shaded scene's normal count is what the sky did not take (exact below 2^24).
     if constexpr (Shades == normal_shading) normal_count = count - sky_count;
     for (int k = 0; k < 3; ++k)
       c[k] = ((flat[k] + (normals[k] + normal_count) * 0.5f) + (sky_count * s.sky_mid[k] + sky_sum * s.sky_half[k])) / count;

@@ -1,6 +1,4 @@
-// Stores of the sphere kernel (sphere_kernel.inl), per instruction set: a
-// batch's colours as 8-bit or float pixels, whole, cut at the row's end, in
-// mirrored lane order, or clipped to a band's column window.
+// The sphere kernel's stores of a batch's colours, as 8-bit or float pixels.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -10,8 +8,7 @@
 namespace raycast::kernels::RAYCAST_ISA {
 namespace {
 
-// Stores n pixels of a batch at column i0; Reversed, all N with their lanes
-// in the opposite order (the mirrored batch).
+// Stores n pixels of a batch at column i0; Reversed, all N in the opposite order.
 template <bool Float, bool Reversed = false>
 RAYCAST_INLINE void store_batch(unsigned char* out, int64_t i0, int n, const vfloat c[3]) {
   if constexpr (Float) {
@@ -44,8 +41,7 @@ RAYCAST_INLINE void store_batch(unsigned char* out, int64_t i0, int n, const vfl
   }
 }
 
-// Stores the lanes of a batch at column i0 that lie in the band's column
-// window [c0, c1) (image_band); row points at column c0.
+// Stores the lanes of a batch at column i0 inside the band's window [c0, c1); row is column c0.
 template <bool Float>
 RAYCAST_INLINE void store_window(unsigned char* row, int64_t i0, int64_t c0, int64_t c1, const vfloat c[3]) {
   const int64_t lo = i0 > c0 ? i0 : c0, hi = i0 + N < c1 ? i0 + N : c1;

@@ -1,7 +1,4 @@
-// The top of every per-target kernel source (sky_kernel.cpp,
-// sphere_kernel.cpp): CMake compiles each once per target of
-// simd/targets.h, with RAYCAST_ISA the target's name and
-// RAYCAST_TARGET_HEADER its vector layer, which comes first.
+// The top of every per-target kernel source (RAYCAST_ISA, RAYCAST_TARGET_HEADER: set by CMake).
 #pragma once
 #include RAYCAST_TARGET_HEADER
 

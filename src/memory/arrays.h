@@ -1,6 +1,4 @@
-// The arrays the renderer's preparation hands out, each with the page policy
-// its use calls for (memory/pages.h): whoever allocates megabytes picks one of
-// these, and nobody else decides about pages.
+// The arrays the renderer hands out, each with the page policy (pages.h) its use calls for.
 #pragma once
 #include <cstddef>
 #include <new>
@@ -11,12 +9,9 @@
 
 namespace raycast {
 
-// Always: huge pages whatever the faults cost (map_huge's `always`).
-// FilledLater: memory whose every element is written before it is read, by
-// as many threads as fill it: mapped only where small pages are dear, and
-// then advised huge but not faulted in here (its faults are the fillers');
-// elsewhere the C++ allocator's small pages, touched first by the fillers.
-// Blocks under a MiB always come from the C++ allocator.
+// Always: huge pages whatever the faults cost. FilledLater: mapped only where small pages are dear
+// (advised huge, faulted in by its fillers), else the C++ allocator's. Blocks under a MiB always
+// come from the C++ allocator.
 template <class T, bool Always = false, bool FilledLater = false>
 struct page_allocator {
   using value_type = T;
@@ -57,21 +52,17 @@ struct page_allocator {
   static bool mapped(size_t bytes) { return bytes >= mapped_from && (!FilledLater || small_pages_dear()); }
 };
 
-// Memory filled whole by its writer (map_huge with `prefault` from a MiB on).
+// Memory filled whole by its writer (map_huge's `prefault` from a MiB on).
 template <class T>
 using filled_array = std::vector<T, page_allocator<T>>;
 
-// An array read or written out of order (the light's grid and bins, the
-// depth order's indices and keys, a particle file's decoded table): in huge
-// pages always, as its TLB misses cost more than its faults. Elements are not
-// zeroed unless a value is given.
+// An array read or written out of order: huge pages always, as its TLB misses cost more than its
+// faults. Elements are not zeroed unless a value is given.
 template <class T>
 using out_of_order_array = std::vector<T, page_allocator<T, true>>;
 
-// An array whose every element is written before it is read, by as many
-// threads as fill it, so that they share its first touch: in huge pages where
-// small pages are dear, small pages elsewhere. Elements are not zeroed unless
-// a value is given.
+// An array every element of which its filling threads write before it is read (they share its
+// first touch). Elements are not zeroed unless a value is given.
 template <class T>
 using filled_later_array = std::vector<T, page_allocator<T, false, true>>;
 

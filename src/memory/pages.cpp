@@ -5,13 +5,11 @@
 #include <chrono>
 
 namespace raycast {
-
 namespace {
 
 using clock = std::chrono::steady_clock;
 
-// Seconds to map `bytes` afresh with the given advice and touch each of its
-// 4 KiB pages; a huge page is faulted in whole at its first byte.
+// Seconds to map `bytes` afresh with the given advice and touch each of its 4 KiB pages.
 double first_touch(size_t bytes, int advice) {
   void* p = ::mmap(nullptr, bytes + huge_page_bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
   if (p == MAP_FAILED) return -1.0;
@@ -25,25 +23,7 @@ double first_touch(size_t bytes, int advice) {
   return s;
 }
 
-}  // namespace
-
-bool small_pages_dear() {
-  // A huge page costs about 2 ms a MiB to fault in where the host has not
-  // backed it, and small pages cost what they cost everywhere: they are dear
-  // where their faults cost over half the cold huge page's (7.8 us a 4 KiB
-  // page): 4 us.
-  static const bool dear = [] {
-    constexpr size_t pages = 128;
-    const double s = first_touch(pages << 12, MADV_NOHUGEPAGE);
-    return !(s >= 0.0) || s / double(pages) > 4e-6;
-  }();
-  return dear;
-}
-
-namespace {
-
-// Faults in one huge page (its contents kept): whether within 1 ms, as
-// where the host backs the memory.
+// Faults in one huge page (its contents kept): whether within 1 ms, as where the host backs it.
 bool fault_backed(unsigned char* page) {
   volatile unsigned char* const byte = page;
   const clock::time_point t0 = clock::now();
@@ -52,6 +32,16 @@ bool fault_backed(unsigned char* page) {
 }
 
 }  // namespace
+
+bool small_pages_dear() {
+  // An unbacked huge page costs about 2 ms a MiB, 7.8 us a 4 KiB page: dear above half that.
+  static const bool dear = [] {
+    constexpr size_t pages = 128;
+    const double s = first_touch(pages << 12, MADV_NOHUGEPAGE);
+    return !(s >= 0.0) || s / double(pages) > 4e-6;
+  }();
+  return dear;
+}
 
 void advise_huge_pages(void* p, size_t n, bool always, bool prefault) {
   constexpr uintptr_t huge = huge_page_bytes;
@@ -65,8 +55,6 @@ void advise_huge_pages(void* p, size_t n, bool always, bool prefault) {
     return;
   }
   if (!prefault) return;  // small pages: memory that may not all be used
-  // Huge pages while the host backs them, each faulted in turn until one is
-  // not; the rest small.
   ::madvise(first, bytes, MADV_HUGEPAGE);
   size_t at = 0;
   while (at < bytes && fault_backed(first + at)) at += huge;

@@ -1,14 +1,11 @@
 #include "prepare/culling.h"
 
-
 #include <algorithm>
 #include <bit>
 #include <cassert>
-#include <cmath>
 #include <cstdlib>
+#include <initializer_list>
 #include <optional>
-#include <utility>
-
 
 #include "prepare/culling_geometry.h"
 
@@ -32,8 +29,7 @@ batch_culler::batch_culler(const float_scene& f, size_t most, int shift, int bat
     release();
     return;
   }
-  // Slots share the list's memory: a batch's slot is touched only as far
-  // as its list reaches, so a long slot costs no cache.
+  // Slots share the list's memory: a slot is touched only as far as its list reaches.
   slot_ = std::min<size_t>(capacity_ / batches, UINT32_MAX / batches);
   for (size_t b = 0; b < batches; ++b) slot_start_[b] = uint32_t(b * slot_);
 }
@@ -41,21 +37,15 @@ batch_culler::batch_culler(const float_scene& f, size_t most, int shift, int bat
 batch_culler::~batch_culler() { release(); }
 
 void batch_culler::release() {
-  std::free(spans_);
-  std::free(list_);
-  std::free(first_);
-  std::free(fill_);
-  std::free(count_);
-  std::free(slot_start_);
+  for (void* p : std::initializer_list<void*>{spans_, list_, first_, fill_, count_, slot_start_}) std::free(p);
   spans_ = nullptr;
   list_ = first_ = fill_ = count_ = slot_start_ = nullptr;
 }
 
 namespace {
 
-// Each of a row's entries whose sphere its rays may come near, as keep(k,
-// lo, hi) with the columns [lo, hi] (a tall sphere's from the exact test,
-// made at the first); stops, false, where keep returns false.
+// keep(k, lo, hi) for each of a row's entries whose sphere its rays may come near, with the
+// columns [lo, hi] (a tall sphere's from the exact test); false, stopping, where keep is false.
 template <class Keep>
 bool each_entry(const float_scene& f, float sv, double spread, int shift, const row_entry* entries, size_t count,
                 const Keep& keep) {
@@ -77,9 +67,7 @@ bool each_entry(const float_scene& f, float sv, double spread, int shift, const 
 size_t batch_culler::row(float sv, const row_entry* entries, size_t count) {
   b0_ = 0;
   if (row_in_slots(sv, entries, count)) return kept_;
-  // A slot would overflow (a batch listing more than slot_ spheres: rare,
-  // spheres that each cover much of the frame): the spans, which build()
-  // counts and then places.
+  // A slot would overflow (rare): the spans, which build() counts and then places.
   const int64_t last_batch = batches_ - 1;
   kept_ = 0;
   entries_ = 0;
@@ -99,14 +87,12 @@ bool batch_culler::row_in_slots(float sv, const row_entry* entries, size_t count
   const int64_t last_batch = batches_ - 1;
   std::fill(count_, count_ + batches_, 0u);
   kept_ = 0;
-  // lo, hi >= 0: a shift is the division by the batch's width (an integer
-  // division per end was half the row's time).
+  // lo, hi >= 0: a shift is the division by the batch's width.
   const bool fit = each_entry(f_, sv, spread_, shift_, entries, count, [&](uint32_t k, int64_t lo, int64_t hi) {
     const int64_t a = std::min(lo >> batch_shift_, last_batch), b = std::min(hi >> batch_shift_, last_batch);
     ++kept_;
-    if (b - a <= 1) {  // most spheres: one batch or two, written with no branch between them
-      // Room for the second write too, which lands one past the list's end
-      // (and is not counted) where b = a.
+    if (b - a <= 1) {  // most spheres: one batch or two, branch-free (where b = a the second
+                       // write lands one past the list's end, uncounted: room for it too)
       if (count_[a] + 1 >= slot_ || count_[b] + 1 >= slot_) return false;
       list_[slot_start_[a] + count_[a]++] = k;
       list_[slot_start_[b] + count_[b]] = k;

@@ -3,13 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <bit>
-#include <cassert>
 #include <cmath>
-#include <cstdlib>
-#include <optional>
-#include <utility>
-
 
 #include "prepare/culling_geometry.h"
 
@@ -19,6 +13,15 @@ using namespace culling_detail;
 
 namespace {
 
+// Occlusion, for a depth-ordered scene: walked nearest first, each sphere is either hidden (every
+// 4x4 tile its box touches is covered by hits nearer than it can be) and left out of the index, or
+// kept, and then covers the pixels whose rays surely hit it: those that pass within its sure
+// radius (r less twice the culling margin) of the centre of a sphere wholly ahead. A tile's depth
+// is the farthest of its pixels' first covering hits, (|f| + r)(1 + 1e-5) in world units (from an
+// orthographic camera's plane); a sphere is hidden where its bucket's key (at most |f| - r less
+// 2^-15 of it) is beyond that in every tile of its box. Both margins are far above the float
+// rounding of t |d|, so a hidden sphere's hit would be strictly farther than the kernel's: no pixel
+// changes and no tie involves it. Memory: a byte a pixel, 9 bytes a tile, 8 a column.
 class occlusion {
  public:
   static constexpr int64_t T = 4;  // a tile's side, in pixels
@@ -36,12 +39,8 @@ class occlusion {
   // Whether every tile of the box is covered by hits nearer than `nearest`.
   bool hidden(const frame_box& b, float nearest) const {
     const int64_t tx0 = b.c_lo / T, tx1 = b.c_hi / T, ty0 = b.r_lo / T, ty1 = b.r_hi / T;
-    // A box of up to 3 x 3 tiles (nearly every sphere's in a deep scene):
-    // the farthest of all nine (a narrower box's some twice), with no
-    // branch (depth_ is never NaN: infinity, or far_, whose
-    // std::max(far_, depth) in mark() drops a NaN depth).
-    // The loop below, whose count and exit vary from sphere to sphere, made
-    // the occlusion walk of a packed box of 10^6 take 6 % longer.
+    // A box of up to 3 x 3 tiles: the farthest of nine (a narrower box's some twice), branch-free
+    // (depth_ is never NaN: infinity, or far_, whose std::max in mark() drops a NaN depth).
     if (tx1 - tx0 < 3 && ty1 - ty0 < 3) {
       const float* row[3] = {&depth_[size_t(ty0 * tw_)], &depth_[size_t(std::min(ty0 + 1, ty1) * tw_)],
                              &depth_[size_t(ty1 * tw_)]};
@@ -57,19 +56,13 @@ class occlusion {
     return true;
   }
 
-  // Marks the pixels of sphere k's box whose rays surely hit it. With many
-  // samples (spread > 0), a pixel's sample rays lie between its corners'
-  // (kernels/scalar.h: the offsets are in [0, 1) of a pixel), and the rays
-  // that surely hit a sphere form a convex set (a cone, or a disc on an
-  // orthographic camera's plane): the pixel is covered where its four
-  // corners' rays are.
+  // Marks the pixels whose rays surely hit sphere k (with samples: all four corners' rays).
   void cover(uint32_t k, const frame_box& b) {
     const sphere_record& e = f_.spheres.rec[k];
     const double r = std::sqrt(double(e.r2)), sure = 2.0 * r - double(f_.spheres.cull_radius[k]);
     if (f_.orthographic) {
       const double scale = e.scale, cx = double(e.fx) * scale, cy = double(e.fy) * scale, cz = double(e.fz) * scale;
-      // cz: the depth from the plane the hits' depths (and the keys) are
-      // measured from, plane_offset ahead of the image plane.
+      // cz: the depth from the plane the hits' depths and the keys are measured from.
       const double margin = 1e-5 * (std::abs(cx) + std::abs(cy) + std::abs(cz) + r * scale);
       if (!(sure > 0.0) || !(cz + f_.plane_offset - r * scale > margin)) return;
       const double w = sure * scale;
@@ -87,8 +80,7 @@ class occlusion {
     double B[3];
     cross(fk, h_, B);
     const double s2 = sure * sure, bb = dot(B, B), hh = dot(h_, h_), fh = dot(fk, h_);
-    // Rays d = a + su h, a = c + sv v, with |f x d|^2 < sure^2 |d|^2 (a
-    // quadratic in su) and f.d < 0 (linear): an interval of su.
+    // Rays d = a + su h, a = c + sv v, with |f x d|^2 < sure^2 |d|^2 and f.d < 0: an interval of su.
     const auto across = [&](double sv, double& s0, double& s1) {
       const double a[3] = {c_[0] + sv * v_[0], c_[1] + sv * v_[1], c_[2] + sv * v_[2]};
       double A[3];
@@ -107,9 +99,8 @@ class occlusion {
   }
 
  private:
-  // The box's rows: where across(sv, s0, s1) gives the su interval (s0, s1)
-  // of a row's sure rays, the pixels inside it (with samples: the pixel's
-  // two corner rows' intervals, both corners' columns) are covered at depth.
+  // The box's rows: where across(sv, s0, s1) gives a row's sure su interval, the pixels inside it
+  // (with samples: inside both corner rows' intervals, both corner columns) get depth.
   template <class Across>
   void cover_rows(const frame_box& b, float depth, const Across& across) {
     const bool corners = spread_ > 0.0;
@@ -126,8 +117,7 @@ class occlusion {
     }
   }
 
-  // Covers the row's pixels of the box whose su lies inside (s0, s1). (The
-  // ends' rounding is far below the sure radius's margin.)
+  // Covers the row's pixels of the box whose su lies inside (s0, s1).
   void mark(int64_t row, const frame_box& b, double s0, double s1, float depth) {
     if (!(s0 < s1)) return;
     const double w = double(f_.width), last = f_.last_col, mid = f_.mid_col;
@@ -150,24 +140,15 @@ class occlusion {
   int64_t tw_, th_;
   double h_[3], c_[3], v_[3];
   std::vector<double> su_;         // per column (kernels/scalar.h)
-  // Per pixel, rows top-down; from a megabyte on, in huge pages where they
-  // fault in faster (memory/pages.h: a 4 KiB page's first touch costs
-  // 10 us on some hosts: 500 of them for a 1920 x 1080 frame).
-  filled_array<uint8_t> covered_;
+  filled_array<uint8_t> covered_;  // per pixel, rows top-down
   std::vector<uint8_t> open_;     // per tile: its pixels not covered yet
   std::vector<float> far_;        // per tile: the farthest first covering hit
   std::vector<float> depth_;      // per tile: far_ once every pixel is covered, else infinity
 };
 
-// Boxes that hold box_of's, cheaper (no square root), for the spheres
-// [k0, k0 + m), m <= rough_block: ok[i] false where a box is empty or too
-// tall to be worth a test. For each family of planes (rows, columns), plane
-// s comes within w of the sphere only where |fk.n(s)| = |p1| |s - s_c| <=
-// w |n(s)| <= w n_max, s_c the plane through the centre; the indices of
-// [s_c - delta, s_c + delta] with a slack of one each way (index_range's).
-// The block's arithmetic comes first, in loops with no branch, then its
-// boxes: a sphere at a time, this took twice as long (branches between one
-// sphere's divisions and the next's).
+// Boxes that hold box_of's, without square roots, for spheres [k0, k0 + m), m <= rough_block: ok[i]
+// false where empty or too tall. Plane s comes within w of the sphere only where
+// |fk.n(s)| = |p1| |s - s_c| <= w n_max: the indices of [s_c - delta, s_c + delta], slack one.
 constexpr uint32_t rough_block = 32;
 void rough_boxes(const float_scene& f, const frame_vectors& fv, uint32_t k0, uint32_t m, double spread, frame_box* box,
                  bool* ok) {
@@ -204,15 +185,13 @@ void rough_boxes(const float_scene& f, const frame_vectors& fv, uint32_t k0, uin
   }
 }
 
-// A sphere in some row of the frame, and its box.
 struct placed_box {
   uint32_t sphere;
   frame_box box;
 };
 using placed_boxes = filled_array<placed_box>;
 
-// Spheres [k0, k1)'s boxes (box_of), with up to `team` threads, appended to
-// out where they are in some row.
+// Spheres [k0, k1)'s boxes, with up to `team` threads, appended to out where in some row.
 void append_boxes(const float_scene& f, const frame_vectors& fv, double spread, int team, size_t k0, size_t k1,
                   placed_boxes& out) {
   const size_t at = out.size();
@@ -228,19 +207,13 @@ void append_boxes(const float_scene& f, const frame_vectors& fv, double spread, 
       boxes_of(f, fv, uint32_t(c0), uint32_t(c1 - c0), spread, box);
     for (size_t k = c0; k < c1; ++k) out[at + (k - k0)] = {uint32_t(k), box[k - c0]};
   }
-  // The spheres in no row out, the others kept in their order.
   out.erase(std::remove_if(out.begin() + ptrdiff_t(at), out.end(),
                            [](const placed_box& p) { return p.box.r_lo > p.box.r_hi; }),
             out.end());
 }
 
-// The spheres in some row of the frame, in the float scene's order, with
-// their boxes (box_of). In a depth-ordered scene, the spheres occlusion
-// hides are left out too (rough boxes first: most of a deep scene's
-// spheres are hidden, and need no exact box); `hidden` counts them. Where
-// the nearest sixteenth of the spheres hides less than an eighth of itself
-// (a lattice seen along its axis, whose gaps let every tile see through),
-// the rest are boxed as in any other scene.
+// The spheres in some row, with their boxes, less those occlusion hides (in depth order, while
+// the nearest sixteenth hides an eighth of itself; a lattice seen along its axis hides little).
 placed_boxes boxes(const float_scene& f, double spread, int team, size_t& hidden) {
   const size_t n = f.spheres.size();
   const frame_vectors fv(f);
@@ -314,10 +287,8 @@ row_index row_index::build(const float_scene& f, double spread, int threads) {
   row_index ix;
   ix.first.assign(size_t(H) + 1, 0);
   if (n == 0) return ix;
-  // Below this many spheres a thread costs more than it saves.
   const int team = n < (size_t(1) << 15) ? 1 : std::max(1, threads);
   const placed_boxes placed = boxes(f, spread, team, ix.hidden);
-  // Counts per row from a difference array, then their prefix sums.
   std::vector<int64_t> diff(size_t(H) + 1, 0);
   for (const placed_box& p : placed) ++diff[size_t(p.box.r_lo)], --diff[size_t(p.box.r_hi) + 1];
   int64_t running = 0;
@@ -329,9 +300,7 @@ row_index row_index::build(const float_scene& f, double spread, int threads) {
   ix.list.resize(ix.first.back());
   while (((f.width - 1) >> ix.shift) >= row_entry::tall) ++ix.shift;
   const int shift = ix.shift;
-  // Filled in the float scene's order by row blocks: each thread owns rows [r0, r1), scans
-  // every sphere's rows and writes only its own rows' entries, so the bytes
-  // do not depend on the team and no two threads write the same row.
+  // Each thread owns rows [r0, r1) and writes only their entries: the bytes do not depend on the team.
 #pragma omp parallel num_threads(team)
   {
     const int t = omp_get_thread_num(), p = omp_get_num_threads();

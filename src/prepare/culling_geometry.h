@@ -1,7 +1,4 @@
-// The geometry of the primary rays' culling (prepare/culling.h): which rows
-// and columns of the frame may see a sphere, in double, with margins far
-// above the float intersection's rounding. Shared by the row index's build
-// (culling.cpp) and the per-batch lists (batch_culler.cpp).
+// The culling's geometry (culling.h): which rows and columns may see a sphere, in double.
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -24,10 +21,8 @@ inline void cross(const double* x, const double* y, double* out) {
   out[2] = x[0] * y[1] - x[1] * y[0];
 }
 
-// Where alpha x^2 + 2 beta x + gamma <= 0: empty, one bounded interval
-// [s0, s1], or not one bounded interval (alpha <= 0, or NaN: unbounded).
-// Without branches, so that many spheres' square roots and divisions overlap
-// (boxes_of).
+// Where alpha x^2 + 2 beta x + gamma <= 0: empty, one bounded interval [s0, s1], or not one
+// (alpha <= 0, or NaN: unbounded). Branch-free, so many spheres' roots overlap (boxes_of).
 struct solved {
   enum : uint8_t { empty, bounded, unbounded };
   double s0, s1;
@@ -35,7 +30,6 @@ struct solved {
 };
 inline solved solve_below_zero(double alpha, double beta, double gamma) {
   const double disc = beta * beta - alpha * gamma;
-  // The roots, without cancellation.
   const double q = -(beta + std::copysign(std::sqrt(disc), beta));
   const double r0 = q / alpha, r1 = q != 0.0 ? gamma / q : r0;
   const bool open = !(alpha > 0.0) || std::isnan(disc);
@@ -43,16 +37,14 @@ inline solved solve_below_zero(double alpha, double beta, double gamma) {
           uint8_t(open ? solved::unbounded : disc < 0.0 ? solved::empty : solved::bounded)};
 }
 
-// solve_below_zero's as an interval [s0, s1]: left as given where unbounded,
-// false where empty.
+// solve_below_zero's interval into [s0, s1]: left as given where unbounded, false where empty.
 inline bool below_zero(double alpha, double beta, double gamma, double& s0, double& s1) {
   const solved r = solve_below_zero(alpha, beta, gamma);
   if (r.kind == solved::bounded) s0 = r.s0, s1 = r.s1;
   return r.kind != solved::empty;
 }
 
-// The indices [i0, i1] (whole numbers in double) clamped to [0, count) as
-// [lo, hi]; false when none is inside.
+// The indices [i0, i1] (whole numbers in double) clamped to [0, count); false when none is inside.
 inline bool clamp_indices(double i0, double i1, int64_t count, int64_t& lo, int64_t& hi) {
   if (i1 < 0.0 || i0 > double(count - 1) || i0 > i1) return false;
   lo = i0 > 0.0 ? int64_t(i0) : 0;  // (NaN: 0)
@@ -60,9 +52,8 @@ inline bool clamp_indices(double i0, double i1, int64_t count, int64_t& lo, int6
   return true;
 }
 
-// The indices i in [0, count) with (i - mid) / last in [s0, s1] (a column
-// from su, a row from sv: kernels/scalar.h), widened by slack each way, as
-// [lo, hi]; false when there is none.
+// The indices i in [0, count) with (i - mid) / last in [s0, s1] (su or sv: kernels/scalar.h),
+// widened by slack each way, as [lo, hi]; false when there is none.
 inline bool index_range(double s0, double s1, float last, float mid, double slack, int64_t count, int64_t& lo,
                  int64_t& hi) {
   const double i0 = std::floor(s0 * double(last) + double(mid)) - slack;
@@ -70,13 +61,10 @@ inline bool index_range(double s0, double s1, float last, float mid, double slac
   return clamp_indices(i0, i1, count, lo, hi);
 }
 
-// The columns [lo, hi] of the row whose rays come within r of the sphere's
-// centre (f = O - C, both in the sphere's unit). Their lines do where
-// |f x d|^2 <= r^2 |d|^2, a quadratic in su; and where the camera is outside
-// the sphere (`outside`: outside its unwidened culling radius, even when it is
-// within the widened r -- the ground seen by rays that stray a pixel), a ray
-// (s >= 0, not the whole line) also needs the centre ahead, f.d <= 0, linear
-// in su (here with slack m, which covers the stray). False when no column's does.
+// The columns [lo, hi] of the row whose rays come within r of the centre (f = O - C, in the
+// sphere's unit): their lines do where |f x d|^2 <= r^2 |d|^2, a quadratic in su; a camera
+// `outside` the unwidened culling radius also needs the centre ahead, f.d <= m (linear in su; the
+// slack m covers rays that stray). False when no column's does.
 inline bool columns_near(const float_scene& fs, const row_rays& rr, const double* f, double r, bool outside, double m,
                   int64_t& lo, int64_t& hi) {
   double A[3], B[3];
@@ -95,21 +83,17 @@ inline bool columns_near(const float_scene& fs, const row_rays& rr, const double
     else if (g0 > m) return false;
   }
   if (fs.width == 1) return !(s0 > 0.0 || s1 < 0.0);
-  // su = (i - mid_col) / last_col; one column of slack each way.
   return index_range(s0, s1, fs.last_col, fs.mid_col, 1.0, fs.width, lo, hi);
 }
 
-// The sphere's culling radius for rays that may stray by spread (float_scene.h).
+// The culling radius for rays that may stray by spread (float_scene.h).
 inline double widened(const float_spheres& sp, uint32_t k, double spread) {
   if (spread == 0.0) return sp.cull_radius[k];
   const double f2 = double(sp.rec[k].fx) * sp.rec[k].fx + double(sp.rec[k].fy) * sp.rec[k].fy + double(sp.rec[k].fz) * sp.rec[k].fz;
   return sp.cull_radius[k] + spread * std::sqrt(f2);
 }
 
-// An orthographic camera's rays are lines across the view, one per pixel's
-// plane position (px, py) = (su plane_width, sv plane_height): sphere k's
-// centre and reach on the plane in world units, its culling radius widened
-// by a sample's lateral stray (the pixel_spread is lateral there).
+// Sphere k's centre and reach on an orthographic camera's plane in world units, widened by spread.
 struct plane_disc {
   double cx, cy, w;
   bool behind;  // entirely behind the image plane: no ray meets it
@@ -120,8 +104,7 @@ inline plane_disc disc_of(const float_scene& f, uint32_t k, double spread) {
   return {double(e.fx) * scale, double(e.fy) * scale, w, double(e.fz) * scale + f.plane_offset + w < 0.0};
 }
 
-// The indices whose plane position (s = (i - mid) / last, times extent) lies
-// within [lo, hi], with a slack of one each way; false when none does.
+// The indices whose plane position ((i - mid) / last extent) is in [lo, hi], one slack each way.
 inline bool plane_range(double lo, double hi, double extent, float last, float mid, int64_t count, int64_t& a, int64_t& b) {
   if (count == 1) {
     a = b = 0;
@@ -130,16 +113,13 @@ inline bool plane_range(double lo, double hi, double extent, float last, float m
   return index_range(lo / extent, hi / extent, last, mid, 1.0, count, a, b);
 }
 
-// A family of planes through the camera origin: plane s is spanned by
-// a + s step and along, with s = (i - mid) / last for index i -- the rows'
-// planes (step = vertical, along = horizontal) or the columns' (the other way
-// round). Plane s has the normal N0 + s N1 (N0 = a x along, N1 = step x
-// along); the products of the normals are the frame's, computed once.
+// A family of planes through the camera origin: plane s, s = (i - mid) / last, is spanned by
+// a + s step and along (the rows': step = vertical, along = horizontal; the columns' the other
+// way round), with normal N0 + s N1 (N0 = a x along, N1 = step x along).
 struct plane_family {
   double N0[3], N1[3], n00, n01, n11;
   float last, mid;
   int64_t count;
-
   double n_max;  // the most |N0 + s N1| for s in [-1/2, 1/2] (at an end: |n|^2 is convex)
 
   plane_family(const double* a, const double* step, const double* along, float last_, float mid_, int64_t count_)
@@ -152,12 +132,9 @@ struct plane_family {
     n_max = std::sqrt(std::max(n00 - n01 + 0.25 * n11, n00 + n01 + 0.25 * n11));
   }
 
-  // The indices i in [0, count) whose plane may come near the sphere at fk
-  // (within w): where (fk.n)^2 <= w^2 |n|^2, a quadratic in s, in double; the
-  // indices rounded outwards (the radius's margin covers the float rounding
-  // of s). False when none is near.
+  // The indices whose plane comes within w of the sphere at fk: (fk.n)^2 <= w^2 |n|^2, a quadratic
+  // in s, rounded outwards (near(), then indices()); false when none does.
   bool range(const double* fk, double w, int64_t& lo, int64_t& hi) const { return indices(near(fk, w), lo, hi); }
-  // range() in two steps: the quadratic's solution, then its indices.
   solved near(const double* fk, double w) const {
     const double w2 = w * w, p0 = dot(fk, N0), p1 = dot(fk, N1);
     return solve_below_zero(p1 * p1 - w2 * n11, p0 * p1 - w2 * n01, p0 * p0 - w2 * n00);
@@ -187,19 +164,17 @@ struct frame_vectors {
         cols(c, h, v, f.last_col, f.mid_col, f.width) {}
 };
 
-// Per row, what the exact test of a sphere against the row's rays needs.
+// The exact test of a sphere against a row's rays.
 struct row_test {
   const float_scene& f;
   double spread;
   row_rays rr;
   double n[3], len = 0.0, d_len = 0.0;
   bool plane = false;
-
   float sv;
 
   row_test(const float_scene& fs, float sv_, double spread_) : f(fs), spread(spread_), sv(sv_) {
-    // The row's plane through the camera origin, spanned by a = centre + sv *
-    // vertical (as scalar.h's direction, in double) and horizontal; n its normal.
+    // The row's plane through the origin, spanned by a = centre + sv vertical and horizontal.
     for (int k = 0; k < 3; ++k) {
       rr.a[k] = double(f.center[k]) + double(sv) * double(f.vertical[k]);
       rr.h[k] = double(f.horizontal[k]);
@@ -210,7 +185,6 @@ struct row_test {
     d_len = std::sqrt(dot(rr.a, rr.a)) + std::sqrt(dot(rr.h, rr.h));  // >= |d| in the row
   }
 
-  // The columns [lo, hi] of the row whose rays may hit sphere k; false when none.
   bool columns(uint32_t k, int64_t& lo, int64_t& hi) const {
     if (f.orthographic) {  // the row's line across the plane through the sphere's disc
       const plane_disc d = disc_of(f, k, spread);
@@ -221,9 +195,6 @@ struct row_test {
     }
     const float_spheres& sp = f.spheres;
     const double fk[3] = {sp.rec[k].fx, sp.rec[k].fy, sp.rec[k].fz};
-    // The margin (in cull_radius): 1e-5 of |f| + r, a hundred times the
-    // float intersection's rounding (and the direction's, about 1e-7 of |f|),
-    // so that leaving a sphere out never changes a pixel.
     const double wide = widened(sp, k, spread);
     if (plane && std::abs(dot(fk, n)) > wide * len) return false;  // NaN: kept
     lo = 0;
@@ -234,14 +205,10 @@ struct row_test {
   }
 };
 
-// The index keeps a sphere's column box for spheres at most this many rows
-// tall: a box wider than the sphere in its top and bottom rows costs a few
-// spare tests there, far less than an exact test per row. Taller spheres get
-// the exact test in each row they cross (row_test).
+// The index keeps a column box for spheres under this many rows tall; taller get row_test per row.
 constexpr int64_t boxed_rows = 64;
 
-// A sphere's place in the frame: its rows and, for a short one, its columns.
-// (No member initializers: the frame's array of them is filled, not zeroed first.)
+// A sphere's rows and, if short, columns (no member initializers: arrays of them are not zeroed).
 struct frame_box {
   int32_t r_lo, r_hi;  // rows, top-down (r = H - 1 - j); empty when r_lo > r_hi
   int32_t c_lo, c_hi;  // columns; -1: tested per row
@@ -260,9 +227,7 @@ inline frame_box box_of_ortho(const float_scene& f, uint32_t k, double spread) {
   return box;
 }
 
-// The boxes of spheres [k0, k0 + n) of a perspective camera's frame, into
-// out: a block of spheres at a time, their quadratics solved together (no
-// branch between one sphere's square roots and divisions and the next's).
+// The boxes of a perspective frame's spheres [k0, k0 + n), a block's quadratics solved together.
 inline void boxes_of(const float_scene& f, const frame_vectors& fv, uint32_t k0, uint32_t n, double spread, frame_box* out) {
   constexpr uint32_t block = 32;
   const float_spheres& sp = f.spheres;
@@ -285,9 +250,7 @@ inline void boxes_of(const float_scene& f, const frame_vectors& fv, uint32_t k0,
       const double fk[3] = {e.fx, e.fy, e.fz}, r = std::sqrt(double(e.r2));
       int64_t j_lo = 0, j_hi = 0, c_lo = 0, c_hi = 0;
       if (!fv.rows.indices(rows[i], j_lo, j_hi)) continue;
-      // A sphere the camera is outside of is hit only ahead, f.d < 0; f.d is
-      // linear over the viewport, so its least value is at a corner (rays that
-      // stray a pixel are covered by the slack, as in columns_near).
+      // Outside a sphere, it is hit only ahead, f.d < 0: f.d's least is at a corner (with slack).
       if (dot(fk, fk) > sp.cull_radius[k] * sp.cull_radius[k]) {
         const double least = dot(fk, fv.c) - 0.5 * std::abs(dot(fk, fv.h)) - 0.5 * std::abs(dot(fk, fv.v));
         if (least > (wide[i] - r) * fv.d_len) continue;  // behind every ray: NaN kept
@@ -306,23 +269,5 @@ inline frame_box box_of(const float_scene& f, const frame_vectors& fv, uint32_t 
   boxes_of(f, fv, k, 1, spread, &box);
   return box;
 }
-
-// Occlusion, for a depth-ordered scene (float_spheres::depth_key): its
-// spheres come nearest first, and a sphere every ray of whose box surely hits
-// a nearer one first cannot be seen, so it is left out of the index (a packed
-// box seen from outside hides most of its spheres behind a few layers).
-// Walked in the scene's order, each sphere is either hidden -- every 4x4
-// tile its box touches is covered, and by hits nearer than it can be -- or
-// kept, and then marks the pixels whose rays surely hit it: rays that pass
-// within its radius less twice the culling margin (its sure radius) of the
-// centre, of a sphere wholly ahead. A tile's depth is the farthest of its
-// pixels' first covering hits, |f| + r (from the plane an orthographic
-// camera's depths are measured from; world units, and 1e-5 more); a sphere is
-// hidden when its nearest distance (its bucket's key, at most |f| - r less
-// 2^-15 of it) is beyond that depth in every tile of its box. Both margins
-// are far above the float intersection's rounding of t |d|, so a hidden
-// sphere's hit would be strictly farther than one the kernel finds: leaving
-// it out changes no pixel, and no tie can involve it. Memory, while the index
-// is built: a byte a pixel, 9 bytes a tile, 8 a column.
 
 }  // namespace raycast::culling_detail

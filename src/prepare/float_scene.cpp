@@ -9,23 +9,16 @@
 
 #include <glm/geometric.hpp>
 
-
 namespace raycast {
 namespace {
 
-// Sky colours below 2^-64 become 0: they cannot change a float result, but as
-// denormals somewhere in the arithmetic they could make the output depend on
-// the FTZ/DAZ bits.
+// Sky colours below 2^-64 become 0: they change no result, but as denormals could depend on FTZ.
 float flush(double x) { return std::abs(x) < 0x1p-64 ? 0.0f : float(x); }
 
-// Camera components below 2^-100 of the largest become 0: above it, every
-// product su * component is normal (|su| >= 2^-24). A direction whose every
-// component is tiny (a degenerate camera's centre ray, a focal length down to
-// 2^-100 of the viewport) keeps its direction: the sky reads it through
-// max(n2, FLT_MIN), the sphere kernel scales it up (sphere_hit.inl).
+// Camera components below 2^-100 of the largest become 0: above it every su * component is normal
+// (|su| >= 2^-24). An all-tiny direction survives: max(n2, FLT_MIN) in the sky, set_length's scaling.
 float flush_camera(double x) { return std::abs(x) < 0x1p-100 ? 0.0f : float(x); }
 
-// The camera and the sky, scaled and rounded once (float_scene.h).
 void prepare_camera(float_scene& f, const scene& s) {
   const camera& c = s.cam;
   f.width = c.image_width;
@@ -35,7 +28,6 @@ void prepare_camera(float_scene& f, const scene& s) {
   f.mid_col = float(double(c.image_width - 1) / 2.0);
   f.mid_row = float(double(c.image_height - 1) / 2.0);
   const bool ortho = c.proj == projection::orthographic;
-  // Orthographic: one direction, -w; the image plane's extent is the plane's own.
   const vec3 center = ortho ? -c.axis_w : -c.focal_length * c.axis_w;
   const vec3 horizontal = ortho ? vec3(0.0) : c.horizontal, vertical = ortho ? vec3(0.0) : c.vertical;
   f.du = c.image_width == 1 ? 0.0f : 1.0f / f.last_col;
@@ -65,8 +57,7 @@ void prepare_camera(float_scene& f, const scene& s) {
     f.lo[k] = std::min(f.bottom[k], f.top[k]);
     f.hi[k] = std::max(f.bottom[k], f.top[k]);
   }
-  {  // the viewport's plane is at distance |centre| (horizontal and vertical
-     // are orthogonal to it), so every direction is at least that long
+  {  // the viewport's plane is |centre| away, so every direction is at least that long
     const auto len = [](const float* v) {
       return std::sqrt(double(v[0]) * v[0] + double(v[1]) * v[1] + double(v[2]) * v[2]);
     };
@@ -86,10 +77,7 @@ void prepare_camera(float_scene& f, const scene& s) {
                    f.vertical[2] == 0;
 }
 
-// std::frexp's exponent and std::ldexp(1, e) and std::nextafter(x, INFINITY),
-// from the bits where the value is a normal number, else by the library:
-// the same results without a library call per sphere (a sixth of the
-// per-sphere constants' time here).
+// std::frexp's exponent, std::ldexp(1, e), std::nextafter(x, INFINITY): from the bits where normal.
 int exponent_of(double x) {  // x = m 2^e with m in [0.5, 1)
   const uint64_t bits = std::bit_cast<uint64_t>(x);
   const int biased = int((bits >> 52) & 0x7ff);
@@ -110,13 +98,10 @@ float next_up(float x) {  // for x >= +0
   return std::bit_cast<float>(bits + 1);
 }
 
-// One sphere's constants in double, each rounded to float once
-// (float_spheres.h).
+// One sphere's constants in double, each rounded to float once (float_spheres.h); in its own unit
+// they neither overflow nor underflow but for radii below 2^-126 of the distance.
 sphere_record record_of(const sphere& b, const point3& origin) {
   const vec3 fo = origin - to_glm(b.center);
-  // The sphere's own unit, 2^e: max(|f|, r) 2^-e in [0.5, 1) (exact in
-  // double for every finite scene; the float constants then neither
-  // overflow nor underflow but for radii below 2^-126 of the distance).
   const double size = std::max({std::abs(fo.x), std::abs(fo.y), std::abs(fo.z), b.radius});
   const int unit = exponent_of(size);
   const double down = power_of_two(-unit);
@@ -124,44 +109,25 @@ sphere_record record_of(const sphere& b, const point3& origin) {
   const double r = b.radius * down;
   const double f2 = fs.x * fs.x + fs.y * fs.y + fs.z * fs.z;
   const double cc = f2 - r * r;
-  sphere_record e{};
-  e.fx = float(fs.x);
-  e.fy = float(fs.y);
-  e.fz = float(fs.z);
-  e.c = float(cc);
-  e.r2 = float(r * r);
-  e.inv_r = float(1.0 / r);
-  e.scale = float(power_of_two(unit));
-  e.near = f2 < 2.0 * r * r ? 1 : 0;
-  e.inside = cc <= 0.0 ? 1 : 0;
-  return e;
+  return {.fx = float(fs.x), .fy = float(fs.y), .fz = float(fs.z), .c = float(cc), .r2 = float(r * r),
+          .inv_r = float(1.0 / r), .scale = float(power_of_two(unit)), .near = uint8_t(f2 < 2.0 * r * r ? 1 : 0),
+          .inside = uint8_t(cc <= 0.0 ? 1 : 0), .depth = 0};
 }
 
-// The same for an orthographic camera (float_spheres.h): the centre in the
-// camera's frame, relative to lookfrom, its depth less the plane offset z0;
-// c holds 2^-e (the lanes' plane positions are scaled by it), `inside` says
-// the image plane cuts the sphere or it lies behind (a ray may start inside
-// it: its far root, or no hit).
+// The same for an orthographic camera (float_spheres.h): c holds 2^-e; `inside`: the image plane
+// cuts the sphere or it lies behind (a ray may start inside it: its far root, or no hit).
 sphere_record record_of_ortho(const sphere& b, const camera& cam, double z0) {
   const vec3 p = to_glm(b.center) - cam.origin;
   const double cx = glm::dot(p, cam.axis_u), cy = glm::dot(p, cam.axis_v), depth = -glm::dot(p, cam.axis_w);
   const double cz = depth - z0;
   const int unit = exponent_of(std::max({std::abs(cx), std::abs(cy), std::abs(cz), b.radius}));
   const double down = power_of_two(-unit), r = b.radius * down;
-  sphere_record e{};
-  e.fx = float(cx * down);
-  e.fy = float(cy * down);
-  e.fz = float(cz * down);
-  e.c = float(down);
-  e.r2 = float(r * r);
-  e.inv_r = float(1.0 / r);
-  e.scale = float(power_of_two(unit));
-  e.inside = depth - b.radius < 0.0 ? 1 : 0;
-  return e;
+  return {.fx = float(cx * down), .fy = float(cy * down), .fz = float(cz * down), .c = float(down),
+          .r2 = float(r * r), .inv_r = float(1.0 / r), .scale = float(power_of_two(unit)), .near = 0,
+          .inside = uint8_t(depth - b.radius < 0.0 ? 1 : 0), .depth = 0};
 }
 
-// Its culling radius: from the float constants, as the renderers see the
-// sphere; rounded up.
+// Its culling radius, from the float constants as the renderers see the sphere; rounded up.
 float cull_radius_of(const sphere_record& e) {
   const double ff[3] = {e.fx, e.fy, e.fz};
   const double rf = std::sqrt(double(e.r2));
@@ -169,9 +135,7 @@ float cull_radius_of(const sphere_record& e) {
   return next_up(float(wide));
 }
 
-// The image row (0 at the top) of a sphere's centre as the camera sees it,
-// clamped to the image; H for a centre not in front of the camera: the key
-// of a large scene's order (prepare_float_scene).
+// The rows order's key: the image row (0 at the top) of a sphere's centre, clamped; H if not ahead.
 uint32_t centre_row(const camera& c, const point3& center) {
   using glm::dot;
   const int64_t H = c.image_height;
@@ -184,14 +148,12 @@ uint32_t centre_row(const camera& c, const point3& center) {
   return uint32_t(H - 1 - std::clamp<int64_t>(std::llround(std::clamp(j, -1.0, double(H))), 0, H - 1));
 }
 
-// The spheres [begin, end) of chunk t of `chunks` equal ones.
 std::pair<size_t, size_t> chunk(size_t n, size_t t, size_t chunks) { return {n * t / chunks, n * (t + 1) / chunks}; }
 
-// The nearest distance of a sphere from the camera, |O - C| - r (negative
-// inside it), and the pixels its disc covers on the screen, at most all.
+// A sphere's nearest distance |O - C| - r (negative inside), and the pixels its disc covers.
 struct depth_of {
   double nearest, pixels;
-  double lateral = 0.0;  // orthographic: max(|cx|, |cy|) + r, how far from the view's axis it reaches
+  double lateral = 0.0;  // orthographic: max(|cx|, |cy|) + r, its reach off the view's axis
 };
 depth_of depth_of_sphere(const camera& c, const sphere& b) {
   const vec3 p = to_glm(b.center) - c.origin;
@@ -209,24 +171,19 @@ depth_of depth_of_sphere(const camera& c, const sphere& b) {
   return {dist - b.radius, std::min(all, 3.14159 * rho * rho)};
 }
 
-// What every sphere says about the order: its shading, and where the scene
-// may be reordered its key's raw material (the row of its centre; its
-// nearest distance as a float's bits), the nearest distances' range and the
-// screen area the spheres cover.
+// The spheres' shadings and nearest distances' range; each key's raw material where reordered.
 struct survey {
   bool any_flat = false, any_normal = false, any_lit = false;
   bool one_look = true;  // every sphere shaded as the first is, in its colour
   double near_lo = INFINITY, near_hi = -INFINITY, lateral = 0.0;
 };
 
-// Whether b is shaded as a is (the colour counts for flat and lit spheres).
 bool same_look(const sphere& a, const sphere& b) {
   return a.shade == b.shade && (a.shade == shading::normal || a.color == b.color);
 }
 survey survey_spheres(const scene& s, sphere_order order, size_t team, uint32_t* key) {
   const bool ortho = s.cam.proj == projection::orthographic, depth = order == sphere_order::depth;
   const bool rows = order == sphere_order::rows;
-  survey v;
   bool any_flat = false, any_normal = false, any_lit = false, one_look = true;
   double lo = INFINITY, hi = -INFINITY, lateral = 0.0;
   const size_t n = s.sphere_count();
@@ -250,14 +207,10 @@ survey survey_spheres(const scene& s, sphere_order order, size_t team, uint32_t*
       if (depth) key[k] = std::bit_cast<uint32_t>(float(d.nearest));
     }
   }
-  v.any_flat = any_flat, v.any_normal = any_normal, v.any_lit = any_lit, v.one_look = one_look;
-  v.near_lo = lo, v.near_hi = hi, v.lateral = lateral;
-  return v;
+  return {any_flat, any_normal, any_lit, one_look, lo, hi, lateral};
 }
 
-// How deep the scene is: its spheres' screen discs added up, in images,
-// estimated from at most 4096 of them spread over the scene (the automatic
-// order's choice; a sample is plenty, and reads a sliver of a caller's arrays).
+// The spheres' screen discs added up, in images, estimated from at most 4096 of them.
 double images_covered(const scene& s) {
   const size_t n = s.sphere_count(), step = std::max<size_t>(1, n / 4096);
   double pixels = 0.0;
@@ -266,12 +219,9 @@ double images_covered(const scene& s) {
   return seen == 0 ? 0.0 : pixels * double(n) / double(seen) / (double(s.cam.image_width) * double(s.cam.image_height));
 }
 
-// A depth-ordered scene's buckets: bucket b holds the nearest distances from
-// lo + b step on; its key (float_spheres::depth_key) is at most that times
-// (1 - 2^-15), rounded down. An orthographic camera's hit depths err by
-// amounts that grow with how far the spheres lie off its axis (the plane
-// positions' rounding, squared near a silhouette): its keys are lower by
-// another 2^-10 of that reach.
+// Bucket b holds the nearest distances from lo + b step on; its key is at most that times
+// (1 - 2^-15), rounded down, and for an orthographic camera (whose depths err more off its axis)
+// lower by another 2^-10 of that reach.
 struct depth_buckets {
   double lo, step;
   double offset = 0.0;  // subtracted from the keys: an orthographic camera's plane offset
@@ -290,9 +240,7 @@ struct depth_buckets {
   }
 };
 
-// The counting sort's places: next[t * keys + key] is chunk t's next place
-// for a sphere of that key (row by row, or bucket by bucket, then chunk by
-// chunk: stable).
+// The counting sort's places: next[t * keys + key] is chunk t's next place for that key (stable).
 std::vector<uint32_t> places(const uint32_t* key, size_t n, size_t keys, size_t team) {
   std::vector<uint32_t> next(team * keys, 0);
 #pragma omp parallel for schedule(static, 1) num_threads(int(team))
@@ -305,20 +253,14 @@ std::vector<uint32_t> places(const uint32_t* key, size_t n, size_t keys, size_t 
   return next;
 }
 
-// The float spheres' arrays for n spheres: records, the scene indices of a
-// depth-ordered scene, colours and kinds where the spheres' differ.
 void allocate(float_spheres& sp, size_t n, bool indexed, bool colored) {
   sp.rec.resize(n);
   if (indexed) sp.order.resize(n);
-  if (!colored) return;
-  sp.red.resize(n);
-  sp.green.resize(n);
-  sp.blue.resize(n);
-  sp.kind.resize(n);
+  if (colored)
+    for (filled_array<float>* a : {&sp.red, &sp.green, &sp.blue, &sp.kind}) a->resize(n);
 }
 
-// A sphere's colour and kind as the kernels read them (a normal-shaded
-// sphere's colour is never read: 0).
+// A sphere's colour and kind as the kernels read them (a normal-shaded one's colour: 0).
 struct sphere_look {
   float red, green, blue;
   float kind;  // a shading_kind
@@ -330,7 +272,6 @@ sphere_look look_of(const sphere& b) {
           flat ? shading_kind::flat : shading_kind::lit};
 }
 
-// The colour and kind of every sphere, where all have the same: one entry.
 void one_colour(float_spheres& sp, const sphere& b) {
   const sphere_look l = look_of(b);
   sp.red.assign(1, l.red);
@@ -339,7 +280,7 @@ void one_colour(float_spheres& sp, const sphere& b) {
   sp.kind.assign(1, l.kind);
 }
 
-// Sphere k's record, colour and kind at place i.
+// Sphere b's record, colour and kind at place i.
 void write_sphere(float_spheres& sp, size_t i, const sphere& b, const float_scene& f, const camera& c, bool colored,
                   uint16_t depth) {
   sp.rec[i] = f.orthographic ? record_of_ortho(b, c, f.plane_offset) : record_of(b, c.origin);
@@ -352,8 +293,6 @@ void write_sphere(float_spheres& sp, size_t i, const sphere& b, const float_scen
   sp.kind[i] = l.kind;
 }
 
-// How the spheres are placed: their keys and the counting sort's places
-// (places()), or the scene's order.
 struct placement {
   const uint32_t* key;
   std::vector<uint32_t>& next;
@@ -361,12 +300,9 @@ struct placement {
   bool reorder, indexed, colored;
 };
 
-// Writes every sphere's record (and colour, and index) in its place; whether
-// some record's camera is inside its sphere. Where the spheres are arrays
-// (a particle file's, a caller's), each place first gets its sphere's index
-// (4 bytes written out of order), then the places are filled front to back
-// from spheres read out of order: one cache miss a sphere's column instead
-// of one for each of the arrays a record spans.
+// Writes every sphere's record (colour, index) in its place; whether a camera is inside a sphere.
+// Spheres in arrays (a particle file's) are gathered: each place first gets its sphere's index,
+// then places are filled front to back (a miss a column, not one per array a record spans).
 bool fill_spheres(float_scene& f, const scene& s, const placement& p) {
   float_spheres& sp = f.spheres;
   const size_t n = s.sphere_count(), keys = p.keys;
@@ -380,9 +316,7 @@ bool fill_spheres(float_scene& f, const scene& s, const placement& p) {
   for (size_t t = 0; t < p.team; ++t) {
     const auto [begin, end] = chunk(n, t, p.team);
     for (size_t k = begin; k < end; ++k) {
-      // Out of order, the places of the spheres a few ahead are asked for
-      // early, so that their cache misses overlap (a place moves on by the
-      // spheres of its key in between: at most a line or two on).
+      // The places of the spheres a few ahead are fetched early, so that their misses overlap.
       constexpr size_t ahead = 16;
       if (p.reorder && !gather && k + ahead < end) {
         const size_t later = p.next[t * keys + p.key[k + ahead]];
@@ -422,30 +356,19 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from, s
   float_scene f;
   prepare_camera(f, s);
 
-  // Per-sphere constants in double, each rounded to float once
-  // (kernels/float_spheres.h); in parallel for large scenes, over chunks of
-  // the spheres (each sphere's are its own, so the bytes do not depend on the
-  // threads). A large scene is reordered on the way (float_scene.h): a
-  // stable counting sort whose first pass takes each sphere's key and counts
-  // the keys per chunk; the last writes each record straight to its place.
-  // The caller's spheres are read front to back, twice: read out of order
-  // from small pages, a virtual machine's TLB misses cost microseconds a
-  // sphere. Only our own records are written out of order.
+  // In parallel over chunks (the bytes do not depend on the threads); reordered by a counting sort.
   float_spheres& sp = f.spheres;
   const size_t n = s.sphere_count();
   if (order == sphere_order::automatic && n < sort_from) order = sphere_order::scene;
   const bool reorder = order != sphere_order::scene;
-  // One chunk a thread, but no more than spheres per key (the counts take 4
-  // bytes a key a chunk; an image 2^24 rows tall sorts in one).
+  // One chunk a thread, no more chunks than spheres per key (4 bytes a key a chunk).
   size_t team = n < (size_t(1) << 15) ? 1 : size_t(std::max(1, threads));
   if (order == sphere_order::automatic)
     order = images_covered(s) > (n < small_scene ? deep_from_small : deep_from) ? sphere_order::depth
                                                                                : sphere_order::rows;
   out_of_order_array<uint32_t> key(reorder ? n : 0);  // read out of order where gathered
   const survey v = survey_spheres(s, order, team, key.data());
-  // Orthographic depths are measured from the plane as deep as the nearest
-  // sphere's front (if in front of the image plane): hits compare depths of a
-  // scene far from its camera with the scene's own precision.
+  // Orthographic depths from the nearest sphere's front (if ahead): the scene's own precision.
   if (f.orthographic && n > 0) f.plane_offset = std::max(0.0, v.near_lo);
   const depth_buckets buckets{v.near_lo, (v.near_hi - v.near_lo) / double(float_spheres::depth_buckets),
                               f.plane_offset, 0x1p-10 * v.lateral};
@@ -460,15 +383,9 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from, s
   }
   if (reorder) team = std::clamp<size_t>(n / keys, 1, team);
   std::vector<uint32_t> next = reorder ? places(key.data(), n, keys, team) : std::vector<uint32_t>{};
-  // Colours only where some sphere has one (16 bytes a sphere a cloud of
-  // normal-shaded spheres does without), and one for all where every sphere
-  // has the same (the kernels read colour 0 then: kernel_spheres::look).
+  // Colours only where some sphere has one, one for all where every sphere has the same.
   const bool colored = (v.any_flat || v.any_lit) && !v.one_look;
-  // Each sphere's index in the scene, for the tie rule, where the order is
-  // depth's: it is written out of order (4 bytes a sphere, a quarter of a
-  // 10^6-sphere cloud's preparation), and the row order keeps coincident
-  // spheres (the same key) in the scene's order, as depth's keeps those of
-  // one bucket.
+  // Scene indices for the tie rule in depth order only (rows keep one key's spheres in order).
   const bool indexed = order == sphere_order::depth;
   allocate(sp, n, indexed, colored);
   sp.any_inside = fill_spheres(f, s, {key.data(), next, keys, team, reorder, indexed, colored});
@@ -476,7 +393,6 @@ float_scene prepare_float_scene(const scene& s, int threads, size_t sort_from, s
   sp.any_flat = v.any_flat;
   sp.any_normal = v.any_normal;
   sp.any_lit = v.any_lit;
-  // The culling radii, from the records in their final order.
   sp.cull_radius.resize(n);
 #pragma omp parallel for schedule(static) num_threads(team)
   for (size_t k = 0; k < n; ++k) sp.cull_radius[k] = cull_radius_of(sp.rec[k]);

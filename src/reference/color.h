@@ -1,5 +1,4 @@
-// The lesson's ray_color and write_color, in double: the oracle's shading and
-// quantization.
+// The lesson's ray_color and write_color in double: the oracle's shading and quantization.
 #pragma once
 #include <algorithm>
 #include <cstdint>
@@ -9,8 +8,7 @@
 
 namespace raycast {
 
-// t = 0.5 (unit.y + 1); colour = (1 - t) bottom + t top, kept inside the closed
-// range between the two sky colours (rounding of the lerp cannot overshoot).
+// t = 0.5 (unit.y + 1); colour = (1 - t) bottom + t top, clamped between the two sky colours.
 inline color ray_color(const ray& r, const sky& s) {
   const vec3 unit = unit_vector(r.direction());
   const double t = 0.5 * (unit.y + 1.0);
@@ -18,8 +16,7 @@ inline color ray_color(const ray& r, const sky& s) {
   return glm::clamp(c, glm::min(s.bottom, s.top), glm::max(s.bottom, s.top));
 }
 
-// The lesson's int(255.999 c), with c clamped into [0, 1] first so that 1.0
-// gives 255 and nothing wraps.
+// The lesson's int(255.999 c), c clamped to [0, 1] first.
 inline uint8_t to_byte(double c) {
   return static_cast<uint8_t>(255.999 * std::clamp(c, 0.0, 1.0));
 }

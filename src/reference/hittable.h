@@ -1,6 +1,4 @@
-// The book's ch. 6 hit machinery in double (hittable.h, sphere.h,
-// hittable_list.h of Ray Tracing in One Weekend v3.2.3), without the virtual
-// calls: the oracle's intersection, formula for formula.
+// The book's ch. 6 hit machinery in double (Ray Tracing in One Weekend v3.2.3), formula for formula.
 #pragma once
 #include <cmath>
 #include <span>
@@ -20,9 +18,8 @@ struct hit_record {
   const sphere* object = nullptr;
 };
 
-// sphere::hit: oc = A - C, a = |b|^2, half_b = oc.b, c = |oc|^2 - r^2,
-// disc = half_b^2 - a c; the nearer root (-half_b - sqrt(disc)) / a unless it
-// lies outside [t_min, t_max] (both ends inclusive), then the farther one.
+// sphere::hit: oc = A - C, a = |b|^2, half_b = oc.b, c = |oc|^2 - r^2, disc = half_b^2 - a c; the
+// nearer root (-half_b - sqrt(disc)) / a unless outside [t_min, t_max], then the farther one.
 inline bool hit_sphere(const sphere& s, const ray& r, double t_min, double t_max, hit_record& rec) {
   const vec3 oc = r.origin() - to_glm(s.center);
   const double a = glm::dot(r.direction(), r.direction());
@@ -45,8 +42,7 @@ inline bool hit_sphere(const sphere& s, const ray& r, double t_min, double t_max
   return true;
 }
 
-// hittable_list::hit: every sphere in order, each tested with t_max = the
-// closest t so far, so the closest hit wins (a later sphere on a tie).
+// hittable_list::hit: every sphere in order, t_max the closest t so far (a tie: the later sphere).
 inline bool hit_world(std::span<const sphere> world, const ray& r, double t_min, double t_max,
                       hit_record& rec) {
   hit_record temp;
@@ -62,9 +58,8 @@ inline bool hit_world(std::span<const sphere> world, const ray& r, double t_min,
   return hit_anything;
 }
 
-// The secondary rays' test (light/secondary.h's rules, in double): whether
-// the segment o + t d, t in [0, t_max] (d of unit length), meets the solid
-// ball of any sphere but skip; a start inside a sphere is blocked by it.
+// The secondary rays' test in double (light/secondary.h): whether o + t d, t in [0, t_max], |d| = 1,
+// meets the solid ball of any sphere but skip (a start inside one is blocked).
 inline bool blocked(std::span<const sphere> world, const point3& o, const vec3& d, double t_max, const sphere* skip) {
   for (const sphere& s : world) {
     if (&s == skip) continue;
@@ -81,8 +76,7 @@ inline bool blocked(std::span<const sphere> world, const point3& o, const vec3& 
   return false;
 }
 
-// Ambient occlusion's cosine-weighted direction of numbers (u1, u2) about the
-// unit normal n, in Duff et al.'s frame (light/secondary.h), in double.
+// Ambient occlusion's cosine-weighted direction of (u1, u2) about n, in Duff et al.'s frame.
 inline vec3 cosine_direction(const vec3& n, double u1, double u2) {
   const double sign = std::copysign(1.0, n.z);
   const double a = -1.0 / (sign + n.z);

@@ -10,22 +10,16 @@
 namespace raycast {
 namespace {
 
-// Rounds to float; a result below the smallest normal float becomes 0 (as the
-// float renderers' colours do), so that the FTZ bit cannot change the output.
+// Rounds to float; below the smallest normal float, 0 (so FTZ cannot change the output).
 float to_float(double c) { return std::abs(c) < double(FLT_MIN) ? 0.0f : float(c); }
 
-}  // namespace
-
-namespace {
-
-// Which pixel and sample a ray is, and ambient occlusion's plan (scene/sampler.h).
+// Which pixel and sample a ray is, and ambient occlusion's plan.
 struct ray_at {
   const sampling::ao_plan& ao;
   uint32_t i, j, sample;
 };
 
-// The light of a lit hit (scene/light.h), in double: every sphere asked,
-// the same numbers for ambient occlusion as the float renderers draw.
+// The light of a lit hit in double: every sphere asked, AO's numbers as the float renderers'.
 double lit_light(const scene& s, const ray& r, const hit_record& rec, const ray_at& at) {
   const api::light& li = s.light;
   const vec3& n = rec.normal;  // facing the ray
@@ -49,7 +43,6 @@ double lit_light(const scene& s, const ray& r, const hit_record& rec, const ray_
 
 color trace(const scene& s, const ray& r, const ray_at& at) {
   if (s.spheres.empty()) return ray_color(r, s.sky);
-  // The book's ch. 6 ray_color: the closest hit for t in [0, infinity).
   hit_record rec;
   if (!hit_world(s.spheres, r, 0.0, INFINITY, rec)) return ray_color(r, s.sky);
   const color c = to_glm(rec.object->color);
@@ -100,9 +93,7 @@ void render_reference(const scene& s, const image_band& band, const sampling::sa
       const color c = samples ? reference_pixel_samples(s, *samples, i, j, ao) : reference_pixel(s, i, j, ao);
       unsigned char* px = band.pixel(r, i);
       if (band.format == pixel_format::rgb8) {
-        px[0] = to_byte(c.r);
-        px[1] = to_byte(c.g);
-        px[2] = to_byte(c.b);
+        px[0] = to_byte(c.r), px[1] = to_byte(c.g), px[2] = to_byte(c.b);
       } else {
         const float f[3] = {to_float(c.r), to_float(c.g), to_float(c.b)};
         std::memcpy(px, f, sizeof f);

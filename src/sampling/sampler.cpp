@@ -22,8 +22,7 @@ std::optional<sampler_kind> parse_sampler(std::string_view text) {
 namespace sampling {
 namespace {
 
-// Dimension 0 of the Sobol sequence: the van der Corput sequence, index's
-// bits reversed.
+// Dimension 0 of the Sobol sequence: the van der Corput sequence, the index's bits reversed.
 constexpr uint32_t sobol_dimension0(uint32_t x) {
   x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
   x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
@@ -32,8 +31,7 @@ constexpr uint32_t sobol_dimension0(uint32_t x) {
   return (x >> 16) | (x << 16);
 }
 
-// Dimension 1 (its generator matrix is Pascal's triangle mod 2; Burley,
-// "Practical Hash-based Owen Scrambling", JCGT 2020, listing 1).
+// Dimension 1 (its generator matrix is Pascal's triangle mod 2; Burley's Owen scrambling, listing 1).
 constexpr uint32_t sobol_dimension1(uint32_t index) {
   uint32_t v = 1u << 31, x = 0;
   for (; index != 0; index >>= 1, v ^= v >> 1)
@@ -52,34 +50,7 @@ uint32_t strata_columns(uint32_t count) {
   return nx;
 }
 
-}  // namespace
-
-ao_plan make_ao_plan(sampler_kind kind, uint32_t count, uint64_t seed) {
-  ao_plan p;
-  p.kind = kind;
-  p.seed_key = seed_key_of(seed);
-  p.count = count;
-  p.nx = count > 0 ? strata_columns(count) : 1;
-  p.ny = count > 0 ? count / p.nx : 1;
-  p.inv_nx = 1.0f / float(p.nx);
-  p.inv_ny = 1.0f / float(p.ny);
-  return p;
-}
-
-ao_seeds ao_pixel(const ao_plan& p, uint32_t i, uint32_t j) {
-  const uint32_t key = mix(mix(mix(i ^ p.seed_key) + j * golden) ^ 0x2c1b3c6du);
-  if (p.kind == sampler_kind::sobol) return {mix(key ^ 0x68bc21ebu), mix(key ^ 0x02e5be93u)};
-  return {key, key};
-}
-
-void ao_numbers(const ao_plan& p, const ao_seeds& px, uint32_t s, uint32_t k, float& u1, float& u2) {
-  ao_numbers(p, px, s, k, 1, &u1, &u2);
-}
-
-namespace {
-
-// The first eight points of the Sobol sequence's two dimensions (made by
-// the compiler: no order of static initialisation to mind).
+// The first eight points of the Sobol sequence's two dimensions (constexpr).
 struct sobol_eight {
   uint32_t x[8]{}, y[8]{};
   constexpr sobol_eight() {
@@ -88,11 +59,8 @@ struct sobol_eight {
 };
 constexpr sobol_eight eight;
 
-// Sobol points [g0, g0 + m) (24 bits, the pixel's digital shift applied).
-// Each dimension's point is linear in the bits of its index (a generator
-// matrix's product over GF(2)), so where g0 is a multiple of 8 and m <= 8,
-// point g0 + q = g0 | q is point g0's xor point q's: two values a group, not
-// a loop over the index's bits a ray.
+// Sobol points [g0, g0 + m), the pixel's digital shift applied. A point is linear over GF(2) in its
+// index's bits, so where g0 is a multiple of 8 and m <= 8, point g0 | q is point g0's xor point q's.
 void sobol_numbers(const ao_seeds& px, uint32_t g0, uint32_t m, float* u1, float* u2) {
   if (g0 % 8 == 0 && m <= 8) {
     const uint32_t x0 = sobol_dimension0(g0) ^ px.a, y0 = sobol_dimension1(g0) ^ px.b;
@@ -110,6 +78,17 @@ void sobol_numbers(const ao_seeds& px, uint32_t g0, uint32_t m, float* u1, float
 
 }  // namespace
 
+ao_plan make_ao_plan(sampler_kind kind, uint32_t count, uint64_t seed) {
+  const uint32_t nx = count > 0 ? strata_columns(count) : 1, ny = count > 0 ? count / nx : 1;
+  return {kind, seed_key_of(seed), count, nx, ny, 1.0f / float(nx), 1.0f / float(ny)};
+}
+
+ao_seeds ao_pixel(const ao_plan& p, uint32_t i, uint32_t j) {
+  const uint32_t key = mix(mix(mix(i ^ p.seed_key) + j * golden) ^ 0x2c1b3c6du);
+  if (p.kind == sampler_kind::sobol) return {mix(key ^ 0x68bc21ebu), mix(key ^ 0x02e5be93u)};
+  return {key, key};
+}
+
 void ao_numbers(const ao_plan& p, const ao_seeds& px, uint32_t s, uint32_t k0, uint32_t m, float* u1, float* u2) {
   const uint32_t g0 = s * p.count + k0;
   if (p.kind == sampler_kind::sobol) return sobol_numbers(px, g0, m, u1, u2);
@@ -126,18 +105,12 @@ void ao_numbers(const ao_plan& p, const ao_seeds& px, uint32_t s, uint32_t k0, u
 }
 
 void ao_numbers(const ao_plan& p, uint32_t i, uint32_t j, uint32_t s, uint32_t k, float& u1, float& u2) {
-  ao_numbers(p, ao_pixel(p, i, j), s, k, u1, u2);
+  ao_numbers(p, ao_pixel(p, i, j), s, k, 1, &u1, &u2);
 }
 
 sample_table::sample_table(sampler_kind kind, uint32_t count, uint64_t seed) {
-  plan_.kind = kind;
-  plan_.count = count;
-  plan_.seed_key = seed_key_of(seed);
-  const uint32_t nx = strata_columns(count);
-  plan_.nx = nx;
-  plan_.ny = count / nx;
-  plan_.inv_nx = 1.0f / float(plan_.nx);
-  plan_.inv_ny = 1.0f / float(plan_.ny);
+  const uint32_t nx = strata_columns(count), ny = count / nx;
+  plan_ = {kind, count, seed_key_of(seed), nx, ny, 1.0f / float(nx), 1.0f / float(ny), nullptr};
   slots_.resize(count);
   for (uint32_t s = 0; s < count; ++s) {
     sample_slot& sl = slots_[s];
@@ -154,30 +127,13 @@ sample_table::sample_table(sampler_kind kind, uint32_t count, uint64_t seed) {
   plan_.slots = slots_.data();
 }
 
-namespace {
-// Calls f with the sampler's kind as a template argument.
-template <class F>
-void with_kind(sampler_kind k, F&& f) {
-  switch (k) {
-    case sampler_kind::random: f.template operator()<sampler_kind::random>(); break;
-    case sampler_kind::stratified: f.template operator()<sampler_kind::stratified>(); break;
-    case sampler_kind::sobol: f.template operator()<sampler_kind::sobol>(); break;
-  }
-}
-}  // namespace
-
 void sample_offsets(const sample_plan& p, uint32_t i, uint32_t j, uint32_t s, float& xi, float& eta) {
-  with_kind(p.kind, [&]<sampler_kind K>() { offsets<K>(p, seeds_for<K>(p, i, j), s, xi, eta); });
-}
-
-void sample_offset_counts(const sample_plan& p, uint32_t i, uint32_t j, uint32_t s, float& xi, float& eta) {
-  with_kind(p.kind, [&]<sampler_kind K>() { offset_counts<K>(p, seeds_for<K>(p, i, j), s, xi, eta); });
-}
-
-float offset_unit_of(sampler_kind k) {
-  float unit = 1.0f;
-  with_kind(k, [&]<sampler_kind K>() { unit = offset_unit<K>; });
-  return unit;
+  const auto at = [&]<sampler_kind K>() { offsets<K>(p, seeds_for<K>(p, i, j), s, xi, eta); };
+  switch (p.kind) {
+    case sampler_kind::random: at.template operator()<sampler_kind::random>(); break;
+    case sampler_kind::stratified: at.template operator()<sampler_kind::stratified>(); break;
+    case sampler_kind::sobol: at.template operator()<sampler_kind::sobol>(); break;
+  }
 }
 
 }  // namespace sampling

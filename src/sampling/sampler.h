@@ -1,36 +1,16 @@
-// Where a pixel's samples fall (antialiasing, the book's ch. 7): the
-// samplers, written once for a lane type -- uint32_t and float for the scalar
-// renderer, a vector layer's vuint and vfloat for the kernels -- so that every
-// backend draws the same bits.
-//
-// Sample s of pixel (i, j) (j = 0 at the bottom) lies at (i + xi, j + eta),
-// xi and eta in [0, 1) on a 2^-24 grid: up and to the right of the one-sample
-// point, as the book's u = (i + random_double()) / (W - 1). The float renderer
-// turns that into the pixel's one-sample direction plus xi and eta, as counts
-// of offset_unit (below), times per-render steps (kernels/scalar.h), so
-// xi = eta = 0 is the one-sample pixel's direction bit for bit.
-//
-// Randomness is counter-based, not a stream: every number is a hash of
-// (seed, pixel, sample index), so a pixel's samples are the same whichever
-// thread, band, region or backend renders it, and in whatever order. The
-// hash is Wellons' "lowbias32" (two multiplies, three xor-shifts; a bijection
-// of 32-bit integers with low bias), applied as
+// Where a pixel's samples fall (the book's ch. 7), written once for a lane type (uint32_t and
+// float, or a vector layer's vuint and vfloat) so every backend draws the same bits. Sample s of
+// pixel (i, j) (j = 0 at the bottom) lies at (i + xi, j + eta), xi and eta in [0, 1), as the book's
+// u = (i + random_double()) / (W - 1). Every number is a hash of (seed, pixel, sample index), so a
+// pixel's samples are the same in any thread, band, region, backend or order (Wellons' lowbias32):
 //   key(i, j)   = mix(mix(i ^ seed_key) + j * golden)          per pixel
-//   random(s)   = mix(key + (s + 1) * golden)                  per sample
-// (golden = 2^32 / phi, so key + (s + 1) * golden is a Weyl sequence per
-// pixel); one hash gives both offsets, 16 bits each: xi its high half, eta
-// its low half, on a 2^-16 grid (a 65536th of a pixel).
-//
-// The samplers (--sampler):
-// - random: xi, eta from random(s) -- the book's choice.
-// - stratified: an nx x ny grid of strata, nx the largest divisor of N not
-//   above sqrt(N) (10 x 10 for 100, 1 x N for a prime N), sample s in stratum
-//   (s mod nx, s div nx), jittered within it by random(s) as above.
-// - sobol: the first N points of the 2-D Sobol sequence (24 bits) with a
-//   random digital shift per pixel: each dimension's bits xor a per-pixel
-//   seed, mix(key ^ constant). A digital shift keeps the net property -- for
-//   a power of two N, one sample in each of the N elementary rectangles of
-//   every shape (2^-a x 2^-(m-a)) -- and costs one xor per dimension.
+//   random(s)   = mix(key + (s + 1) * golden)                  per sample (golden = 2^32 / phi)
+// one hash giving both offsets, xi its high 16 bits, eta its low 16.
+// - random: xi, eta from random(s), the book's choice.
+// - stratified: an nx x ny grid, nx the largest divisor of N not above sqrt(N), sample s in
+//   stratum (s mod nx, s div nx), jittered within it by random(s).
+// - sobol: the first N points of the 2-D Sobol sequence (24 bits), each dimension's bits xor a
+//   per-pixel seed mix(key ^ constant): a digital shift, which keeps the net property.
 #pragma once
 #include <cstdint>
 #include <optional>
@@ -40,8 +20,7 @@
 namespace raycast {
 
 enum class sampler_kind : uint8_t { random, stratified, sobol };
-// The sampler with the lowest error for its run time on the bench's scenes
-// (raycast-bench's antialiasing rows; bench/README.md, "Antialiasing: error against run time").
+// The sampler with the lowest error for its run time on the bench's scenes (bench/README.md).
 inline constexpr sampler_kind default_sampler = sampler_kind::sobol;
 std::string_view to_string(sampler_kind k);
 std::optional<sampler_kind> parse_sampler(std::string_view text);
@@ -75,10 +54,8 @@ inline F unit_low(U bits) {
   return F(to_float(bits & U(0xffffu))) * F(0x1p-16f);
 }
 
-// Sample s's per-sample constants, the same for every pixel (the kernels
-// broadcast them): random and stratified add k0 = (s + 1) * golden to the
-// pixel's key; stratified's stratum is (sx, sy); sobol's k0, k1 are the
-// Sobol values of dimensions 0 and 1.
+// Sample s's constants, the same for every pixel: random and stratified add k0 = (s + 1) golden to
+// the pixel's key, stratified's stratum is (sx, sy); sobol's k0, k1 are its two dimensions' values.
 struct sample_slot {
   uint32_t k0, k1;
   float sx, sy;
@@ -107,11 +84,8 @@ inline pixel_seeds<U> seeds_for(const sample_plan& p, U i, uint32_t j) {
   else return {key, key};
 }
 
-// The offsets as counts of a unit: xi = xi_count * offset_unit<K> exactly
-// (sobol: 24-bit counts, unit 2^-24; random: 16-bit, 2^-16; stratified's
-// are not counts, unit 1). The float renderers take the counts and fold the
-// unit into their steps (du * unit is exact: a power of two), one multiply
-// fewer per offset.
+// The offsets as counts of a unit, xi = xi_count * offset_unit<K> exactly (stratified's are not
+// counts: unit 1); the float renderers fold the power-of-two unit into their steps.
 template <sampler_kind K>
 inline constexpr float offset_unit = K == sampler_kind::sobol ? 0x1p-24f : K == sampler_kind::random ? 0x1p-16f : 1.0f;
 
@@ -154,15 +128,11 @@ class sample_table {
   sample_plan plan_;
 };
 
-// Ambient occlusion's numbers (light/README.md): (u1, u2) in [0, 1) of ray k
-// of the `count` rays from the hit of sample s of pixel (i, j), from the
-// render's sampler and seed, counter-based as the offsets are (a pixel's
-// rays are the same in any band, region, thread or backend). The rays of
-// all samples of a pixel are one sequence, index g = s count + k, keyed by
-// the pixel's key xor a constant of their own:
+// Ambient occlusion's numbers (light/README.md): (u1, u2) in [0, 1) of ray k of the `count` rays
+// from the hit of sample s of pixel (i, j), counter-based as the offsets are. A pixel's rays are
+// one sequence, g = s count + k, keyed by the pixel's key xor a constant of their own:
 // - random: u1, u2 from two hashes of (key + (g + 1) golden), 24 bits each;
-// - stratified: the count rays of each sample in an nx x ny grid of strata
-//   (as the offsets' grid), jittered by that hash's two 16-bit halves;
+// - stratified: each sample's rays in an nx x ny grid, jittered by that hash's 16-bit halves;
 // - sobol: points g of the 2-D Sobol sequence, a digital shift per pixel.
 struct ao_plan {
   sampler_kind kind = sampler_kind::sobol;
@@ -171,21 +141,15 @@ struct ao_plan {
 };
 ao_plan make_ao_plan(sampler_kind kind, uint32_t count, uint64_t seed);
 void ao_numbers(const ao_plan& p, uint32_t i, uint32_t j, uint32_t s, uint32_t k, float& u1, float& u2);
-// The same in two steps: the pixel's seeds once, then each ray's numbers.
+// The same in two steps: the pixel's seeds, then rays [k0, k0 + m) of the hit.
 struct ao_seeds {
   uint32_t a, b;
 };
 ao_seeds ao_pixel(const ao_plan& p, uint32_t i, uint32_t j);
-void ao_numbers(const ao_plan& p, const ao_seeds& px, uint32_t s, uint32_t k, float& u1, float& u2);
-// Rays [k0, k0 + m) of the hit, into u1[0 .. m) and u2[0 .. m): the same
-// numbers, a hit's group at a time.
 void ao_numbers(const ao_plan& p, const ao_seeds& px, uint32_t s, uint32_t k0, uint32_t m, float* u1, float* u2);
 
-// (xi, eta) of sample s of pixel (i, j), for the double reference and tests;
-// and as counts of offset_unit_of(p.kind), for the scalar float renderer.
+// (xi, eta) of sample s of pixel (i, j), for the double reference and tests.
 void sample_offsets(const sample_plan& p, uint32_t i, uint32_t j, uint32_t s, float& xi, float& eta);
-void sample_offset_counts(const sample_plan& p, uint32_t i, uint32_t j, uint32_t s, float& xi, float& eta);
-float offset_unit_of(sampler_kind k);
 
 }  // namespace sampling
 }  // namespace raycast

@@ -8,11 +8,7 @@
 
 namespace raycast::simd::avx2 {
 
-// What this instruction set offers beyond the common vocabulary (README.md):
-// none. The kernel falls back to plain stores.
-
-// How many vfloats the register file holds (16 ymm registers): the sphere kernel's
-// sampled path takes two samples a pass where that is 16 or more.
+// How many vfloats the register file holds (two samples a pass from 16).
 inline constexpr int vfloats_in_registers = 16;
 
 struct vmask {
@@ -24,7 +20,6 @@ struct vfloat {
   __m256 v;
   vfloat() = default;
   RAYCAST_INLINE vfloat(__m256 x) : v(x) {}
-  // Every lane s; implicit, as Embree's, so that kernels write (uy + 1.0f) * 0.5f.
   RAYCAST_INLINE vfloat(float s) : v(_mm256_set1_ps(s)) {}
   static RAYCAST_INLINE vfloat load(const float* p) { return _mm256_loadu_ps(p); }
 };
@@ -37,14 +32,12 @@ RAYCAST_INLINE vfloat operator+(vfloat a, vfloat b) { return _mm256_add_ps(a.v, 
 RAYCAST_INLINE vfloat operator-(vfloat a, vfloat b) { return _mm256_sub_ps(a.v, b.v); }
 RAYCAST_INLINE vfloat operator*(vfloat a, vfloat b) { return _mm256_mul_ps(a.v, b.v); }
 RAYCAST_INLINE vfloat operator/(vfloat a, vfloat b) { return _mm256_div_ps(a.v, b.v); }
-// IEEE negation (the sign bit flipped), as the scalar -x: -(+0) is -0.
 RAYCAST_INLINE vfloat operator-(vfloat a) { return _mm256_xor_ps(a.v, _mm256_set1_ps(-0.0f)); }
 RAYCAST_INLINE void store(float* p, vfloat a) { _mm256_storeu_ps(p, a.v); }
 RAYCAST_INLINE vmask operator==(vfloat a, vfloat b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_EQ_OQ)}; }
 RAYCAST_INLINE vfloat min(vfloat a, vfloat b) { return _mm256_min_ps(a.v, b.v); }
 RAYCAST_INLINE vfloat max(vfloat a, vfloat b) { return _mm256_max_ps(a.v, b.v); }
 RAYCAST_INLINE vfloat clamp(vfloat x, vfloat lo, vfloat hi) { return min(max(x, lo), hi); }
-// Ordered comparisons (false where either lane is NaN); vmask{} is all false.
 RAYCAST_INLINE vmask operator>=(vfloat a, vfloat b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_GE_OQ)}; }
 RAYCAST_INLINE vmask operator<=(vfloat a, vfloat b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_LE_OQ)}; }
 RAYCAST_INLINE vmask operator&(vmask a, vmask b) { return {_mm256_and_ps(a.m, b.m)}; }
@@ -53,7 +46,6 @@ RAYCAST_INLINE bool any(vmask m) { return _mm256_movemask_ps(m.m) != 0; }
 RAYCAST_INLINE bool none(vmask m) { return !any(m); }
 RAYCAST_INLINE bool all(vmask m) { return _mm256_movemask_ps(m.m) == 0xff; }
 RAYCAST_INLINE vmask operator!(vmask m) { return {_mm256_xor_ps(m.m, _mm256_castsi256_ps(_mm256_set1_epi32(-1)))}; }
-// |a| with the sign of b, as std::copysign.
 RAYCAST_INLINE vfloat copysign(vfloat a, vfloat b) {
   const __m256 sign = _mm256_set1_ps(-0.0f);
   return _mm256_or_ps(_mm256_andnot_ps(sign, a.v), _mm256_and_ps(sign, b.v));
@@ -65,7 +57,6 @@ RAYCAST_INLINE vfloat nmadd(vfloat a, vfloat b, vfloat c) { return _mm256_fnmadd
 // 1/sqrt(x), hardware estimate: relative error below 1.5 * 2^-12.
 RAYCAST_INLINE vfloat rsqrt_est(vfloat x) { return _mm256_rsqrt_ps(x.v); }
 RAYCAST_INLINE vint to_int(vfloat a) { return {_mm256_cvttps_epi32(a.v)}; }
-// Lanes in the opposite order (the mirrored pixels of a batch).
 RAYCAST_INLINE vfloat reverse(vfloat a) {
   return _mm256_permutevar8x32_ps(a.v, _mm256_setr_epi32(7, 6, 5, 4, 3, 2, 1, 0));
 }
@@ -79,9 +70,7 @@ struct rgb8_pack {
   __m256i v;
 };
 
-// r, g, b hold bytes (0..255) in 32-bit lanes. Per 128-bit lane: 4 x (r g b 0)
-// -> 12 packed bytes, then the two lanes' 3 dwords side by side. Reversed
-// puts the pixels in the opposite order (the mirrored batch).
+// Per 128-bit lane: 4 x (r g b 0) -> 12 packed bytes, then the two lanes' 3 dwords side by side.
 template <bool Reversed = false>
 RAYCAST_INLINE rgb8_pack pack_rgb8(vint r, vint g, vint b) {
   __m256i w = _mm256_or_si256(
@@ -97,9 +86,8 @@ RAYCAST_INLINE void store(unsigned char* dst, rgb8_pack p) {
   _mm_storel_epi64(reinterpret_cast<__m128i*>(dst + 16), _mm256_extracti128_si256(p.v, 1));
 }
 
-// Writes 24 floats r0 g0 b0 r1 g1 b1 ...
+// Writes 24 floats r0 g0 b0 r1 g1 b1 ...: within each 128-bit lane, three vectors of triples.
 RAYCAST_INLINE void store_rgbf(float* dst, vfloat r, vfloat g, vfloat b) {
-  // Within each 128-bit lane: 4 pixels -> three vectors of interleaved triples.
   const __m256 a = _mm256_unpacklo_ps(r.v, g.v);                               // r0 g0 r1 g1
   const __m256 c = _mm256_shuffle_ps(b.v, r.v, _MM_SHUFFLE(1, 1, 0, 0));       // b0 b0 r1 r1
   const __m256 o0 = _mm256_shuffle_ps(a, c, _MM_SHUFFLE(2, 0, 1, 0));          // r0 g0 b0 r1
@@ -114,14 +102,11 @@ RAYCAST_INLINE void store_rgbf(float* dst, vfloat r, vfloat g, vfloat b) {
   _mm256_storeu_ps(dst + 16, _mm256_permute2f128_ps(o1, o2, 0x31));
 }
 
-// Unsigned 32-bit lanes for the samplers' counter-based hashes
-// (scene/sampler.h): wrap-around + and *, xor, logical shifts.
 struct vuint {
   __m256i v;
   vuint() = default;
   RAYCAST_INLINE vuint(__m256i x) : v(x) {}
   explicit RAYCAST_INLINE vuint(uint32_t s) : v(_mm256_set1_epi32(int32_t(s))) {}
-  // start, start + 1, ... in lane order.
   static RAYCAST_INLINE vuint iota(uint32_t start) {
     return _mm256_add_epi32(_mm256_set1_epi32(int32_t(start)), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
   }
@@ -134,14 +119,10 @@ RAYCAST_INLINE vuint operator&(vuint a, vuint b) { return _mm256_and_si256(a.v, 
 RAYCAST_INLINE vuint operator|(vuint a, vuint b) { return _mm256_or_si256(a.v, b.v); }
 RAYCAST_INLINE vuint operator>>(vuint a, int n) { return _mm256_srli_epi32(a.v, n); }
 RAYCAST_INLINE vuint operator<<(vuint a, int n) { return _mm256_slli_epi32(a.v, n); }
-// Lanes below 2^31, as floats (exact below 2^24).
 RAYCAST_INLINE vfloat to_float(vuint a) { return _mm256_cvtepi32_ps(a.v); }
-
-// The bits of a float as an unsigned integer, and back.
 RAYCAST_INLINE vuint as_uint(vfloat a) { return _mm256_castps_si256(a.v); }
 RAYCAST_INLINE vfloat as_float(vuint a) { return _mm256_castsi256_ps(a.v); }
-// Unsigned a > b per lane (a signed compare with the top bits flipped), and
-// a where m else b (the closest hit's sphere indices).
+// Unsigned: a signed compare with the top bits flipped.
 RAYCAST_INLINE vmask operator>(vuint a, vuint b) {
   const __m256i top = _mm256_set1_epi32(INT32_MIN);
   return {_mm256_castsi256_ps(_mm256_cmpgt_epi32(_mm256_xor_si256(a.v, top), _mm256_xor_si256(b.v, top)))};

@@ -1,5 +1,4 @@
-// AVX-512 F + BW + VL: 16 float lanes in one __m512, masks in k-registers.
-// See README.md.
+// AVX-512 F + BW + VL: 16 float lanes in one __m512, masks in k-registers. See README.md.
 #pragma once
 #include <immintrin.h>
 
@@ -7,17 +6,13 @@
 
 #include "simd/inline.h"
 
-// What this instruction set offers beyond the common vocabulary (README.md),
-// for the kernel to test with #ifdef (each kernel translation unit includes
-// exactly one ISA header): store4, four packs as three 64-byte writes, and
-// store_first, a row's tail as one byte-masked store.
+// Beyond the common vocabulary (README.md), for the kernel's #ifdef: store4 and store_first.
 #define RAYCAST_HAS_STORE4 1
 #define RAYCAST_HAS_MASKED_BYTE_STORE 1
 
 namespace raycast::simd::avx512 {
 
-// How many vfloats the register file holds (32 zmm registers): the sphere kernel's
-// sampled path takes two samples a pass where that is 16 or more.
+// How many vfloats the register file holds (two samples a pass from 16).
 inline constexpr int vfloats_in_registers = 32;
 
 struct vmask {
@@ -29,7 +24,6 @@ struct vfloat {
   __m512 v;
   vfloat() = default;
   RAYCAST_INLINE vfloat(__m512 x) : v(x) {}
-  // Every lane s; implicit, as Embree's, so that kernels write (uy + 1.0f) * 0.5f.
   RAYCAST_INLINE vfloat(float s) : v(_mm512_set1_ps(s)) {}
   static RAYCAST_INLINE vfloat load(const float* p) { return _mm512_loadu_ps(p); }
 };
@@ -42,8 +36,7 @@ RAYCAST_INLINE vfloat operator+(vfloat a, vfloat b) { return _mm512_add_ps(a.v, 
 RAYCAST_INLINE vfloat operator-(vfloat a, vfloat b) { return _mm512_sub_ps(a.v, b.v); }
 RAYCAST_INLINE vfloat operator*(vfloat a, vfloat b) { return _mm512_mul_ps(a.v, b.v); }
 RAYCAST_INLINE vfloat operator/(vfloat a, vfloat b) { return _mm512_div_ps(a.v, b.v); }
-// IEEE negation (the sign bit flipped), as the scalar -x: -(+0) is -0. An
-// integer xor: the float one needs AVX-512 DQ.
+// An integer xor: the float one needs AVX-512 DQ.
 RAYCAST_INLINE vfloat operator-(vfloat a) {
   return _mm512_castsi512_ps(_mm512_xor_si512(_mm512_castps_si512(a.v), _mm512_set1_epi32(INT32_MIN)));
 }
@@ -52,7 +45,6 @@ RAYCAST_INLINE vmask operator==(vfloat a, vfloat b) { return {_mm512_cmp_ps_mask
 RAYCAST_INLINE vfloat min(vfloat a, vfloat b) { return _mm512_min_ps(a.v, b.v); }
 RAYCAST_INLINE vfloat max(vfloat a, vfloat b) { return _mm512_max_ps(a.v, b.v); }
 RAYCAST_INLINE vfloat clamp(vfloat x, vfloat lo, vfloat hi) { return min(max(x, lo), hi); }
-// Ordered comparisons (false where either lane is NaN); vmask{} is all false.
 RAYCAST_INLINE vmask operator>=(vfloat a, vfloat b) { return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_GE_OQ)}; }
 RAYCAST_INLINE vmask operator<=(vfloat a, vfloat b) { return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_LE_OQ)}; }
 RAYCAST_INLINE vmask operator&(vmask a, vmask b) { return {__mmask16(a.m & b.m)}; }
@@ -61,8 +53,7 @@ RAYCAST_INLINE bool any(vmask m) { return m.m != 0; }
 RAYCAST_INLINE bool none(vmask m) { return m.m == 0; }
 RAYCAST_INLINE bool all(vmask m) { return m.m == 0xffff; }
 RAYCAST_INLINE vmask operator!(vmask m) { return {__mmask16(~m.m)}; }
-// |a| with the sign of b, as std::copysign: one ternary-logic op (bit select
-// by the sign mask: 0xCA is "A ? B : C"), integer because the float and/or need AVX-512 DQ.
+// A bit select by the sign mask (ternary logic 0xCA: "A ? B : C"; the float and/or need AVX-512 DQ).
 RAYCAST_INLINE vfloat copysign(vfloat a, vfloat b) {
   return _mm512_castsi512_ps(_mm512_ternarylogic_epi32(_mm512_set1_epi32(INT32_MIN), _mm512_castps_si512(b.v),
                                                        _mm512_castps_si512(a.v), 0xCA));
@@ -74,7 +65,6 @@ RAYCAST_INLINE vfloat nmadd(vfloat a, vfloat b, vfloat c) { return _mm512_fnmadd
 // 1/sqrt(x), hardware estimate: relative error below 2^-14.
 RAYCAST_INLINE vfloat rsqrt_est(vfloat x) { return _mm512_rsqrt14_ps(x.v); }
 RAYCAST_INLINE vint to_int(vfloat a) { return {_mm512_cvttps_epi32(a.v)}; }
-// Lanes in the opposite order (the mirrored pixels of a batch).
 RAYCAST_INLINE __m512i reverse_index() {
   return _mm512_setr_epi32(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0);
 }
@@ -87,10 +77,7 @@ struct rgb8_pack {
   __m512i v;
 };
 
-// Interleaves r, g, b (bytes in 32-bit lanes) in a register: (r g b 0) dwords,
-// the zero bytes squeezed out per 128-bit lane, then the twelve useful dwords
-// gathered. Reversed, the same two shuffles with other constants put the
-// pixels in the opposite order (the mirrored batch) at no extra cost.
+// (r g b 0) dwords squeezed per 128-bit lane, the twelve useful ones gathered.
 template <bool Reversed = false>
 RAYCAST_INLINE rgb8_pack pack_rgb8(vint r, vint g, vint b) {
   const __m512i w = _mm512_or_si512(
@@ -113,8 +100,7 @@ RAYCAST_INLINE void store(unsigned char* dst, rgb8_pack p) {
   _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst), _mm512_castsi512_si256(p.v));
   _mm_storeu_si128(reinterpret_cast<__m128i*>(dst + 32), _mm512_extracti32x4_epi32(p.v, 2));
 }
-// The first n pixels only (n < 16): a byte-granular masked store, nothing past
-// 3n bytes is touched.
+// The first n < 16 pixels only: a byte-masked store, nothing past 3n bytes touched.
 RAYCAST_INLINE void store_first(unsigned char* dst, rgb8_pack p, int n) {
   _mm512_mask_storeu_epi8(dst, (__mmask64{1} << (3 * n)) - 1, p.v);
 }
@@ -128,8 +114,7 @@ RAYCAST_INLINE void store4(unsigned char* dst, rgb8_pack a, rgb8_pack b, rgb8_pa
   _mm512_storeu_si512(dst + 128, _mm512_permutex2var_epi32(c.v, hi, d.v));
 }
 
-// Writes 48 floats r0 g0 b0 r1 ...: the in-lane triple shuffles, then the
-// 128-bit lanes in pixel order.
+// Writes 48 floats r0 g0 b0 r1 ...: the in-lane triple shuffles, then the 128-bit lanes in order.
 RAYCAST_INLINE void store_rgbf(float* dst, vfloat r, vfloat g, vfloat b) {
   const __m512 a = _mm512_unpacklo_ps(r.v, g.v);
   const __m512 c = _mm512_shuffle_ps(b.v, r.v, _MM_SHUFFLE(1, 1, 0, 0));
@@ -140,9 +125,8 @@ RAYCAST_INLINE void store_rgbf(float* dst, vfloat r, vfloat g, vfloat b) {
   const __m512 f = _mm512_shuffle_ps(b.v, r.v, _MM_SHUFFLE(3, 3, 2, 2));
   const __m512 h = _mm512_shuffle_ps(g.v, b.v, _MM_SHUFFLE(3, 3, 3, 3));
   const __m512 o2 = _mm512_shuffle_ps(f, h, _MM_SHUFFLE(2, 0, 2, 0));
-  // oK holds part K of pixel quads A, B, C, D in its four 128-bit lanes. Output:
-  // [o0.A o1.A o2.A o0.B] [o1.B o2.B o0.C o1.C] [o2.C o0.D o1.D o2.D]; each is
-  // one two-source permute plus one masked permute for its third source.
+  // oK holds part K of pixel quads A, B, C, D in its 128-bit lanes. Output: [o0.A o1.A o2.A o0.B]
+  // [o1.B o2.B o0.C o1.C] [o2.C o0.D o1.D o2.D], each a two-source and a masked permute.
   const auto idx = [](int l0, int l1, int l2, int l3) {  // 128-bit lanes; 4..7: second source
     return _mm512_setr_epi32(4 * l0, 4 * l0 + 1, 4 * l0 + 2, 4 * l0 + 3, 4 * l1, 4 * l1 + 1,
                              4 * l1 + 2, 4 * l1 + 3, 4 * l2, 4 * l2 + 1, 4 * l2 + 2, 4 * l2 + 3,
@@ -159,14 +143,11 @@ RAYCAST_INLINE void store_rgbf(float* dst, vfloat r, vfloat g, vfloat b) {
   _mm512_storeu_ps(dst + 32, out2);
 }
 
-// Unsigned 32-bit lanes for the samplers' counter-based hashes
-// (scene/sampler.h): wrap-around + and *, xor, logical shifts.
 struct vuint {
   __m512i v;
   vuint() = default;
   RAYCAST_INLINE vuint(__m512i x) : v(x) {}
   explicit RAYCAST_INLINE vuint(uint32_t s) : v(_mm512_set1_epi32(int32_t(s))) {}
-  // start, start + 1, ... in lane order.
   static RAYCAST_INLINE vuint iota(uint32_t start) {
     return _mm512_add_epi32(_mm512_set1_epi32(int32_t(start)),
                             _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15));
@@ -180,13 +161,9 @@ RAYCAST_INLINE vuint operator&(vuint a, vuint b) { return _mm512_and_si512(a.v, 
 RAYCAST_INLINE vuint operator|(vuint a, vuint b) { return _mm512_or_si512(a.v, b.v); }
 RAYCAST_INLINE vuint operator>>(vuint a, int n) { return _mm512_srli_epi32(a.v, unsigned(n)); }
 RAYCAST_INLINE vuint operator<<(vuint a, int n) { return _mm512_slli_epi32(a.v, unsigned(n)); }
-// Lanes below 2^31, as floats (exact below 2^24).
 RAYCAST_INLINE vfloat to_float(vuint a) { return _mm512_cvtepi32_ps(a.v); }
-
-// The bits of a float as an unsigned integer, and back.
 RAYCAST_INLINE vuint as_uint(vfloat a) { return _mm512_castps_si512(a.v); }
 RAYCAST_INLINE vfloat as_float(vuint a) { return _mm512_castsi512_ps(a.v); }
-// Unsigned a > b per lane, and a where m else b (the closest hit's sphere indices).
 RAYCAST_INLINE vmask operator>(vuint a, vuint b) { return {_mm512_cmpgt_epu32_mask(a.v, b.v)}; }
 RAYCAST_INLINE vuint select(vmask m, vuint a, vuint b) { return _mm512_mask_blend_epi32(m.m, b.v, a.v); }
 

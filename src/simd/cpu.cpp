@@ -43,8 +43,7 @@ cpu_features detect() {
   return f;
 }
 #elif defined(__aarch64__)
-// Advanced SIMD is part of every AArch64 CPU the Linux kernel runs on; ask the
-// kernel's HWCAP anyway, so this stays the only place that decides.
+// Advanced SIMD is part of every AArch64 CPU; HWCAP is asked anyway.
 cpu_features detect() {
   cpu_features f;
   f.neon = (getauxval(AT_HWCAP) & HWCAP_ASIMD) != 0;
@@ -54,8 +53,7 @@ cpu_features detect() {
 cpu_features detect() { return {}; }
 #endif
 
-// The targets (simd/targets.h): their names and architectures, and the
-// flag of each in cpu_features.
+// The targets: their names, architectures and flags in cpu_features.
 struct target_entry {
   const char* name;
   const char* arch;
@@ -65,10 +63,7 @@ struct target_entry {
 constexpr target_entry targets[] = {RAYCAST_TARGETS(RAYCAST_ENTRY)};
 #undef RAYCAST_ENTRY
 
-// RAYCAST_MAX_ISA=<target> caps what this process believes the CPU has, so
-// the dispatch and the refusal of unsupported backends can be exercised as on
-// an older CPU (tests, and users comparing paths): every target listed after
-// it, of its architecture, is off (after `scalar`, of any: every vector one).
+// RAYCAST_MAX_ISA=<target>: every target listed after it, of its architecture (scalar: any), is off.
 cpu_features capped(cpu_features f) {
   const char* cap = std::getenv("RAYCAST_MAX_ISA");
   if (!cap) return f;

@@ -1,5 +1,4 @@
-// What this CPU and OS can run: CPUID for the instructions, XGETBV for whether
-// the OS saves the wide registers. The only place that asks.
+// What this CPU and OS can run (CPUID, XGETBV, HWCAP): the only place that asks.
 #pragma once
 #include <optional>
 #include <string>
@@ -17,15 +16,12 @@ struct cpu_features {
   bool neon = false;    // AArch64 Advanced SIMD (always there on AArch64)
 };
 
-// Detected once. The environment variable RAYCAST_MAX_ISA (a target's name)
-// caps it, to run this machine as an older one would: the targets after it
-// in targets.h's list, of its architecture, are off (scalar: every vector one).
+// Detected once; RAYCAST_MAX_ISA=<target> turns off the targets after it (cpu.cpp).
 const cpu_features& cpu();
 
 // The targets' names, in targets.h's order: what RAYCAST_MAX_ISA takes.
 std::vector<std::string_view> target_names();
-// RAYCAST_MAX_ISA's value where it is not a target's name, or nothing (unset,
-// empty or valid). An unknown value caps nothing; the CLI refuses it.
+// RAYCAST_MAX_ISA's value where it is not a target's name (it caps nothing), else nothing.
 std::optional<std::string> unknown_max_isa();
 
 }  // namespace raycast

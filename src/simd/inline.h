@@ -1,6 +1,5 @@
-// Every vector operation is forced inline: a helper GCC leaves out of line
-// passes its registers through memory (SSE2's two-half types especially) and
-// costs more than the instruction it wraps.
+// Every vector operation is forced inline: out of line, a helper passes its registers through
+// memory, and no copy built with one target's flags may stand in for another's.
 #pragma once
 
 #define RAYCAST_INLINE inline __attribute__((always_inline))

@@ -1,12 +1,6 @@
-// NEON (every AArch64): 8 float lanes as two float32x4_t halves, the shape of
-// the SSE2 target (two_halves.inl over the 4-lane operations below), so the
-// kernel's batch and mirroring logic is the one x86 runs. See README.md.
-//
-// Exact mode depends on every operation here rounding once, as the scalar
-// target does: + - * / and sqrt are IEEE (vaddq, vsubq, vmulq, vdivq,
-// vsqrtq), and nothing is fused. The kernel is compiled with -ffp-contract=off
-// so the compiler does not fuse a vmulq and a vaddq into an fmla behind our
-// back; vfmaq appears only in madd / nmadd, which only fast mode uses.
+// NEON (every AArch64): 8 float lanes as two float32x4_t halves, as SSE2 (two_halves.inl). See
+// README.md. Exact mode needs every operation to round once: + - * / and sqrt are IEEE, and with
+// -ffp-contract=off only madd / nmadd (fast mode) fuse.
 #pragma once
 #include <arm_neon.h>
 
@@ -16,10 +10,6 @@
 
 namespace raycast::simd::neon {
 
-// What this instruction set offers beyond the common vocabulary (README.md):
-// none. The kernel falls back to plain stores.
-
-// The 4-lane operations two_halves.inl builds the 8-lane vocabulary from.
 namespace half {
 using f = float32x4_t;
 using i = int32x4_t;
@@ -33,14 +23,10 @@ RAYCAST_INLINE f add(f a, f b) { return vaddq_f32(a, b); }
 RAYCAST_INLINE f sub(f a, f b) { return vsubq_f32(a, b); }
 RAYCAST_INLINE f mul(f a, f b) { return vmulq_f32(a, b); }
 RAYCAST_INLINE f div(f a, f b) { return vdivq_f32(a, b); }
-// min and max with the x86 (and scalar target) meaning, a > b ? a : b: NEON's
-// fmax returns NaN for a NaN operand and +0 for max(+0, -0), where maxps
-// returns the second operand. A compare and a bit select keep every target's
-// bits the same, signed zeros and NaNs included.
+// min and max with x86's meaning, a > b ? a : b (fmax differs on NaN and signed zeros).
 RAYCAST_INLINE f max(f a, f b) { return vbslq_f32(vcgtq_f32(a, b), a, b); }
 RAYCAST_INLINE f min(f a, f b) { return vbslq_f32(vcltq_f32(a, b), a, b); }
 RAYCAST_INLINE f neg(f a) { return vnegq_f32(a); }
-// A bit select by the sign bit.
 RAYCAST_INLINE f copysign(f a, f b) { return vbslq_f32(vdupq_n_u32(0x80000000u), b, a); }
 RAYCAST_INLINE m eq(f a, f b) { return vceqq_f32(a, b); }
 RAYCAST_INLINE m ge(f a, f b) { return vcgeq_f32(a, b); }
@@ -55,12 +41,8 @@ RAYCAST_INLINE f sqrt(f a) { return vsqrtq_f32(a); }
 // Fused, one rounding (fast mode only, as on AVX2).
 RAYCAST_INLINE f madd(f a, f b, f c) { return vfmaq_f32(c, a, b); }
 RAYCAST_INLINE f nmadd(f a, f b, f c) { return vfmsq_f32(c, a, b); }
-// 1/sqrt(x). FRSQRTE alone gives about 8 bits (relative error up to 3.3e-3,
-// 2^-8.25, measured over [1, 4) under qemu), too coarse for the kernel's single
-// Newton step: it would leave ~1.5 e^2 = 1.6e-5, beyond fast mode's 3e-6 bound.
-// One FRSQRTS step here, r (3 - x r r) / 2, brings it to 1.6e-5 (2^-15.9),
-// finer than x86's rsqrtps (1.5 * 2^-12); the kernel's biased Newton step then
-// does the rest, as on x86.
+// 1/sqrt(x): FRSQRTE's 8 bits are too coarse for the kernel's one Newton step (fast mode's 3e-6
+// bound); one FRSQRTS step, r (3 - x r r) / 2, brings it to 1.6e-5, finer than x86's estimate.
 RAYCAST_INLINE f rsqrt_est(f x) {
   const float32x4_t r = vrsqrteq_f32(x);
   return vmulq_f32(r, vrsqrtsq_f32(vmulq_f32(x, r), r));
@@ -87,7 +69,7 @@ RAYCAST_INLINE u mul_u(u a, u b) { return vmulq_u32(a, b); }
 RAYCAST_INLINE u xor_u(u a, u b) { return veorq_u32(a, b); }
 RAYCAST_INLINE u and_u(u a, u b) { return vandq_u32(a, b); }
 RAYCAST_INLINE u or_u(u a, u b) { return vorrq_u32(a, b); }
-// Shifts by a register count: vshrq_n needs an immediate even where not inlined.
+// Shifts by a register count: vshrq_n needs an immediate.
 RAYCAST_INLINE u shr(u a, int n) { return vshlq_u32(a, vdupq_n_s32(-n)); }
 RAYCAST_INLINE u shl(u a, int n) { return vshlq_u32(a, vdupq_n_s32(n)); }
 RAYCAST_INLINE f to_float(u a) { return vcvtq_f32_u32(a); }
@@ -99,8 +81,7 @@ RAYCAST_INLINE u select_u(m k, u a, u b) { return vbslq_u32(k, a, b); }
 
 #include "simd/two_halves.inl"
 
-// 8 pixels of RGB8 as three planes of 8 bytes; store() interleaves them with
-// one st3 (NEON's structure store does what SSE2 needs shifts for).
+// 8 pixels of RGB8 as three planes of 8 bytes; store() interleaves them with one st3.
 struct rgb8_pack {
   uint8x8x3_t v;
 };
@@ -110,7 +91,6 @@ RAYCAST_INLINE uint8x8_t narrow_bytes(vint x) {
   const uint16x8_t w = vcombine_u16(vmovn_u32(vreinterpretq_u32_s32(x.lo)), vmovn_u32(vreinterpretq_u32_s32(x.hi)));
   return vmovn_u16(w);
 }
-// Reversed puts the pixels in the opposite order (the mirrored batch).
 template <bool Reversed = false>
 RAYCAST_INLINE rgb8_pack pack_rgb8(vint r, vint g, vint b) {
   rgb8_pack p;

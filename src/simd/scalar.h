@@ -1,9 +1,6 @@
-// The 1-lane target (as Highway's scalar target, Embree's vfloat<1>): the
-// vector layer's vocabulary over one float, so that the float renderer one
-// pixel at a time is the kernels' own source instantiated at width 1. Plain
-// IEEE float operations, one rounding each (builtins: no library function
-// of another target's flags can stand in for them) (the kernels room compiles with
-// -ffp-contract=off: madd is a multiply and an add, as on SSE2). See README.md.
+// The 1-lane target: the vector layer's vocabulary over one float (README.md). Plain IEEE float
+// operations, one rounding each (builtins: no library function of another target's flags can
+// stand in for them; with -ffp-contract=off madd is a multiply and an add, as on SSE2).
 #pragma once
 #include <cstdint>
 #include <cstring>
@@ -15,8 +12,6 @@
 #endif
 
 namespace raycast::simd::scalar {
-
-// What this target offers beyond the common vocabulary (README.md): none.
 
 // One float a vfloat: the sampled path's two samples a pass fit in any register file.
 inline constexpr int vfloats_in_registers = 16;
@@ -43,8 +38,7 @@ RAYCAST_INLINE vfloat operator*(vfloat a, vfloat b) { return a.v * b.v; }
 RAYCAST_INLINE vfloat operator/(vfloat a, vfloat b) { return a.v / b.v; }
 RAYCAST_INLINE vfloat operator-(vfloat a) { return -a.v; }
 RAYCAST_INLINE void store(float* p, vfloat a) { *p = a.v; }
-// x86's meaning (minps, maxps: the second operand unless the first is
-// strictly smaller / larger), which every target keeps, NaN and signed zeros included.
+// x86's meaning (the second operand unless the first is strictly smaller / larger), as every target.
 RAYCAST_INLINE vfloat min(vfloat a, vfloat b) { return a.v < b.v ? a.v : b.v; }
 RAYCAST_INLINE vfloat max(vfloat a, vfloat b) { return a.v > b.v ? a.v : b.v; }
 RAYCAST_INLINE vfloat clamp(vfloat x, vfloat lo, vfloat hi) { return min(max(x, lo), hi); }
@@ -70,7 +64,6 @@ RAYCAST_INLINE vfloat rsqrt_est(vfloat x) {
   return 1.0f / __builtin_sqrtf(x.v);
 #endif
 }
-// Truncating (the kernels convert only values in range).
 RAYCAST_INLINE vint to_int(vfloat a) { return {int32_t(a.v)}; }
 RAYCAST_INLINE vfloat reverse(vfloat a) { return a; }
 RAYCAST_INLINE vint reverse(vint a) { return a; }
@@ -91,7 +84,6 @@ RAYCAST_INLINE void store_rgbf(float* dst, vfloat r, vfloat g, vfloat b) {
   dst[2] = b.v;
 }
 
-// Unsigned 32-bit lanes for the samplers' hashes (scene/sampler.h).
 struct vuint {
   uint32_t v;
   vuint() = default;
@@ -106,7 +98,6 @@ RAYCAST_INLINE vuint operator&(vuint a, vuint b) { return vuint(a.v & b.v); }
 RAYCAST_INLINE vuint operator|(vuint a, vuint b) { return vuint(a.v | b.v); }
 RAYCAST_INLINE vuint operator>>(vuint a, int n) { return vuint(a.v >> n); }
 RAYCAST_INLINE vuint operator<<(vuint a, int n) { return vuint(a.v << n); }
-// Lanes below 2^31, as floats (exact below 2^24).
 RAYCAST_INLINE vfloat to_float(vuint a) { return float(int32_t(a.v)); }
 RAYCAST_INLINE vuint as_uint(vfloat a) {
   uint32_t u;

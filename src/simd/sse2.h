@@ -1,5 +1,4 @@
-// SSE2 (every x86-64): 8 float lanes as two __m128 halves (two_halves.inl
-// over the 4-lane operations below). See README.md.
+// SSE2 (every x86-64): 8 float lanes as two __m128 halves (two_halves.inl). See README.md.
 #pragma once
 #include <emmintrin.h>
 
@@ -9,10 +8,6 @@
 
 namespace raycast::simd::sse2 {
 
-// What this instruction set offers beyond the common vocabulary (README.md):
-// none. The kernel falls back to plain stores.
-
-// The 4-lane operations two_halves.inl builds the 8-lane vocabulary from.
 namespace half {
 using f = __m128;
 using i = __m128i;
@@ -57,8 +52,7 @@ RAYCAST_INLINE u splat_u(uint32_t s) { return _mm_set1_epi32(int32_t(s)); }
 RAYCAST_INLINE u iota(uint32_t start) { return _mm_add_epi32(splat_u(start), _mm_setr_epi32(0, 1, 2, 3)); }
 RAYCAST_INLINE u add_u(u a, u b) { return _mm_add_epi32(a, b); }
 RAYCAST_INLINE u sub_u(u a, u b) { return _mm_sub_epi32(a, b); }
-// No 32-bit low multiply (SSE4.1's pmulld): two 32x32->64 multiplies of the
-// even and odd lanes, their low halves interleaved.
+// No pmulld: two 32x32->64 multiplies of the even and odd lanes, their low halves interleaved.
 RAYCAST_INLINE u mul_u(u a, u b) {
   const __m128i even = _mm_mul_epu32(a, b);
   const __m128i odd = _mm_mul_epu32(_mm_srli_epi64(a, 32), _mm_srli_epi64(b, 32));
@@ -91,9 +85,8 @@ struct rgb8_pack {
   __m128i lo, hi;
 };
 
-// 4 lanes of bytes -> 12 bytes r0 g0 b0 r1 ... No pshufb in SSE2: pack each
-// dword as (r g b 0), squeeze the zero byte out of each 64-bit half with
-// shifts, then close the gap between the halves.
+// 4 lanes of bytes -> 12 bytes r0 g0 b0 r1 ... (no pshufb): each dword as (r g b 0), the zero
+// byte squeezed out of each 64-bit half with shifts, then the gap between the halves closed.
 RAYCAST_INLINE __m128i pack_rgb8_half(__m128i r, __m128i g, __m128i b) {
   const __m128i w = _mm_or_si128(r, _mm_or_si128(_mm_slli_epi32(g, 8), _mm_slli_epi32(b, 16)));
   const __m128i low3 = _mm_set1_epi64x(0x0000000000FFFFFFll);
@@ -102,7 +95,6 @@ RAYCAST_INLINE __m128i pack_rgb8_half(__m128i r, __m128i g, __m128i b) {
   const __m128i lo_q = _mm_set_epi64x(0, -1);
   return _mm_or_si128(_mm_and_si128(six, lo_q), _mm_srli_si128(_mm_andnot_si128(lo_q, six), 2));
 }
-// Reversed puts the pixels in the opposite order (the mirrored batch).
 template <bool Reversed = false>
 RAYCAST_INLINE rgb8_pack pack_rgb8(vint r, vint g, vint b) {
   if constexpr (Reversed) {

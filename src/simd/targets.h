@@ -1,22 +1,12 @@
-// The targets the kernels are compiled for, declared once. Everything else is
-// derived from this list: CMake reads it for the targets to build and their
-// compiler flags (src/simd/CMakeLists.txt reads the X(...) lines below), and
-// the C++ side expands it for the kernels' declarations (kernels/kernel.h),
-// the backends, their names and dispatch (render/backend.h), the values of
-// RAYCAST_MAX_ISA (simd/cpu.cpp) and the tests' per-target lists.
-//
-// X(name, architecture, lanes, what the CPU needs, compiler flags), in the
-// order `auto` prefers them least to most (it takes the last one this build
-// has and this CPU runs):
-//   name          the vector layer's header (simd/<name>.h) and namespace
-//                 (raycast::simd::<name>, raycast::kernels::<name>), and the
-//                 backend's name (--backend <name>)
+// The targets the kernels are compiled for, declared once: CMake reads the X(...) lines below
+// (simd/CMakeLists.txt) and the C++ side expands them (README.md).
+// X(name, architecture, lanes, what the CPU needs, compiler flags), in the order `auto` prefers
+// them least to most (it takes the last one this build has and this CPU runs):
+//   name          the header simd/<name>.h, the namespaces and the backend's name
 //   architecture  where it is built: any, x86_64 or aarch64
 //   lanes         pixels a batch
 //   needs         what a CPU must have, as the refusal names it
 //   flags         its translation units' compiler flags
-// `scalar` is the 1-lane target: the float renderer one pixel at a time, the
-// same kernel source at width 1, built everywhere.
 #pragma once
 
 // clang-format off
@@ -33,8 +23,7 @@
 #define RAYCAST_ARCH_NAME_x86_64 "x86-64"
 #define RAYCAST_ARCH_NAME_aarch64 "AArch64"
 
-// RAYCAST_ON_<architecture>(code...) keeps its code in builds for that
-// architecture only, so a target's functions are named only where they exist.
+// RAYCAST_ON_<architecture>(code...) keeps its code in builds for that architecture only.
 #define RAYCAST_ON_any(...) __VA_ARGS__
 #if defined(__x86_64__)
 #define RAYCAST_ON_x86_64(...) __VA_ARGS__

@@ -1,10 +1,6 @@
-// The vector layer's vocabulary as two 4-lane halves: 8 lanes on a target
-// whose registers hold 4 (SSE2, NEON). Included inside a target's namespace
-// (simd/sse2.h, simd/neon.h) after its `half` namespace, which gives the
-// 4-lane types f, i, u, m and their operations; everything here is written
-// once for both, lane for lane, lo (lanes 0-3) then hi (lanes 4-7). The pixel
-// packs and interleaved stores stay in each target's header.
-// (No include guard: each target's namespace gets its own copy.)
+// The vector layer's vocabulary as two 4-lane halves, lo (lanes 0-3) then hi (4-7), for SSE2 and
+// NEON: included inside the target's namespace after its `half` namespace (the 4-lane types f, i,
+// u, m and their operations). No include guard: each target's namespace gets its own copy.
 
 // How many vfloats the register file holds, two registers a vfloat.
 inline constexpr int vfloats_in_registers = half::registers / 2;
@@ -18,7 +14,6 @@ struct vfloat {
   half::f lo, hi;
   vfloat() = default;
   RAYCAST_INLINE vfloat(half::f l, half::f h) : lo(l), hi(h) {}
-  // Every lane s; implicit, as Embree's, so that kernels write (uy + 1.0f) * 0.5f.
   RAYCAST_INLINE vfloat(float s) : lo(half::splat(s)), hi(lo) {}
   static RAYCAST_INLINE vfloat load(const float* p) { return {half::load(p), half::load(p + 4)}; }
 };
@@ -27,18 +22,15 @@ struct vint {
   half::i lo, hi;
 };
 
-// Unsigned 32-bit lanes for the samplers' counter-based hashes
-// (scene/sampler.h): wrap-around + and *, xor, logical shifts.
+// Unsigned 32-bit lanes for the samplers' hashes: wrap-around + and *, xor, logical shifts.
 struct vuint {
   half::u lo, hi;
   vuint() = default;
   RAYCAST_INLINE vuint(half::u l, half::u h) : lo(l), hi(h) {}
   explicit RAYCAST_INLINE vuint(uint32_t s) : lo(half::splat_u(s)), hi(lo) {}
-  // start, start + 1, ... in lane order.
   static RAYCAST_INLINE vuint iota(uint32_t start) { return {half::iota(start), half::iota(start + 4)}; }
 };
 
-// Each operation half by half.
 #define RAYCAST_BY_HALVES(result, name, type, op) \
   RAYCAST_INLINE result name(type a, type b) { return {half::op(a.lo, b.lo), half::op(a.hi, b.hi)}; }
 RAYCAST_BY_HALVES(vfloat, operator+, vfloat, add)
@@ -62,7 +54,6 @@ RAYCAST_BY_HALVES(vuint, operator&, vuint, and_u)
 RAYCAST_BY_HALVES(vuint, operator|, vuint, or_u)
 #undef RAYCAST_BY_HALVES
 
-// IEEE negation (the sign bit flipped), as the scalar -x: -(+0) is -0.
 RAYCAST_INLINE vfloat operator-(vfloat a) { return {half::neg(a.lo), half::neg(a.hi)}; }
 RAYCAST_INLINE void store(float* p, vfloat a) {
   half::store(p, a.lo);
@@ -84,21 +75,16 @@ RAYCAST_INLINE vfloat nmadd(vfloat a, vfloat b, vfloat c) {  // c - a b
   return {half::nmadd(a.lo, b.lo, c.lo), half::nmadd(a.hi, b.hi, c.hi)};
 }
 RAYCAST_INLINE vfloat rsqrt_est(vfloat x) { return {half::rsqrt_est(x.lo), half::rsqrt_est(x.hi)}; }
-// Truncating (the kernels convert only values in range).
 RAYCAST_INLINE vint to_int(vfloat a) { return {half::to_int(a.lo), half::to_int(a.hi)}; }
-// Lanes in the opposite order (the mirrored pixels of a batch): each half
-// reversed, and the halves swapped.
+// Lanes in the opposite order: each half reversed, the halves swapped.
 RAYCAST_INLINE vfloat reverse(vfloat a) { return {half::reverse(a.hi), half::reverse(a.lo)}; }
 RAYCAST_INLINE vint reverse(vint a) { return {half::reverse(a.hi), half::reverse(a.lo)}; }
 RAYCAST_INLINE vint splat_int(int32_t x) { return {half::splat_int(x), half::splat_int(x)}; }
 RAYCAST_INLINE vuint operator>>(vuint a, int n) { return {half::shr(a.lo, n), half::shr(a.hi, n)}; }
 RAYCAST_INLINE vuint operator<<(vuint a, int n) { return {half::shl(a.lo, n), half::shl(a.hi, n)}; }
-// Lanes below 2^31, as floats (exact below 2^24).
 RAYCAST_INLINE vfloat to_float(vuint a) { return {half::to_float(a.lo), half::to_float(a.hi)}; }
-// The bits of a float as an unsigned integer, and back.
 RAYCAST_INLINE vuint as_uint(vfloat a) { return {half::as_uint(a.lo), half::as_uint(a.hi)}; }
 RAYCAST_INLINE vfloat as_float(vuint a) { return {half::as_float(a.lo), half::as_float(a.hi)}; }
-// Unsigned a > b per lane, and a where m else b (the closest hit's sphere indices).
 RAYCAST_INLINE vmask operator>(vuint a, vuint b) { return {half::gt_u(a.lo, b.lo), half::gt_u(a.hi, b.hi)}; }
 RAYCAST_INLINE vuint select(vmask m, vuint a, vuint b) {
   return {half::select_u(m.lo, a.lo, b.lo), half::select_u(m.hi, a.hi, b.hi)};

@@ -25,9 +25,7 @@ std::string dir_of(const std::string& path) {
   return slash == std::string::npos ? "" : path.substr(0, slash + 1);
 }
 
-// The file a path names once every symbolic link in its last component is
-// followed, whether or not that file exists (`>` creates the file a dangling
-// link names). More than 40 links: ELOOP, as the kernel says.
+// The file a path names, every link in its last component followed (existing or not; over 40: ELOOP).
 std::string follow_links(const std::string& path) {
   std::string p = path;
   for (int hops = 0; hops <= 40; ++hops) {
@@ -57,8 +55,7 @@ std::string temporary_name(const std::string& dir, const std::string& base, unsi
   return dir + "." + base + "." + suffix;
 }
 
-}  // namespace
-
+// "2.3 GB" style, for messages about sizes.
 std::string human_size(uint64_t bytes) {
   const char* units[] = {"bytes", "kB", "MB", "GB", "TB", "PB", "EB"};
   double v = double(bytes);
@@ -72,19 +69,6 @@ std::string human_size(uint64_t bytes) {
   else std::snprintf(buf, sizeof buf, "%.1f %s", v, units[u]);
   return buf;
 }
-
-void write_all(int fd, const void* data, size_t n, const std::string& name) {
-  const char* p = static_cast<const char*>(data);
-  while (n > 0) {
-    const ssize_t w = ::write(fd, p, n);
-    if (w < 0 && errno == EINTR) continue;
-    if (w <= 0) throw io_error(name + ": " + errno_text(w < 0 ? errno : EIO));
-    p += w;
-    n -= size_t(w);
-  }
-}
-
-namespace {
 
 // Refuses an image of `bytes` that the file system of dir cannot hold.
 void check_free_space(const std::string& dest, const std::string& dir, uint64_t bytes) {
@@ -101,16 +85,25 @@ void check_free_space(const std::string& dest, const std::string& dir, uint64_t 
 
 }  // namespace
 
+void write_all(int fd, const void* data, size_t n, const std::string& name) {
+  const char* p = static_cast<const char*>(data);
+  while (n > 0) {
+    const ssize_t w = ::write(fd, p, n);
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) throw io_error(name + ": " + errno_text(w < 0 ? errno : EIO));
+    p += w;
+    n -= size_t(w);
+  }
+}
+
 atomic_file::atomic_file(const std::string& dest, std::optional<uint64_t> known_size) : dest_(dest) {
   struct stat st {};
   bool exists = stat(dest.c_str(), &st) == 0;  // follows symbolic links
-  // ENOENT: nothing there, or a dangling link (below). Anything else (a loop,
-  // a parent that is a file, a directory we may not search) is the answer.
+  // ENOENT: nothing there, or a dangling link; anything else (a loop, say) is the answer.
   if (!exists && errno != ENOENT) throw io_error(dest + ": " + errno_text(errno));
   if (exists && S_ISDIR(st.st_mode)) throw io_error(dest + ": " + errno_text(EISDIR));
   if (exists && !S_ISREG(st.st_mode)) {
-    // A device or a pipe (/dev/null, /dev/stdout, a FIFO) is written in place:
-    // renaming a file over it would replace the node, not write to it.
+    // A device or a pipe is written in place: a rename would replace the node.
     fd_ = open(dest.c_str(), O_WRONLY | O_CLOEXEC);
     if (fd_ < 0) throw io_error(dest + ": " + errno_text(errno));
     in_place_ = true;
@@ -122,19 +115,15 @@ atomic_file::atomic_file(const std::string& dest, std::optional<uint64_t> known_
   base_ = target_.substr(dir_.size());
   if (base_.empty()) throw io_error(dest + ": " + errno_text(EISDIR));
   const std::string dir_or_dot = dir_.empty() ? "." : dir_;
-  // The temporary's name, "." + base + ".XXXXXX", must fit where the name
-  // itself does: a longest name's is cut (255 bytes on most file systems).
+  // The temporary's name, "." + base + ".XXXXXX", must fit NAME_MAX and PATH_MAX (4096 with NUL).
   const long name_max = pathconf(dir_or_dot.c_str(), _PC_NAME_MAX);
-  // A whole path near PATH_MAX (4096 with its NUL) is cut to fit it too.
   const size_t path_room = dir_.size() + 16 < 4096 ? 4095 - 8 - dir_.size() : 1;
   const size_t keep = std::max<size_t>(1, std::min(size_t(name_max > 8 ? name_max : 255) - 8, path_room));
   size_t cut = std::min(base_.size(), keep);
   while (cut < base_.size() && cut > 1 && (static_cast<unsigned char>(base_[cut]) & 0xc0) == 0x80) --cut;  // whole characters
   temp_base_ = base_.substr(0, cut);
 
-  // A file its owner made read-only is not replaced, as `cp` and `>` refuse it
-  // (root may write anything, as there). Renaming over it would succeed, since
-  // that needs only the directory's permission.
+  // A file its owner made read-only is refused, as `cp` and `>` do (a rename would succeed).
   if (exists && faccessat(AT_FDCWD, target_.c_str(), W_OK, AT_EACCESS) != 0)
     throw io_error(dest + ": " + errno_text(errno));
 
@@ -144,23 +133,19 @@ atomic_file::atomic_file(const std::string& dest, std::optional<uint64_t> known_
 }
 
 void atomic_file::open_temporary(const std::string& dir_or_dot) {
-  // An unnamed file first: nothing to leave behind whatever ends the process.
-  // Giving it a name needs /proc/self/fd (or CAP_DAC_READ_SEARCH) at the end.
+  // An unnamed file first (naming it at the end needs /proc/self/fd).
   if (access("/proc/self/fd", X_OK) == 0) {
     fd_ = open(dir_or_dot.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
     anonymous_ = fd_ >= 0;
   }
   if (fd_ < 0) {
-    // Not on this file system (or no /proc): a named temporary, registered for
-    // the signal handlers.
     const std::string pattern = dir_ + "." + temp_base_ + ".XXXXXX";
     std::vector<char> tmpl(pattern.begin(), pattern.end());
     tmpl.push_back('\0');
     if (tmpl.size() > pending_path_capacity) throw io_error(dest_ + ": path too long");
     int e = 0;
     {
-      // Signals blocked until the name is registered: a signal between
-      // mkstemp and the registration would leave the file behind.
+      // Signals blocked until the name is registered.
       const fatal_signals_blocked blocked;
       fd_ = mkstemp(tmpl.data());
       e = errno;
@@ -175,9 +160,7 @@ void atomic_file::open_temporary(const std::string& dir_or_dot) {
 }
 
 void atomic_file::keep_owner_and_mode(const struct stat* existing) {
-  // Replacing a file keeps its owner and group where we may set them (root;
-  // an owner for a group it is in), then its permissions (chown clears
-  // set-id bits). A new file gets what the umask allows, as with open().
+  // Owner and group where we may set them, then the mode (chown clears set-id bits); new: the umask's.
   mode_t mode = 0;
   if (existing) {
     const struct stat& st = *existing;
@@ -199,8 +182,7 @@ void atomic_file::discard() noexcept {
   if (fd_ >= 0) close(fd_);
   fd_ = -1;
   if (!temp_.empty()) {
-    // Unlink first, then forget: a signal in between unlinks a name that is
-    // already gone (harmless); the other order could leave the file behind.
+    // Unlink first, then forget: the other order could leave the file behind.
     unlink(temp_.c_str());
     forget_pending_temporary();
     temp_.clear();
@@ -211,9 +193,7 @@ void atomic_file::commit() {
   int e = 0;
   if (fsync(fd_) != 0 && errno != EINVAL && errno != EROFS) e = errno;
   if (e == 0 && anonymous_) {
-    // Name the unnamed file beside the destination, then rename as below:
-    // linkat cannot replace an existing file. Only between the two is there
-    // a name a SIGKILL could leave behind.
+    // Name the unnamed file beside the destination, then rename (linkat cannot replace a file).
     const std::string proc = "/proc/self/fd/" + std::to_string(fd_);
     for (unsigned attempt = 0; e == 0 && temp_.empty(); ++attempt) {
       const std::string name = temporary_name(dir_, temp_base_, attempt);

@@ -21,7 +21,7 @@ char g_crash_what[1024];
 std::atomic<bool> g_crash_armed{false};
 char g_subject[1024] = "raycast";
 
-// Default action "terminate": handled like SIGTERM. SIGRTMIN..SIGRTMAX too.
+// Default action "terminate" (as SIGRTMIN..SIGRTMAX, handled in a loop).
 constexpr int terminating[] = {SIGHUP,  SIGINT,    SIGQUIT, SIGTERM, SIGUSR1, SIGUSR2, SIGALRM,
                                SIGVTALRM, SIGPROF, SIGXCPU, SIGIO,   SIGPWR,  SIGSTKFLT};
 // Crashes: the faulting instruction, or abort().
@@ -29,8 +29,7 @@ constexpr int crashes[] = {SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGABRT, SIGSYS, SIG
 
 struct sigaction g_previous[NSIG];
 
-// Where reports go: standard error, or its saved copy while the libraries'
-// output is silenced.
+// Where reports go: standard error, or its saved copy while silenced.
 std::atomic<int> g_report_fd{STDERR_FILENO};
 
 void remove_pending() noexcept {
@@ -48,8 +47,7 @@ void write_stderr(const char* s) noexcept {
   }
 }
 
-// `in` with control characters written as \xNN (as cli::printable does), cut
-// to fit: a message stays one line. Async-signal-safe.
+// `in` with control characters as \xNN, cut to fit: one line. Async-signal-safe.
 void escape_into(char* out, size_t cap, const char* in) noexcept {
   static constexpr char hex[] = "0123456789abcdef";
   size_t o = 0;
@@ -67,18 +65,19 @@ void escape_into(char* out, size_t cap, const char* in) noexcept {
   out[o] = '\0';
 }
 
-// "raycast: error: <what> (<cause>)", then exit 1: from a signal handler as
-// well (write() and _exit() only).
-[[noreturn]] void report_crash(const char* cause) noexcept {
+// "raycast: error: <what> (<cause>)" (or "<what>: <cause>"), then exit 1: from a signal handler
+// as well (write() and _exit() only).
+[[noreturn]] void report(const char* what, const char* cause, bool parenthesized) noexcept {
   char c[512];
   escape_into(c, sizeof c, cause);
   write_stderr("raycast: error: ");
-  write_stderr(g_crash_what);
-  write_stderr(" (");
+  write_stderr(what);
+  write_stderr(parenthesized ? " (" : ": ");
   write_stderr(c);
-  write_stderr(")\n");
+  write_stderr(parenthesized ? ")\n" : "\n");
   _exit(1);
 }
+[[noreturn]] void report_crash(const char* cause) noexcept { report(g_crash_what, cause, true); }
 
 const char* crash_name(int sig) {
   switch (sig) {
@@ -102,9 +101,7 @@ extern "C" void on_fatal_signal(int sig) {
 extern "C" void on_crash(int sig, siginfo_t* info, void*) {
   remove_pending();
   if (g_crash_armed.load()) report_crash(crash_name(sig));
-  // Back to what was there before (the default, or a sanitizer's handler).
-  // A fault by an instruction happens again when the handler returns; one
-  // sent by kill() or abort() is sent again.
+  // Back to the previous action: a faulting instruction faults again; a sent signal is resent.
   sigaction(sig, &g_previous[sig], nullptr);
   if (info == nullptr || info->si_code <= 0) raise(sig);
 }
@@ -122,21 +119,11 @@ void on_terminate() {
     } catch (...) {
     }
   }
-  if (!g_crash_armed.load()) {
-    char c[512];
-    escape_into(c, sizeof c, cause);
-    write_stderr("raycast: error: ");
-    write_stderr(g_subject);
-    write_stderr(": ");
-    write_stderr(c);
-    write_stderr("\n");
-    _exit(1);
-  }
+  if (!g_crash_armed.load()) report(g_subject, cause, false);
   report_crash(cause);
 }
 
-// A library that calls exit() itself (libgomp when a thread cannot start,
-// libjpeg's default error exit) skips our destructors, not atexit.
+// A library's own exit() skips our destructors, not atexit.
 void remove_pending_at_exit() { remove_pending(); }
 
 }  // namespace

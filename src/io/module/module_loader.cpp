@@ -31,13 +31,8 @@ std::string executable_dir() {
   return path.substr(0, path.find_last_of('/'));
 }
 
-// While the image module loads: a thread that keeps the process killable and
-// bounds the wait. Under an address-space limit, log4cplus (pulled in by
-// OpenImageIO's DICOM support) fails to start the third thread of its pool in
-// a static constructor and deadlocks destroying the pool, in threads that
-// block every signal: SIGINT and SIGTERM would have no thread to go to. This
-// one takes them (the handler then ends the process as usual), and reports
-// the load as failed if it has not finished in load_timeout.
+// While the image module loads: a thread that takes the signals (a library may deadlock in
+// static constructors, in threads that block every signal) and fails the load after load_timeout.
 class load_watchdog {
  public:
   static constexpr auto load_timeout = std::chrono::seconds(30);
@@ -52,9 +47,7 @@ class load_watchdog {
         if (!done_cv_.wait_for(lock, load_timeout, [this] { return done_; }))
           crash_means_failure::fail("its libraries did not finish starting in 30 s");
       });
-    } catch (const std::system_error&) {
-      // No thread to spare: load without a watchdog. (The libraries that
-      // start threads then fail to, which crash_means_failure reports.)
+    } catch (const std::system_error&) {  // no thread to spare: no watchdog
     }
   }
   ~load_watchdog() {
@@ -92,26 +85,19 @@ const raycast_image_module* load_image_module(const std::string& for_file) {
   static const raycast_image_module* cached = nullptr;
   if (cached) return cached;
   const std::string dir = executable_dir();
-  // The error to report: that of the first candidate that is there (a
-  // library that cannot be mapped under an address-space limit, say), or
-  // else that of the first candidate ("cannot open shared object file").
+  // The error to report: the first present candidate's, else the first's.
   std::string first_error, first_present_error;
   const std::string what = for_file + ": cannot load the image module";
   std::vector<std::string> candidates;
   for (const std::string& d : extra_dirs()) candidates.push_back(d + "/raycast_oiio.so");
   candidates.push_back(dir + "/raycast_oiio.so");
   candidates.push_back(dir + "/" RAYCAST_MODULE_RELDIR "/raycast_oiio.so");
-  // OpenImageIO's dependencies pull in BLAS. Where Debian's libblas.so.3 is
-  // OpenBLAS (python3-numpy may select it), it starts a thread pool as it is
-  // loaded, which prints on our stderr and stops the process when threads or
-  // memory are short. raycast never calls BLAS: one thread, unless the user
-  // chose otherwise.
+  // OpenBLAS (a dependency) starts a thread pool as it loads; raycast never calls BLAS.
   ::setenv("OPENBLAS_NUM_THREADS", "1", 0);
   for (const std::string& candidate : candidates) {
     std::string error;
     {
-      // dlopen runs the static constructors of OpenImageIO's libraries, which
-      // abort or crash when memory or threads run short: one line, exit 1.
+      // dlopen runs static constructors that crash when memory or threads run short.
       const crash_means_failure crash(what);
       const load_watchdog watchdog;
       if (void* h = dlopen(candidate.c_str(), RTLD_LAZY | RTLD_LOCAL)) {

@@ -1,5 +1,4 @@
-// Finds and loads the image module (raycast_oiio.so, image_module.h) with
-// dlopen, once per process.
+// Finds and loads the image module (image_module.h) with dlopen, once per process.
 #pragma once
 #include <string>
 
@@ -7,14 +6,11 @@
 
 namespace raycast::io {
 
-// Beside the executable (build tree), or in <prefix>/<libdir>/raycast relative
-// to <prefix>/bin (install). Throws io_error("<for_file>: cannot load the image
-// module (<loader error>)").
+// Beside the executable, or in <prefix>/<libdir>/raycast relative to <prefix>/bin. Throws
+// io_error("<for_file>: cannot load the image module (<loader error>)").
 const raycast_image_module* load_image_module(const std::string& for_file);
 
-// One more folder to look in, before the executable's (a library's users:
-// the Python module beside its package, a program linking the installed
-// library). Call before the first load.
+// One more folder to look in, before the executable's (a library's users); before the first load.
 void add_image_module_dir(const std::string& dir);
 
 }  // namespace raycast::io

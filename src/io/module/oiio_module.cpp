@@ -22,8 +22,7 @@ namespace {
 
 using OIIO::Filesystem::IOProxy;
 
-// Writes to a caller's file descriptor at explicit offsets (encoders seek);
-// remembers the first error instead of returning a short count.
+// Writes to a caller's descriptor at explicit offsets; remembers the first error, never short.
 class fd_proxy final : public IOProxy {
  public:
   explicit fd_proxy(int fd) : IOProxy("", IOProxy::Write), fd_(fd) {
@@ -35,8 +34,7 @@ class fd_proxy final : public IOProxy {
     m_pos += int64_t(size);
     return n;
   }
-  // A pipe or a terminal takes the bytes in order (write); going back is
-  // ESPIPE there. A file takes them at their offset.
+  // A pipe or a terminal takes the bytes in order (going back: ESPIPE), a file at their offset.
   size_t pwrite(const void* buf, size_t size, int64_t offset) override {
     const char* p = static_cast<const char*>(buf);
     size_t left = size;
@@ -83,10 +81,7 @@ const char* oiio_format_name(const std::string& f) {
   return nullptr;
 }
 
-// While alive, standard error goes to /dev/null: for the encoders' complaints
-// about a file that is being thrown away (libpng 1.6 under OpenImageIO 2.4
-// prints "libpng error: No IDATs written into file" itself when a PNG is
-// closed before its first row). The CLI is single-threaded here.
+// While alive, standard error goes to /dev/null (the encoders' complaints about a discarded file).
 class stderr_silenced {
  public:
   stderr_silenced() {
@@ -110,11 +105,9 @@ class stderr_silenced {
   int saved_ = -1;
 };
 
-// OpenImageIO and OpenEXR start pools of threads as wide as the machine, and
-// a thread that cannot start (a container's pids limit, RLIMIT_NPROC) throws
-// std::system_error where nothing catches it: std::terminate. So, once, start
-// that many threads ourselves; where some cannot start, both libraries work
-// on the calling thread alone.
+// OpenImageIO and OpenEXR start thread pools as wide as the machine, and a thread that cannot
+// start terminates the process. So, once, start that many ourselves; where some cannot, both
+// libraries work on the calling thread alone.
 void fit_thread_pools_to_limits() {
   static std::once_flag once;
   std::call_once(once, [] {
@@ -162,10 +155,7 @@ struct raycast_image_writer {
 
 namespace {
 
-// Error state after a call. A failed write recorded by the proxy comes first:
-// it is the cause, and what OpenImageIO may say after it (TIFF reading back a
-// directory that never reached the disk, say) is a consequence. OpenImageIO's
-// own message is always collected, so that none is left pending.
+// Error state after a call: the proxy's failed write first (the cause); OpenImageIO's always read.
 bool failed(raycast_image_writer* w, bool ok, char* err, size_t len) {
   const std::string oiio_error =
       w->out && w->out->has_error() ? one_line(w->out->geterror()) : std::string();
@@ -211,15 +201,12 @@ raycast_image_writer* open_writer(int fd, const char* format, int64_t width, int
   w->type = is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
   w->width = width;
   OIIO::ImageSpec spec(int(width), int(height), 3, w->type);
-  // We carry no EXIF data, and OpenImageIO 2.4's TIFF writer fails to write
-  // its (empty) EXIF directory through an I/O proxy.
+  // No EXIF data (the TIFF writer fails to write its empty directory through a proxy).
   spec.attribute("tiff:write_exif", 0);
-  // Classic TIFF's offsets are 32-bit: past 4 GiB (with room for the
-  // directories), BigTIFF.
+  // Classic TIFF's offsets are 32-bit: BigTIFF past 4 GiB (with room for the directories).
   if (uint64_t(width) * uint64_t(height) * 3 * w->type.size() > (uint64_t{15} << 28))
     spec.attribute("tiff:bigtiff", 1);
   if (timestamp >= 0) {
-    // What OpenImageIO would otherwise fill in with the current time.
     const time_t t = time_t(timestamp);
     struct tm tm {};
     char date[32];
