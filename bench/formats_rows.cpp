@@ -158,10 +158,15 @@ std::string cached(const std::string& name, Make make) {
   return path;
 }
 
+}  // namespace
+
 std::string dump_file(int frames, int64_t n) {
   return cached("dump-" + std::to_string(frames) + "x" + std::to_string(n) + ".lammpstrj",
                 [&](const std::string& p) { return write_dump(p, frames, n); });
 }
+
+namespace {
+
 std::string gz_file(int frames, int64_t n) {
   const std::string plain = dump_file(frames, n);
   return plain.empty() ? "" : cached("dump-" + std::to_string(frames) + "x" + std::to_string(n) + ".lammpstrj.gz",

@@ -27,9 +27,16 @@
 // frame alive less that with the first) and peak_rss_mb (the most); the
 // ratios are report.py's.
 #pragma once
+#include <cstdint>
+#include <string>
 
 namespace raycast::bench {
 
 void register_formats_rows(bool quick);
+
+// The F-frame dump of n atoms a frame described above (written once to
+// $TMPDIR/raycast-bench-formats/ and read once to warm the page cache); ""
+// where it cannot be written.
+std::string dump_file(int frames, int64_t n);
 
 }  // namespace raycast::bench

@@ -28,6 +28,7 @@
 #include "light_rows.h"
 #include "ply_rows.h"
 #include "scale_rows.h"
+#include "trajectory_rows.h"
 #include "spheres.h"
 #include "sphere_numerics.h"
 
@@ -36,13 +37,7 @@ extern char** environ;
 namespace raycast::bench {
 namespace {
 
-// The directory of this program, and whether it is the build tree's.
-std::string exe_dir() {
-  char buf[4096];
-  const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
-  const std::string exe = n > 0 ? std::string(buf, size_t(n)) : "";
-  return exe.substr(0, exe.find_last_of('/'));
-}
+// Whether this program is the build tree's.
 bool in_build_tree() { return exe_dir() == RAYCAST_BENCH_BUILD_BIN_DIR; }
 
 // Where the aa/ rows' references are cached unless --aa-reference-dir says:
@@ -466,6 +461,7 @@ int run(int argc, char** argv) {
   register_scale_rows(opt.quick);
   register_ply_rows(opt.quick, opt.big);
   register_formats_rows(opt.quick);
+  register_trajectory_rows(opt.quick);
   register_light_rows(opt.quick);
   register_stiff_rows();
   add_context(opt);

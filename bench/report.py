@@ -672,6 +672,32 @@ def print_formats(rows):
                   f"{r.get('rss_growth_mb', 0):.1f} MB over the frames; peak RSS {r.get('peak_rss_mb', 0):.0f} MB")
 
 
+def print_frames(rows):
+    """frames/ rows: raycast over an F-frame trajectory against its one-frame run, from their --stats."""
+    fr = [r for r in of_kind(rows, "frames")]
+    if not fr:
+        return
+    print("\nTrajectories (frames/): raycast --scene DUMP -o f_%04d.png --threads 1 against --frames 0 of the same\n"
+          "file, from their --stats (medians); one frame's work = its prepare + render (+ write: the PNG).\n"
+          "Goals: F frames <= 1.1 x (F x one frame's prepare + render) + one frame's load; peak RSS <= 1.6x one frame's")
+    print(f"  {'atoms':>7} {'frames':>6} {'size':>9} {'total s':>8} {'1 frame s':>9} {'vs goal':>8} "
+          f"{'vs frames+writes':>16} {'peak MB':>8} {'x 1 frame':>9}")
+    for r in sorted(fr, key=lambda r: (int(r.frames), int(r.atoms))):
+        if r.error:
+            print(f"  {r.atoms:>7} {r.frames:>6} {r.size:>9}  {r.error}")
+            continue
+        f = int(r.frames)
+        work = r.one_prepare + r.one_render
+        goal = r.seconds / (f * work + r.one_load) if work > 0 else float("nan")
+        # The one-frame run and F - 1 more frames, each written as its own PNG.
+        expected = r.one_seconds + (f - 1) * (work + r.one_write)
+        print(f"  {r.atoms:>7} {f:>6} {r.size:>9} {r.seconds:8.3f} {r.one_seconds:9.4f} {goal:7.2f}x "
+              f"{r.seconds / expected:15.2f}x {r.peak_rss_mb:8.0f} {r.peak_rss_mb / r.one_peak_rss_mb:8.2f}x")
+    print("  vs goal: total / (F x (prepare + render) + load) of one frame, the total with the program's start (the\n"
+          "  image library's load) and every PNG's writing; vs frames+writes: total / (the one-frame run + F - 1 frames'\n"
+          "  prepare + render + write)")
+
+
 def plot_file(plot, suffix):
     """FILE.svg -> FILE-aa.svg."""
     dot, slash = plot.rfind("."), plot.rfind("/")
@@ -713,6 +739,7 @@ def main(argv=None):
         print("Scale plot written to", plot_file(a.plot, "-scale"))
     print_particle_files(rows)
     print_formats(rows)
+    print_frames(rows)
     print_stiff(rows)
     print_sphere_stiff(rows)
 

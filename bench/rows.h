@@ -6,6 +6,7 @@
 // (speedup, vs_memset, vs_none, Embree / ours, growth in N) are the report's.
 #pragma once
 #include <benchmark/benchmark.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cstdarg>
@@ -21,6 +22,14 @@ __attribute__((format(printf, 1, 2))) inline std::string strf(const char* format
   std::vsnprintf(buf, sizeof buf, format, args);
   va_end(args);
   return buf;
+}
+
+// The directory of this program (where the build tree, or an install, keeps raycast too).
+inline std::string exe_dir() {
+  char buf[4096];
+  const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
+  const std::string exe = n > 0 ? std::string(buf, size_t(n)) : "";
+  return exe.substr(0, exe.find_last_of('/'));
 }
 
 inline std::string size_text(int64_t w, int64_t h) {

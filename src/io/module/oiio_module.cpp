@@ -203,6 +203,12 @@ raycast_image_writer* open_writer(int fd, const char* format, int64_t width, int
   OIIO::ImageSpec spec(int(width), int(height), 3, w->type);
   // No EXIF data (the TIFF writer fails to write its empty directory through a proxy).
   spec.attribute("tiff:write_exif", 0);
+  // PNG: zlib's fastest level and every row's "sub" filter (libpng's
+  // PNG_FILTER_SUB) in place of level 6 and the adaptive choice: a third of
+  // the time (a 1920x1080 frame of spheres writes in about as long as it
+  // renders, not ten times as long), files 1.1-1.7x larger.
+  spec.attribute("png:compressionLevel", 1);
+  spec.attribute("png:filter", 16);
   // Classic TIFF's offsets are 32-bit: BigTIFF past 4 GiB (with room for the directories).
   if (uint64_t(width) * uint64_t(height) * 3 * w->type.size() > (uint64_t{15} << 28))
     spec.attribute("tiff:bigtiff", 1);
