@@ -181,17 +181,9 @@ def same_pixels(pairs, cwd, env):
     return None
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--source", required=True, help="the repository root")
-    ap.add_argument("--bindir", required=True, help="the build's bin folder (raycast, raycast-bench)")
-    ap.add_argument("--keep", action="store_true", help="keep the scratch directory")
-    ap.add_argument("markdown")
-    args = ap.parse_args()
-    source = os.path.abspath(args.source)
-    bindir = os.path.abspath(args.bindir)
-    doc = os.path.relpath(os.path.abspath(args.markdown), source)
-
+def make_scratch(source, bindir):
+    """(scratch, work, env): a scratch directory whose repo/ links the source tree's entries and the build,
+    and the environment the blocks run in (a HOME of their own, the build's bin first on PATH)."""
     scratch = tempfile.mkdtemp(prefix="raycast-docs-")
     work, home = os.path.join(scratch, "repo"), os.path.join(scratch, "home")
     os.makedirs(work)
@@ -206,7 +198,21 @@ def main():
         env.pop(var, None)
     env.update(HOME=home, XDG_CACHE_HOME=os.path.join(home, ".cache"), LC_ALL="C.UTF-8",
                PATH=bindir + os.pathsep + env.get("PATH", "/usr/bin:/bin"))
+    return scratch, work, env
 
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--source", required=True, help="the repository root")
+    ap.add_argument("--bindir", required=True, help="the build's bin folder (raycast, raycast-bench)")
+    ap.add_argument("--keep", action="store_true", help="keep the scratch directory")
+    ap.add_argument("markdown")
+    args = ap.parse_args()
+    source = os.path.abspath(args.source)
+    bindir = os.path.abspath(args.bindir)
+    doc = os.path.relpath(os.path.abspath(args.markdown), source)
+
+    scratch, work, env = make_scratch(source, bindir)
     failed, ran, skipped, started = None, 0, 0, time.monotonic()
     try:
         for line, lang, text, markers in read_blocks(args.markdown):

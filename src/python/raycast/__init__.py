@@ -182,15 +182,7 @@ def render(scene=None, *, frame=None, atoms=None, centers=None, radii=None, colo
     type) or OSError (a scene file that cannot be read); each has .field
     naming the keyword or the scene file's key.
     """
-    kind, source = "", ""
-    if scene is None:
-        pass
-    elif isinstance(scene, dict):
-        kind, source = "json", _json.dumps(scene, default=_json_value)
-    elif isinstance(scene, (str, _os.PathLike)):
-        kind, source = "name", _os.fspath(scene)  # a built-in name or a file, as --scene
-    else:
-        raise _type_error("scene", f"want a name, a path or a dict, got {type(scene).__name__}")
+    kind, source = _scene_source(scene)
     if not isinstance(dtype, str):
         raise _type_error("dtype", f"want a str, got {type(dtype).__name__}")
     if frame is not None and (isinstance(frame, bool) or not isinstance(frame, (int, _np.integer))):
@@ -207,6 +199,17 @@ def render(scene=None, *, frame=None, atoms=None, centers=None, radii=None, colo
                  seed=seed, region=region, frame=None)
     keywords = {k: _token(_FIELD[k], given[k]) for k in _RENDER_KEYWORDS if given[k] is not None}
     return _raycast.render(kind, source, None if frame is None else int(frame), particles, keywords, dtype)
+
+
+def _scene_source(scene):
+    """(kind, source) of render's scene= for the module: none, a dict's JSON text, or a name or path."""
+    if scene is None:
+        return "", ""
+    if isinstance(scene, dict):
+        return "json", _json.dumps(scene, default=_json_value)
+    if isinstance(scene, (str, _os.PathLike)):
+        return "name", _os.fspath(scene)  # a built-in name or a file, as --scene
+    raise _type_error("scene", f"want a name, a path or a dict, got {type(scene).__name__}")
 
 
 def _particle_arrays(scene, atoms, centers, radii, colors, color_by, shade, radius):
