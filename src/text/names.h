@@ -1,7 +1,6 @@
 // A name that is not one of a list: the message every front end gives for
 // it ("'wrld' is not one of sky, ..., world; did you mean world?"), with
 // the nearest name suggested when one is near enough to be a slip.
-// Header only: the CPU room's RAYCAST_MAX_ISA check uses it too.
 #pragma once
 #include <algorithm>
 #include <cctype>
