@@ -17,6 +17,8 @@ REPORT = HERE.parent / "bench" / "report.py"
 spec = importlib.util.spec_from_file_location("report", REPORT)
 report = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(report)
+sys.path.insert(0, str(REPORT.parent))
+import report_aa  # noqa: E402  (the antialiasing arithmetic, beside report.py)
 
 # Every section's rows, each a few: the sky and world at 400x225, one thread; the shortcuts of
 # sse2/fast; two sobol points and the book on world; the regions; the cloud's scale rows at N = 1
@@ -32,17 +34,17 @@ def power_law(a, slope, ns):
 
 def test_slope_of_a_power_law_over_n_at_least_four():
     c = [(1, 1.0)] + power_law(0.1, -0.75, [4, 16, 64, 256])  # N = 1 is left out of the fit
-    assert report.loglog_slope(c) == pytest.approx(-0.75, abs=1e-12)
-    assert report.loglog_slope(power_law(0.1, -0.5, [1, 4])) is None  # one point at N >= 4
+    assert report_aa.loglog_slope(c) == pytest.approx(-0.75, abs=1e-12)
+    assert report_aa.loglog_slope(power_law(0.1, -0.5, [1, 4])) is None  # one point at N >= 4
 
 
 def test_samples_to_match_interpolates_in_log_log():
     c = power_law(0.1, -0.5, [1, 4, 16, 64, 256])
-    n, extrapolated = report.samples_to_match(c, 0.1 / math.sqrt(100))
+    n, extrapolated = report_aa.samples_to_match(c, 0.1 / math.sqrt(100))
     assert n == pytest.approx(100, abs=1e-9) and not extrapolated
-    n, extrapolated = report.samples_to_match(c, 0.1 / math.sqrt(1024))
+    n, extrapolated = report_aa.samples_to_match(c, 0.1 / math.sqrt(1024))
     assert n == pytest.approx(1024, abs=1e-6) and extrapolated
-    assert report.samples_to_match(c, 0.5) is None  # worse than one sample
+    assert report_aa.samples_to_match(c, 0.5) is None  # worse than one sample
 
 
 def run_report(*args):
