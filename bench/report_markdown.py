@@ -42,13 +42,15 @@ def light_rows_at(rows, n=LIGHT_N):
 
 
 def views(rows, ctx, srows, size, threads):
-    """The Markdown file's tables, each a function printing one: the sky's and world's summary, the
-    peers, light, the scale rows' totals, particle files, formats and trajectories."""
+    """The Markdown file's tables, each a function printing one: the sky's and world's summary (its
+    columns said by the file's text), the peers, light, the scale rows' totals, particle files,
+    formats and trajectories."""
     def light():
         print_light(light_rows_at(rows), ctx)
         if of_kind(rows, "light"):
             print("  (each family's rows at N = 10^6, or the nearest N it has; every N in the full report)")
-    return [lambda: print_summary([s for s in srows if s["scene"] in ("", "world")], ctx, size, threads),
+    sky_and_world = [s for s in srows if s["scene"] in ("", "world")]
+    return [lambda: print_summary(sky_and_world, ctx, size, threads, legend=False),
             lambda: print_peers(rows, ctx, size), light, lambda: print_scale_compact(rows, ctx),
             lambda: print_particle_files(rows), lambda: print_formats(rows), lambda: print_frames(rows)]
 
@@ -57,7 +59,7 @@ def block(rows, ctx, srows, size, threads, json_path, report_path, md_path):
     """The text between the markers: where the tables come from, then each table as a ```text block."""
     here = os.path.dirname(os.path.abspath(md_path))
     rel = lambda p: os.path.relpath(os.path.abspath(p), here)
-    run = {"quick": "a `raycast-bench --quick` run", "full": "a whole `raycast-bench` run"}.get(ctx.get("pass"), "a run")
+    run = {"quick": "a `raycast-bench --quick` run", "full": "a `raycast-bench` run"}.get(ctx.get("pass"), "a run")
     head = (f"From [`{rel(json_path)}`]({rel(json_path)}), {run}: "
             f"{ctx.get('cpu_model', '?')}, {ctx.get('available_cores', '?')} cores, {ctx.get('date', '')[:10]}; "
             f"every table of the run: [`{rel(report_path)}`]({rel(report_path)}).")
@@ -99,4 +101,7 @@ def into(md_path, report_path, full_text, rows, ctx, srows, size, threads, json_
     """--into: the Markdown file's tables and the full report file, written or checked."""
     md = open(md_path, encoding="utf-8").read()
     inner = block(rows, ctx, srows, size, threads, json_path, report_path, md_path)
-    return write_or_check({md_path: replaced(md, inner, md_path), report_path: full_text}, check)
+    stale = write_or_check({md_path: replaced(md, inner, md_path), report_path: full_text}, check)
+    if stale:
+        print(f"To rewrite them from the run: python3 bench/report.py {json_path} --into {md_path}")
+    return stale

@@ -24,15 +24,17 @@ def summary_rows(rows, size, threads, out="rgb8"):
     return out_rows
 
 
-def print_summary(srows, ctx, size, threads):
+def print_summary(srows, ctx, size, threads, legend=True):
+    """The summary table; legend: with the lines that say what its columns are."""
     cores = ctx.get("available_cores", "?")
     print(f"\nError vs run time: {ctx.get('cpu_model', '?')}, {ctx.get('date', '')[:10]}, {size}, {threads} thread"
-          f"{'' if threads == 1 else 's'} (of {cores} cores), rgb8 output\n"
-          "  ns/px: the median of a row's repetitions (--benchmark_repetitions=N; one by default)\n"
-          "  errors vs the double reference over the whole image: max_abs_err in linear colour\n"
-          "  (from the f32 rendering), max_lsb and lsb_mismatch from the 8-bit bytes;\n"
-          "  * = Pareto-optimal: no other row of the same scene is both faster and at most as\n"
-          "  wrong (max_abs_err; - where a row has no float output); the sky, then each sphere scene")
+          f"{'' if threads == 1 else 's'} (of {cores} cores), rgb8 output")
+    if legend:
+        print("  ns/px: the median of a row's repetitions (--benchmark_repetitions=N; one by default)\n"
+              "  errors vs the double reference over the whole image: max_abs_err in linear colour\n"
+              "  (from the f32 rendering), max_lsb and lsb_mismatch from the 8-bit bytes;\n"
+              "  * = Pareto-optimal: no other row of the same scene is both faster and at most as\n"
+              "  wrong (max_abs_err; - where a row has no float output); the sky, then each sphere scene")
     if not srows:
         print("  (no rows measured at this size, thread count and output; see --benchmark_filter)")
     else:

@@ -80,23 +80,24 @@ def plot_scale(rows, ctx, file):
     return True
 
 
-def print_scale_compact(rows, ctx, families=("cloud", "box")):
-    """A few families' totals alone (prepare + render of a new scene), ours and Embree's: the README's view."""
+def print_scale_compact(rows, ctx, families=("cloud", "box"), from_n=1000):
+    """A few families' totals alone (prepare + render of a new scene) from N = from_n, ours and Embree's:
+    the README's view."""
     fams = [(f, scale_cells(rows, f)) for f in families]
     fams = [(f, cells) for f, cells in fams if cells]
     if not fams:
         return
     ms = lambda s: "-" if s is None else f"{s * 1e3:.3f}" if s < 0.01 else f"{s * 1e3:.2f}" if s < 0.1 else \
         f"{s * 1e3:.1f}" if s < 10 else f"{s * 1e3:.0f}"
-    print(f"\nScale ({', '.join(f + '/' for f, _ in fams)} rows; every column in the full report): a new scene's "
-          "prepare + render,\n"
-          f"  ms (medians), 1920x1080, rgb8; tall = {ctx.get('available_cores', '?')} threads; "
+    print(f"\nScale ({', '.join(f + '/' for f, _ in fams)} rows from N = {from_n}; every row and column in the "
+          "full report): a new scene's\n  prepare + render, "
+          f"ms (medians), 1920x1080, rgb8; tall = {ctx.get('available_cores', '?')} threads; "
           "embree / ours at 1 thread")
-    print(f"  {'family':8} {'N':>9} {'ours t1':>9} {'ours tall':>9} {'embree t1':>9} {'embree tall':>11} "
-          f"{'embree/ours':>11}")
+    print(f"  {'family':8} {'N':>9} {'ours t1':>10} {'ours tall':>10} {'embree t1':>10} {'embree tall':>12} "
+          f"{'embree/ours':>12}")
     for family, cells in fams:
-        for n in sorted({n for by_n in cells.values() for n in by_n}):
+        for n in sorted({n for by_n in cells.values() for n in by_n if n >= from_n}):
             t = [(lambda r: r.t if r else None)(cells[key].get(n)) if key in cells else None
                  for key in (("ours", "1"), ("ours", "all"), ("embree", "1"), ("embree", "all"))]
             ratio = f"{t[2] / t[0]:.2f}x" if t[0] and t[2] else "-"
-            print(f"  {family:8} {n:9d} {ms(t[0]):>9} {ms(t[1]):>9} {ms(t[2]):>9} {ms(t[3]):>11} {ratio:>11}")
+            print(f"  {family:8} {n:9d} {ms(t[0]):>10} {ms(t[1]):>10} {ms(t[2]):>10} {ms(t[3]):>12} {ratio:>12}")
