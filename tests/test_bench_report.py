@@ -1,6 +1,7 @@
 """bench/report.py: its antialiasing arithmetic on exact power laws, and its tables and plots
 from a short run of raycast-bench (RAYCAST_BENCH: the binary; CTest's bench.report), with the
-rows interleaved and repeated, and the same report whatever the rows' order in the JSON."""
+rows interleaved and repeated, and the same report whatever the rows' order in the JSON; --into's
+tables between a Markdown file's markers, and --check's finding of tables that drifted from the run."""
 import importlib.util
 import json
 import math
@@ -117,3 +118,22 @@ def test_write_cloud_prints_the_scale_rows_cloud():
         r = subprocess.run([bench, "--write-cloud", bad], capture_output=True, text=True)
         assert r.returncode == 2 and r.stdout == "" and r.stderr.count("\n") == 1, (bad, r)
         assert "--write-cloud" in r.stderr
+
+
+def test_into_writes_the_tables_between_the_markers_and_check_finds_drift(tmp_path):
+    run = HERE.parent / "bench" / "results" / "run.json"  # the committed run: no raycast-bench needed
+    md, full = tmp_path / "t.md", tmp_path / "full.txt"
+    md.write_text("# t\n\nbefore\n\n<!-- tables: report.py begin -->\nold\n<!-- tables: report.py end -->\n\nafter\n")
+    args = [sys.executable, str(REPORT), str(run), "--into", str(md), "--full-report", str(full)]
+    subprocess.run(args, check=True, capture_output=True, text=True)
+    text = md.read_text()
+    assert text.startswith("# t\n\nbefore\n\n<!-- tables: report.py begin -->\n") and text.endswith(
+        "<!-- tables: report.py end -->\n\nafter\n")
+    assert "old" not in text and "```text\nError vs run time" in text and "Peers on world" in text
+    assert full.read_text() == run_report(run, "--rows").lstrip("\n")  # the whole report, every row included
+    assert subprocess.run(args + ["--check"], capture_output=True).returncode == 0
+    md.write_text(text.replace("Peers on world", "Peers on wrld"))
+    r = subprocess.run(args + ["--check"], capture_output=True, text=True)
+    assert r.returncode == 1 and "+Peers on world" in r.stdout and "Peers on wrld" in md.read_text()  # nothing written
+    md.write_text("no markers\n")
+    assert subprocess.run(args, capture_output=True).returncode != 0 and md.read_text() == "no markers\n"
