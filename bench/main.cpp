@@ -382,6 +382,7 @@ std::string cpu_model() {
 // What the report needs besides the rows, in the JSON's context.
 void add_context(const options& opt) {
   benchmark::AddCustomContext("cpu_model", cpu_model());
+  benchmark::AddCustomContext("pass", opt.quick ? "quick" : "full");  // the rows --quick registers, or all
   benchmark::AddCustomContext("available_cores", std::to_string(available_cores()));
   std::string skipped;
   for (const skipped_backend& s : skipped_backends())

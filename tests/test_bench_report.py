@@ -1,6 +1,7 @@
 """bench/report.py: its antialiasing arithmetic on exact power laws, and its tables and plots
 from a short run of raycast-bench (RAYCAST_BENCH: the binary; CTest's bench.report), with the
-rows interleaved and repeated, and the same report whatever the rows' order in the JSON."""
+rows interleaved and repeated, and the same report whatever the rows' order in the JSON; --into's
+tables between a Markdown file's markers, and --check's finding of tables that drifted from the run."""
 import importlib.util
 import json
 import math
@@ -17,6 +18,8 @@ REPORT = HERE.parent / "bench" / "report.py"
 spec = importlib.util.spec_from_file_location("report", REPORT)
 report = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(report)
+sys.path.insert(0, str(REPORT.parent))
+import report_aa  # noqa: E402  (the antialiasing arithmetic, beside report.py)
 
 # Every section's rows, each a few: the sky and world at 400x225, one thread; the shortcuts of
 # sse2/fast; two sobol points and the book on world; the regions; the cloud's scale rows at N = 1
@@ -32,17 +35,17 @@ def power_law(a, slope, ns):
 
 def test_slope_of_a_power_law_over_n_at_least_four():
     c = [(1, 1.0)] + power_law(0.1, -0.75, [4, 16, 64, 256])  # N = 1 is left out of the fit
-    assert report.loglog_slope(c) == pytest.approx(-0.75, abs=1e-12)
-    assert report.loglog_slope(power_law(0.1, -0.5, [1, 4])) is None  # one point at N >= 4
+    assert report_aa.loglog_slope(c) == pytest.approx(-0.75, abs=1e-12)
+    assert report_aa.loglog_slope(power_law(0.1, -0.5, [1, 4])) is None  # one point at N >= 4
 
 
 def test_samples_to_match_interpolates_in_log_log():
     c = power_law(0.1, -0.5, [1, 4, 16, 64, 256])
-    n, extrapolated = report.samples_to_match(c, 0.1 / math.sqrt(100))
+    n, extrapolated = report_aa.samples_to_match(c, 0.1 / math.sqrt(100))
     assert n == pytest.approx(100, abs=1e-9) and not extrapolated
-    n, extrapolated = report.samples_to_match(c, 0.1 / math.sqrt(1024))
+    n, extrapolated = report_aa.samples_to_match(c, 0.1 / math.sqrt(1024))
     assert n == pytest.approx(1024, abs=1e-6) and extrapolated
-    assert report.samples_to_match(c, 0.5) is None  # worse than one sample
+    assert report_aa.samples_to_match(c, 0.5) is None  # worse than one sample
 
 
 def run_report(*args):
@@ -115,3 +118,22 @@ def test_write_cloud_prints_the_scale_rows_cloud():
         r = subprocess.run([bench, "--write-cloud", bad], capture_output=True, text=True)
         assert r.returncode == 2 and r.stdout == "" and r.stderr.count("\n") == 1, (bad, r)
         assert "--write-cloud" in r.stderr
+
+
+def test_into_writes_the_tables_between_the_markers_and_check_finds_drift(tmp_path):
+    run = HERE.parent / "bench" / "results" / "run.json"  # the committed run: no raycast-bench needed
+    md, full = tmp_path / "t.md", tmp_path / "full.txt"
+    md.write_text("# t\n\nbefore\n\n<!-- tables: report.py begin -->\nold\n<!-- tables: report.py end -->\n\nafter\n")
+    args = [sys.executable, str(REPORT), str(run), "--into", str(md), "--full-report", str(full)]
+    subprocess.run(args, check=True, capture_output=True, text=True)
+    text = md.read_text()
+    assert text.startswith("# t\n\nbefore\n\n<!-- tables: report.py begin -->\n") and text.endswith(
+        "<!-- tables: report.py end -->\n\nafter\n")
+    assert "old" not in text and "```text\nError vs run time" in text and "Peers on world" in text
+    assert full.read_text() == run_report(run, "--rows").lstrip("\n")  # the whole report, every row included
+    assert subprocess.run(args + ["--check"], capture_output=True).returncode == 0
+    md.write_text(text.replace("Peers on world", "Peers on wrld"))
+    r = subprocess.run(args + ["--check"], capture_output=True, text=True)
+    assert r.returncode == 1 and "+Peers on world" in r.stdout and "Peers on wrld" in md.read_text()  # nothing written
+    md.write_text("no markers\n")
+    assert subprocess.run(args, capture_output=True).returncode != 0 and md.read_text() == "no markers\n"

@@ -1,7 +1,8 @@
 # Installs the build into a fresh prefix, builds tests/install/consumer
 # against it with find_package(raycast), runs it and compares its PPMs with
-# the command line's for the same scene (byte for byte). Run by CTest:
-#   cmake -DBUILD=... -DSOURCE=... -DWORK=... -DRAYCAST=... -P check_install.cmake
+# the command line's for the same scene (byte for byte); with REPORT_PYTHON,
+# runs the installed bench report. Run by CTest:
+#   cmake -DBUILD=... -DSOURCE=... -DWORK=... -DRAYCAST=... [-DREPORT_PYTHON=...] -P check_install.cmake
 foreach(v BUILD SOURCE WORK RAYCAST)
   if(NOT DEFINED ${v})
     message(FATAL_ERROR "${v} is not set")
@@ -33,4 +34,10 @@ foreach(f api.ppm arrays.ppm)
     message(FATAL_ERROR "${f} differs from the command line's cli.ppm")
   endif()
 endforeach()
+# raycast-bench's report, installed as bench-report.py beside its parts: it
+# must find them wherever it is run from (a run with no rows prints nothing).
+if(REPORT_PYTHON)
+  file(WRITE ${WORK}/empty-run.json "{\"benchmarks\": []}\n")
+  run(${REPORT_PYTHON} ${prefix}/share/raycast/bench-report.py ${WORK}/empty-run.json)
+endif()
 file(REMOVE_RECURSE ${WORK})
