@@ -473,6 +473,7 @@ TEST_F(Cli, StatsPrintsTimingsRaysAndMemory) {
 // The stages account for the run: a PNG's image library is loaded when the
 // output is opened, the run's dearest stage, and its own line says so.
 TEST_F(Cli, StatsStagesAddUpToTheTotal) {
+  if (!have_image_module()) GTEST_SKIP() << "built without the image module";
   const run_result r = box.run({"--scene", "world", "-q", "--stats", "-o", "a.png"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::map<std::string, double> value;

@@ -213,7 +213,14 @@ class cli_sandbox {
     for (std::string& a : argv_s) argv.push_back(a.data());
     argv.push_back(nullptr);
     std::vector<std::string> env_s = opts.env;
-    for (char** e = environ; *e; ++e) env_s.emplace_back(*e);  // ours first: they win
+    // Ours replace the inherited entries of the same names (an emulator's
+    // environment keeps the last of two, glibc's getenv the first).
+    for (char** e = environ; *e; ++e) {
+      const std::string_view entry(*e);
+      const std::string_view name = entry.substr(0, entry.find('=') + 1);
+      if (std::none_of(opts.env.begin(), opts.env.end(), [&](const std::string& o) { return o.rfind(name, 0) == 0; }))
+        env_s.emplace_back(*e);
+    }
     std::vector<char*> envp;
     for (std::string& e : env_s) envp.push_back(e.data());
     envp.push_back(nullptr);
