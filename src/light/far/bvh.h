@@ -1,0 +1,101 @@
+// The far field: a wide bounding-volume hierarchy over every sphere, the one
+// structure every occlusion query of light/ asks (light/README.md). Eight
+// children a node, each the spheres of one octant of its parent's Morton
+// range (an octree over the spheres' centres, with tight boxes and the
+// levels a range does not split on skipped); leaves of up to eight spheres,
+// held inline as a run of the spheres' arrays, which are stored in the
+// centres' Morton order. A ray tests a node's eight boxes in one vector
+// step, and a leaf's spheres in another.
+//
+// The spheres are kept in the light's frame: world minus `origin` (the
+// middle of the spheres' bounding box), times 2^-scale_exp (a power of two
+// that brings the box into [-1, 1]: exact, so a scene at 1e-20 or 1e20 gives
+// the same float bits as at 1), rounded to float once. Each box holds its
+// spheres widened by 2^-16 (grid units), far above the rounding of a box
+// test, so no ray that meets a sphere misses the boxes around it.
+//
+// Memory: 16 bytes a sphere in each of two layouts (x y z r together for
+// the near field's gathers, and one array a coordinate for the leaves'
+// vector loads), 4 bytes a sphere for its position, and 224 bytes a node:
+// about 40 bytes a sphere. Built on the preparation's threads, the same
+// hierarchy on any number of them.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+
+#include "memory/arrays.h"
+#include "scene/scene.h"
+
+namespace raycast {
+
+// A node's eight children: their boxes as rows of eight floats (lo x, lo y,
+// lo z, hi x, hi y, hi z; an empty slot's lo +inf and hi -inf, which no
+// ray's slab test passes) and what each is (bvh_ref).
+struct alignas(32) bvh_node {
+  float box[6][8];
+  uint32_t child[8];
+};
+
+// A child: an inner node's index, or a leaf (bit 31): its first sphere's
+// position (bits 4 to 30) and its count less one (bits 0 to 3).
+namespace bvh_ref {
+inline constexpr uint32_t leaf_bit = 0x80000000u, empty = 0xffffffffu;
+inline constexpr uint32_t most_in_leaf = 8;
+inline constexpr uint32_t leaf(uint32_t first, uint32_t count) { return leaf_bit | first << 4 | (count - 1); }
+inline constexpr bool is_leaf(uint32_t ref) { return (ref & leaf_bit) != 0; }
+inline constexpr uint32_t first(uint32_t ref) { return (ref >> 4) & 0x7ffffffu; }
+inline constexpr uint32_t count(uint32_t ref) { return (ref & 15u) + 1; }
+}  // namespace bvh_ref
+
+// What the kernels (light/kernels.h) read: plain pointers, as they are
+// compiled once an instruction set and instantiate nothing shared.
+struct bvh_view {
+  const bvh_node* nodes = nullptr;
+  uint32_t root = bvh_ref::empty;      // empty: no sphere
+  const float* xyzr = nullptr;         // by position, 4 floats a sphere
+  const float *x = nullptr, *y = nullptr, *z = nullptr, *r = nullptr;  // by position, padded by 8 NaN
+  float max_r = 0;                     // the largest radius
+};
+
+class sphere_bvh {
+ public:
+  sphere_bvh() = default;
+  sphere_bvh(const scene& s, int threads = 1);
+
+  size_t size() const { return rank_.size(); }
+  // Sphere k's (its index in the scene) position in the arrays, and the
+  // sphere at position p: centre (light frame) and radius (grid units).
+  uint32_t position(uint32_t k) const { return rank_[k]; }
+  const float* at(uint32_t p) const { return &xyzr_[size_t(p) * 4]; }
+  const float* sphere(uint32_t k) const { return at(position(k)); }
+  bvh_view view() const;
+
+  double origin[3] = {0, 0, 0};
+  int scale_exp = 0;  // grid units = world units * 2^-scale_exp
+  float max_radius() const { return max_radius_; }
+  // The median radius of up to 4096 spheres spread over the scene.
+  double typical_radius() const { return typical_radius_; }
+  // Spheres a unit volume (grid units) where they are: the count over the
+  // leaves' boxes' summed volume (a cloud's frustum, not its bounding box).
+  double density() const { return density_; }
+
+  size_t nodes() const { return nodes_.size(); }
+  size_t leaves() const { return leaves_; }
+  size_t bytes() const { return xyzr_.size() * 4 + soa_.size() * 4 + rank_.size() * 4 + nodes_.size() * sizeof(bvh_node); }
+
+ private:
+  void frame_spheres(const scene& s, int threads, out_of_order_array<float>& scene_order);
+  void sort_by_morton(const out_of_order_array<float>& scene_order, int threads);
+  void build_nodes(const out_of_order_array<uint64_t>& keys, int threads);
+
+  out_of_order_array<float> xyzr_;  // 4 a sphere, by position
+  out_of_order_array<float> soa_;   // x, y, z, r rows of size() + 8 each, by position
+  out_of_order_array<uint32_t> rank_;
+  out_of_order_array<bvh_node> nodes_;
+  uint32_t root_ = bvh_ref::empty;
+  size_t leaves_ = 0;
+  float max_radius_ = 0;
+  double typical_radius_ = 0, density_ = 0;
+};
+
+}  // namespace raycast
