@@ -141,10 +141,10 @@ double grazing(std::span<const sphere> world, const point3& o, const vec3& d, do
 
 // The structures of a lit box's rays (light/secondary.h), with the light and
 // an AO plan of 8 rays, at the given width.
-light_structures structures_of(const scene& s, int width = 0) {
+light_structures structures_of(const scene& s, int width = 0, int turns = -1) {
   const vec3 l = unit_vector(s.light.direction.value_or(vec3(0.3, 1.0, 0.6)));
   const float lf[3] = {float(l.x), float(l.y), float(l.z)};
-  return light_structures(s, lf, sampling::make_ao_plan(default_sampler, 8, 0), 1, width);
+  return light_structures(s, lf, sampling::make_ao_plan(default_sampler, 8, 0), 1, width, turns);
 }
 
 // Sphere k's point C + r n in the light's frame (n a unit vector).
@@ -157,14 +157,16 @@ void on_sphere(const sphere_bvh& b, uint32_t k, const vec3& n, float p[3]) {
 // sphere's near list, the far field past it) against the reference's
 // blocked() in double, from the same hit points in the same directions, on
 // a box whose spheres touch (packing 0.3 at random: many near-contacts),
-// at every lane width, bounded and unbounded.
+// at every lane width, bounded and unbounded (its far rays walked one at a
+// time and in turns).
 TEST(Light, AoVerdictsAgreeWithTheReferenceButForGrazingRays) {
   for (const int width : light_widths()) {
     SCOPED_TRACE(std::to_string(width) + " lanes");
-    for (const bool unbounded : {false, true}) {
+    for (const int turns : {-1, 0, 1}) {
+      const bool unbounded = turns >= 0;
       scene s = lit_box(4000, 8);
       if (unbounded) s.light.ao_distance = INFINITY;
-      const light_structures ls = structures_of(s, width);
+      const light_structures ls = structures_of(s, width, turns);
       const sphere_bvh& b = ls.bvh();
       std::mt19937 rng(7);
       std::uniform_real_distribution<double> u(0.0, 1.0);

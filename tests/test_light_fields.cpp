@@ -138,6 +138,43 @@ TEST(LightFields, TheFarFieldFindsWhatTestingEverySphereFinds) {
   }
 }
 
+// Many rays walked in turns get the verdicts of each walked alone: rays of
+// far_against_every_sphere's kinds, some with nothing to walk (t0 > tmax).
+TEST(LightFields, RaysWalkedInTurnsGetTheVerdictsOfEachAlone) {
+  for (const scene& s : scenes()) {
+    const sphere_bvh b(s);
+    const bvh_view v = b.view();
+    std::mt19937 rng(19);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<far_query> q;
+    for (uint32_t k = 0; k < b.size(); ++k) {
+      const vec3 n = unit_vector(vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5)), d = cosine_direction(n, u(rng), u(rng));
+      const uint32_t p = b.position(k);
+      const float* c = b.at(p);
+      far_query f;
+      for (int a = 0; a < 3; ++a) f.o[a] = c[a] + c[3] * float(n[a]), f.d[a] = float(d[a]);
+      f.t0 = k % 3 == 0 ? 0.0f : c[3] * float(k % 5);
+      f.tmax = k % 4 == 0 ? INFINITY : k % 7 == 0 ? f.t0 / 2 : c[3] * 20;
+      f.skip = k % 3 == 0 ? p : ~0u;
+      q.push_back(f);
+    }
+    for (const int width : light_widths()) {
+      const light_kernels& k = light_kernels_for(width);
+      std::vector<uint8_t> got(q.size(), 9);
+      k.far_occluded_many(v, q.data(), uint32_t(q.size()), got.data());
+      size_t differ = 0, blocked = 0;
+      for (size_t i = 0; i < q.size(); ++i) {
+        const bool want = k.far_occluded(v, q[i].o, q[i].d, q[i].t0, q[i].tmax, q[i].skip);
+        differ += got[i] != uint8_t(want);
+        blocked += want;
+      }
+      EXPECT_EQ(differ, 0u) << width << " lanes, " << q.size() << " rays";
+      EXPECT_GT(blocked, q.size() / 20);
+      EXPECT_LT(blocked, q.size() * 19 / 20);
+    }
+  }
+}
+
 // Every sphere is in one leaf, once, and leaves hold at most eight.
 TEST(LightFields, EverySphereIsInOneLeaf) {
   for (const scene& s : scenes()) {

@@ -20,6 +20,14 @@ struct sphere_blocks {
   uint32_t count = 0;
 };
 
+// A far-field query: the segment o + t d, t in [t0, tmax], blocked by a
+// sphere but the one at position skip (light_kernels::far_occluded).
+struct far_query {
+  float o[3], d[3];
+  float t0, tmax;
+  uint32_t skip;
+};
+
 struct light_kernels {
   int width = 4;
   // Whether the segment o + t d, t in [t0, tmax] (d of unit length), meets
@@ -27,6 +35,9 @@ struct light_kernels {
   // o starts outside every ball but skip's and those of a near list that
   // covers t < t0 (where t0 is 0: the start inside a ball blocks too).
   bool (*far_occluded)(const bvh_view& v, const float o[3], const float d[3], float t0, float tmax, uint32_t skip);
+  // far_occluded's verdicts for n queries (blocked[i]: 1 or 0), the rays
+  // walking in turns, so that their reads overlap.
+  void (*far_occluded_many)(const bvh_view& v, const far_query* q, uint32_t n, uint8_t* blocked);
   // The spheres j but self (position) whose centre lies within reach + r_j
   // of c: their count (cap + 1: more than cap) and each one's x, y, z, r in
   // rows[0 .. 4) (each with room for cap + 8).

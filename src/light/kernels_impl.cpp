@@ -16,6 +16,7 @@ inline namespace RAYCAST_LANES_NAMESPACE {
 namespace {
 
 #include "light/far/occlude.inl"
+#include "light/far/walk_group.inl"
 #include "light/far/gather.inl"
 #include "light/near/list_rays.inl"
 
@@ -23,6 +24,7 @@ light_kernels table() {
   light_kernels k;
   k.width = width;
   k.far_occluded = far_occluded;
+  k.far_occluded_many = far_occluded_many;
   k.gather_ball = gather_ball;
   k.gather_capsule = gather_capsule;
   k.list_blocks = list_blocks;

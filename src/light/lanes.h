@@ -46,6 +46,13 @@ typedef int32_t i8 __attribute__((vector_size(32)));
 typedef float f16 __attribute__((vector_size(64)));
 typedef int32_t i16 __attribute__((vector_size(64)));
 
+// Unaligned loads of eight and sixteen floats (as vectors of the same types:
+// a load through memcpy costs GCC a store and a reload).
+typedef float f8_unaligned __attribute__((vector_size(32), aligned(4), may_alias));
+typedef float f16_unaligned __attribute__((vector_size(64), aligned(4), may_alias));
+RAYCAST_INLINE f8 load8(const float* p) { return *reinterpret_cast<const f8_unaligned*>(p); }
+RAYCAST_INLINE f16 load16(const float* p) { return *reinterpret_cast<const f16_unaligned*>(p); }
+
 // a where m is set, b elsewhere.
 template <class F, class I>
 RAYCAST_INLINE F pick(I m, F a, F b) {

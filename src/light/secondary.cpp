@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "light/directions.h"
 #include "light/frame.h"
@@ -16,6 +17,8 @@ namespace {
 
 constexpr uint32_t group = 8;  // a hit's AO rays made and tested together
 constexpr uint32_t none = ~0u;
+// Hierarchies of more bytes than this (light/far/bvh.h) are walked in turns.
+constexpr size_t walk_in_turns_from = size_t(8) << 20;
 
 // lanes::blocks for one sphere (x y z r) and one ray: the same float
 // operations, so the same verdict (a hit seen from inside asks it of its own
@@ -52,41 +55,71 @@ hit_at hit_of(const secondary_rays& r, const lit_lanes& ls, int l) {
   return h;
 }
 
-bool shadowed(const secondary_rays& r, const hit_at& h, const near_lists& lists) {
-  const light_kernels& k = *r.kernels;
+// A batch's far-field work: the rays its hits' near lists did not answer,
+// each with the lane it counts for (and its ray, for the tests' one-hit
+// form), walked together once the batch's lanes have been gathered
+// (light_kernels::far_occluded_many), so that many rays are in flight.
+struct far_work {
+  struct tag {
+    uint8_t lane, ray;
+    bool shadow;
+  };
+  std::vector<far_query> q;
+  std::vector<tag> of;
+  std::vector<uint8_t> blocked;
+
+  void add(const float o[3], const float d[3], float t0, float tmax, uint32_t skip, tag t) {
+    q.push_back({{o[0], o[1], o[2]}, {d[0], d[1], d[2]}, t0, tmax, skip});
+    of.push_back(t);
+  }
+  void resolve(const secondary_rays& r) {
+    blocked.resize(q.size());
+    if (q.empty()) return;
+    if (r.far_in_turns) return r.kernels->far_occluded_many(r.view, q.data(), uint32_t(q.size()), blocked.data());
+    for (size_t i = 0; i < q.size(); ++i)
+      blocked[i] = r.kernels->far_occluded(r.view, q[i].o, q[i].d, q[i].t0, q[i].tmax, q[i].skip);
+  }
+  void clear() { q.clear(), of.clear(); }
+};
+
+// Whether the hit's shadow ray is blocked by its own sphere (seen from
+// inside) or its shadow list; where the list was too long to keep, its ray
+// goes to the far field (w) and false is returned.
+bool shadowed(const secondary_rays& r, const hit_at& h, const near_lists& lists, far_work& w, uint8_t lane) {
   const float inf = std::numeric_limits<float>::infinity();
   if (h.inside && blocks_one(h.p, r.light, h.sphere, inf)) return true;
-  if (lists.shadow_whole) return k.list_blocks(lists.shadow, h.p, r.light, inf);
-  return k.far_occluded(r.view, h.p, r.light, 0.0f, inf, h.skip());
+  if (lists.shadow_whole) return r.kernels->list_blocks(lists.shadow, h.p, r.light, inf);
+  w.add(h.p, r.light, 0.0f, inf, h.skip(), {lane, 0, true});
+  return false;
 }
 
-// Which of a group's m rays are blocked: by the hit's own sphere (seen from
-// inside), its sphere's ball list within the near field's reach, then the
-// far field up to the AO distance; without a whole list, the far field from
-// the start.
-uint32_t blocked_group(const secondary_rays& r, const hit_at& h, const near_lists& lists, const float (*dir)[3],
-                       uint32_t m) {
-  const light_kernels& k = *r.kernels;
-  const bvh_view& v = r.view;
+// Which of a group's m rays are blocked nearby: by the hit's own sphere
+// (seen from inside) or its sphere's ball list within the near field's
+// reach. The rest that reach past it go to the far field (w), from the
+// reach to the AO distance; without a whole list, from the start.
+uint32_t blocked_near(const secondary_rays& r, const hit_at& h, const near_lists& lists, const float (*dir)[3],
+                      uint32_t m, far_work& w, uint8_t lane, uint32_t ray0) {
   const float reach = r.near->settings().reach, tmax = r.ao_distance;
   uint32_t blocked = 0;
   if (h.inside)
     for (uint32_t a = 0; a < m; ++a) blocked |= uint32_t(blocks_one(h.p, dir[a], h.sphere, tmax)) << a;
-  if (!lists.ball_whole) {
-    for (uint32_t a = 0; a < m; ++a)
-      if (!((blocked >> a) & 1u)) blocked |= uint32_t(k.far_occluded(v, h.p, dir[a], 0.0f, tmax, h.skip())) << a;
-    return blocked;
+  float t0 = 0.0f;
+  uint32_t skip = h.skip();
+  if (lists.ball_whole) {
+    blocked |= r.kernels->list_ao(lists.ball, h.p, h.n, dir, int(m), tmax, std::min(tmax, reach));
+    if (!(tmax > reach)) return blocked;
+    t0 = reach, skip = none;
   }
-  blocked |= k.list_ao(lists.ball, h.p, h.n, dir, int(m), tmax, std::min(tmax, reach));
-  if (tmax > reach)
-    for (uint32_t a = 0; a < m; ++a)
-      if (!((blocked >> a) & 1u)) blocked |= uint32_t(k.far_occluded(v, h.p, dir[a], reach, tmax, none)) << a;
+  for (uint32_t a = 0; a < m; ++a)
+    if (!((blocked >> a) & 1u)) w.add(h.p, dir[a], t0, tmax, skip, {lane, uint8_t(ray0 + a), false});
   return blocked;
 }
 
-// How many of a hit's AO rays reach their distance: their directions made
-// a group at a time, four to a vector, before any is tested.
-uint32_t open_ao_rays(const secondary_rays& r, const lit_lanes& ls, int l, const hit_at& h, const near_lists& lists) {
+// How many of a hit's AO rays its near lists leave open (their directions
+// made a group at a time, four to a vector, before any is tested); the far
+// field's verdicts on those that go on are counted once resolved.
+uint32_t open_near(const secondary_rays& r, const lit_lanes& ls, int l, const hit_at& h, const near_lists& lists,
+                   far_work& w) {
   float t[3], bt[3];
   frame_about(h.n, t, bt);
   const sampling::ao_seeds seeds = sampling::ao_pixel(r.ao, uint32_t(ls.i0 + l), uint32_t(ls.j));
@@ -96,26 +129,24 @@ uint32_t open_ao_rays(const secondary_rays& r, const lit_lanes& ls, int l, const
     float u1[group], u2[group], dir[group][3];
     sampling::ao_numbers(r.ao, seeds, ls.sample, a0, m, u1, u2);
     ao_directions_in_frame(h.n, t, bt, u1, u2, m, dir);
-    open += m - uint32_t(__builtin_popcount(blocked_group(r, h, lists, dir, m)));
+    open += m - uint32_t(__builtin_popcount(blocked_near(r, h, lists, dir, m, w, uint8_t(l), 0)));
   }
   return open;
 }
 
-// One lane: S and A, and the light they make.
-float light_lane(const secondary_rays& r, const lit_lanes& ls, int l) {
-  const hit_at h = hit_of(r, ls, l);
-  const bool casts_shadow = r.shadows && ls.diffuse[l] > 0.0f;
-  near_lists lists;
-  if (casts_shadow || r.ao.count > 0) lists = r.near->of(h.position);
-  const float shadow = casts_shadow && shadowed(r, h, lists) ? 0.0f : 1.0f;
-  const float ambient = r.ao.count > 0 ? float(open_ao_rays(r, ls, l, h, lists)) / float(r.ao.count) : 1.0f;
-  return lit_ambient * ambient + (lit_diffuse * ls.diffuse[l]) * shadow;
+hit_at hit_on(const secondary_rays& r, uint32_t k, const float p[3], const float n[3], bool inside) {
+  hit_at h;
+  h.position = r.bvh->position(k);
+  h.sphere = r.bvh->at(h.position);
+  h.inside = inside;
+  for (int c = 0; c < 3; ++c) h.p[c] = p[c], h.n[c] = n ? n[c] : 0.0f;
+  return h;
 }
 
 }  // namespace
 
 light_structures::light_structures(const scene& s, const float light[3], const sampling::ao_plan& ao, int threads,
-                                   int width)
+                                   int width, int turns)
     : bvh_(s, threads) {
   rays_.bvh = &bvh_;
   rays_.view = bvh_.view();
@@ -124,6 +155,7 @@ light_structures::light_structures(const scene& s, const float light[3], const s
   rays_.shadows = s.light.shadows;
   rays_.ao = ao;
   rays_.ao_distance = float(std::ldexp(s.light.ao_distance, -bvh_.scale_exp));
+  rays_.far_in_turns = turns < 0 ? bvh_.bytes() > walk_in_turns_from : turns > 0;
   near_ = std::make_unique<near_field>(
       bvh_, near_settings_for(bvh_, rays_.shadows, light, ao.count > 0, rays_.ao_distance), *rays_.kernels);
   rays_.near = near_.get();
@@ -131,27 +163,46 @@ light_structures::light_structures(const scene& s, const float light[3], const s
 
 uint32_t ao_blocked(const secondary_rays& r, uint32_t k, const float p[3], const float n[3], bool inside,
                     const float (*d)[3], uint32_t m) {
-  hit_at h;
-  h.position = r.bvh->position(k);
-  h.sphere = r.bvh->at(h.position);
-  h.inside = inside;
-  for (int c = 0; c < 3; ++c) h.p[c] = p[c], h.n[c] = n[c];
-  return blocked_group(r, h, r.near->of(h.position), d, m);
+  const hit_at h = hit_on(r, k, p, n, inside);
+  far_work w;
+  uint32_t blocked = blocked_near(r, h, r.near->of(h.position), d, m, w, 0, 0);
+  w.resolve(r);
+  for (size_t i = 0; i < w.q.size(); ++i) blocked |= uint32_t(w.blocked[i]) << w.of[i].ray;
+  return blocked;
 }
 
 bool shadow_blocked(const secondary_rays& r, uint32_t k, const float p[3], bool inside) {
-  hit_at h;
-  h.position = r.bvh->position(k);
-  h.sphere = r.bvh->at(h.position);
-  h.inside = inside;
-  for (int c = 0; c < 3; ++c) h.p[c] = p[c], h.n[c] = 0;
-  return shadowed(r, h, r.near->of(h.position));
+  const hit_at h = hit_on(r, k, p, nullptr, inside);
+  far_work w;
+  if (shadowed(r, h, r.near->of(h.position), w, 0)) return true;
+  w.resolve(r);
+  return !w.blocked.empty() && w.blocked[0];
 }
 
 void light_lanes(const secondary_rays& r, const lit_lanes& ls, float light[lit_lanes::most]) {
+  thread_local far_work w;
+  w.clear();
+  uint32_t open[lit_lanes::most];
+  bool shadow[lit_lanes::most];
   for (uint32_t bits = ls.lit; bits != 0; bits &= bits - 1) {
     const int l = __builtin_ctz(bits);
-    light[l] = light_lane(r, ls, l);
+    const hit_at h = hit_of(r, ls, l);
+    const bool casts_shadow = r.shadows && ls.diffuse[l] > 0.0f;
+    near_lists lists;
+    if (casts_shadow || r.ao.count > 0) lists = r.near->of(h.position);
+    shadow[l] = casts_shadow && shadowed(r, h, lists, w, uint8_t(l));
+    open[l] = r.ao.count > 0 ? open_near(r, ls, l, h, lists, w) : 0;
+  }
+  w.resolve(r);
+  for (size_t i = 0; i < w.q.size(); ++i) {
+    if (!w.blocked[i]) continue;
+    if (w.of[i].shadow) shadow[w.of[i].lane] = true;
+    else --open[w.of[i].lane];
+  }
+  for (uint32_t bits = ls.lit; bits != 0; bits &= bits - 1) {
+    const int l = __builtin_ctz(bits);
+    const float ambient = r.ao.count > 0 ? float(open[l]) / float(r.ao.count) : 1.0f;
+    light[l] = lit_ambient * ambient + (lit_diffuse * ls.diffuse[l]) * (shadow[l] ? 0.0f : 1.0f);
   }
 }
 

@@ -38,16 +38,22 @@ struct secondary_rays {
   bool shadows = false;
   sampling::ao_plan ao;        // ao.count rays a hit; 0: none
   float ao_distance = 0;       // grid units; infinity: unbounded
+  // Whether a hit's far rays walk in turns (far_occluded_group): where the
+  // hierarchy is too big for the caches, so that their waits overlap.
+  bool far_in_turns = false;
 };
 
 // The structures a render's secondary rays ask, built for its scene when
 // it casts them: the far field over every sphere, the near field (empty
 // until the render's rays ask for their spheres' lists). light: unit, toward
 // the light (world axes); ao: the render's plan; on `threads` threads; width:
-// the kernels' lanes (light/kernels.h; 0: the widest this CPU runs).
+// the kernels' lanes (light/kernels.h; 0: the widest this CPU runs); turns:
+// whether far rays walk in turns (secondary_rays::far_in_turns; -1: where
+// the hierarchy is bigger than 8 MiB). Neither changes a verdict.
 class light_structures {
  public:
-  light_structures(const scene& s, const float light[3], const sampling::ao_plan& ao, int threads, int width = 0);
+  light_structures(const scene& s, const float light[3], const sampling::ao_plan& ao, int threads, int width = 0,
+                   int turns = -1);
   const secondary_rays& rays() const { return rays_; }
   const sphere_bvh& bvh() const { return bvh_; }
   const near_field& near() const { return *near_; }

@@ -28,9 +28,8 @@ uint32_t spread(uint32_t v) {
 sphere_bvh::sphere_bvh(const scene& s, int threads) {
   threads = std::max(threads, 1);
   if (s.sphere_count() == 0) return;
-  out_of_order_array<float> scene_order;
-  frame_spheres(s, threads, scene_order);
-  sort_by_morton(scene_order, threads);
+  frame_spheres(s, threads, leaf_);  // in the scene's order, until the leaves are filled
+  sort_by_morton(leaf_, threads);
 }
 
 // origin, scale_exp and the spheres in that frame, in the scene's order
@@ -54,7 +53,7 @@ void sphere_bvh::frame_spheres(const scene& s, int threads, out_of_order_array<f
   }
   std::frexp(half, &scale_exp);  // half < 2^scale_exp
   const double unit = std::ldexp(1.0, -scale_exp);  // a power of two: the products are exact
-  out.resize(n * 4);
+  out.resize(n * 4 + 8);
   float most = 0;
 #pragma omp parallel for schedule(static) num_threads(threads) reduction(max : most)
   for (size_t k = 0; k < n; ++k) {
@@ -75,7 +74,7 @@ void sphere_bvh::frame_spheres(const scene& s, int threads, out_of_order_array<f
 // bits an axis over the centres' bounding cube; ties in the scene's order),
 // then the nodes over them.
 void sphere_bvh::sort_by_morton(const out_of_order_array<float>& in, int threads) {
-  const size_t n = in.size() / 4;
+  const size_t n = in.size() / 4 - 2;
   float lo[3], hi[3];
   for (int a = 0; a < 3; ++a) lo[a] = std::numeric_limits<float>::infinity(), hi[a] = -lo[a];
   for (size_t k = 0; k < n; ++k)
@@ -92,18 +91,31 @@ void sphere_bvh::sort_by_morton(const out_of_order_array<float>& in, int threads
   }
   radix_sort(keys, 32, 30, threads);
   xyzr_.resize(n * 4);
-  soa_.resize((n + 8) * 4);
   rank_.resize(n);
-  const size_t row = n + 8;
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (size_t p = 0; p < n; ++p) {
     const uint32_t k = uint32_t(keys[p]);
-    for (int a = 0; a < 4; ++a) xyzr_[p * 4 + a] = soa_[size_t(a) * row + p] = in[size_t(k) * 4 + a];
+    for (int a = 0; a < 4; ++a) xyzr_[p * 4 + a] = in[size_t(k) * 4 + a];
     rank_[k] = uint32_t(p);
   }
-  for (int a = 0; a < 4; ++a)
-    for (size_t p = n; p < row; ++p) soa_[size_t(a) * row + p] = std::numeric_limits<float>::quiet_NaN();
   build_nodes(keys, threads);
+  fill_leaves(threads);
+}
+
+// Each leaf's spheres as rows (bvh_view::leaf), leaf by leaf from the nodes.
+void sphere_bvh::fill_leaves(int threads) {
+  const size_t n = size();
+  for (size_t i = n * 4; i < leaf_.size(); ++i) leaf_[i] = std::numeric_limits<float>::quiet_NaN();
+  const auto fill = [&](uint32_t ref) {
+    const uint32_t first = bvh_ref::first(ref), c = bvh_ref::count(ref);
+    for (uint32_t i = 0; i < c; ++i)
+      for (uint32_t a = 0; a < 4; ++a) leaf_[size_t(first) * 4 + a * c + i] = xyzr_[size_t(first + i) * 4 + a];
+  };
+  if (bvh_ref::is_leaf(root_)) fill(root_);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (size_t i = 0; i < nodes_.size(); ++i)
+    for (uint32_t c : nodes_[i].child)
+      if (c != bvh_ref::empty && bvh_ref::is_leaf(c)) fill(c);
 }
 
 void sphere_bvh::build_nodes(const out_of_order_array<uint64_t>& keys, int threads) {
@@ -118,14 +130,10 @@ void sphere_bvh::build_nodes(const out_of_order_array<uint64_t>& keys, int threa
 bvh_view sphere_bvh::view() const {
   bvh_view v;
   if (size() == 0) return v;
-  const size_t row = size() + 8;
   v.nodes = nodes_.data();
   v.root = root_;
   v.xyzr = xyzr_.data();
-  v.x = soa_.data();
-  v.y = v.x + row;
-  v.z = v.y + row;
-  v.r = v.z + row;
+  v.leaf = leaf_.data();
   v.max_r = max_radius_;
   return v;
 }

@@ -3,8 +3,8 @@
 // children a node, each the spheres of one octant of its parent's Morton
 // range (an octree over the spheres' centres, with tight boxes and the
 // levels a range does not split on skipped); leaves of up to eight spheres,
-// held inline as a run of the spheres' arrays, which are stored in the
-// centres' Morton order. A ray tests a node's eight boxes in one vector
+// held inline, each leaf's spheres a row a coordinate, one after another in
+// the centres' Morton order. A ray tests a node's eight boxes in one vector
 // step, and a leaf's spheres in another.
 //
 // The spheres are kept in the light's frame: world minus `origin` (the
@@ -14,10 +14,9 @@
 // spheres widened by 2^-16 (grid units), far above the rounding of a box
 // test, so no ray that meets a sphere misses the boxes around it.
 //
-// Memory: 16 bytes a sphere in each of two layouts (x y z r together for
-// the near field's gathers, and one array a coordinate for the leaves'
-// vector loads), 4 bytes a sphere for its position, and 224 bytes a node:
-// about 40 bytes a sphere. Built on the preparation's threads, the same
+// Memory: 16 bytes a sphere in each of two layouts (x y z r together, for a
+// hit's sphere, and the leaves' rows, for their vector loads), 4 bytes a
+// sphere for its position, and 224 bytes a node: 40 to 50 bytes a sphere. Built on the preparation's threads, the same
 // hierarchy on any number of them.
 #pragma once
 #include <cstddef>
@@ -53,7 +52,9 @@ struct bvh_view {
   const bvh_node* nodes = nullptr;
   uint32_t root = bvh_ref::empty;      // empty: no sphere
   const float* xyzr = nullptr;         // by position, 4 floats a sphere
-  const float *x = nullptr, *y = nullptr, *z = nullptr, *r = nullptr;  // by position, padded by 8 NaN
+  // A leaf's n spheres as four rows of n (x, y, z, r), at 4 x its first
+  // position: a leaf reads 16 n bytes in a row; 8 floats past the last.
+  const float* leaf = nullptr;
   float max_r = 0;                     // the largest radius
 };
 
@@ -81,15 +82,16 @@ class sphere_bvh {
 
   size_t nodes() const { return nodes_.size(); }
   size_t leaves() const { return leaves_; }
-  size_t bytes() const { return xyzr_.size() * 4 + soa_.size() * 4 + rank_.size() * 4 + nodes_.size() * sizeof(bvh_node); }
+  size_t bytes() const { return xyzr_.size() * 4 + leaf_.size() * 4 + rank_.size() * 4 + nodes_.size() * sizeof(bvh_node); }
 
  private:
   void frame_spheres(const scene& s, int threads, out_of_order_array<float>& scene_order);
-  void sort_by_morton(const out_of_order_array<float>& scene_order, int threads);
+  void sort_by_morton(const out_of_order_array<float>& scene_order, int threads);  // then fills the leaves over it
   void build_nodes(const out_of_order_array<uint64_t>& keys, int threads);
+  void fill_leaves(int threads);
 
   out_of_order_array<float> xyzr_;  // 4 a sphere, by position
-  out_of_order_array<float> soa_;   // x, y, z, r rows of size() + 8 each, by position
+  out_of_order_array<float> leaf_;  // bvh_view::leaf
   out_of_order_array<uint32_t> rank_;
   out_of_order_array<bvh_node> nodes_;
   uint32_t root_ = bvh_ref::empty;

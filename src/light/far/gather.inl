@@ -30,10 +30,6 @@ RAYCAST_INLINE uint32_t add_kept(const f8 s[4], uint32_t first, uint32_t n, uint
   return k + count;
 }
 
-RAYCAST_INLINE void leaf_spheres(const bvh_view& v, uint32_t first, f8 s[4]) {
-  s[0] = load8(v.x + first), s[1] = load8(v.y + first), s[2] = load8(v.z + first), s[3] = load8(v.r + first);
-}
-
 // The spheres j (but self) whose centres lie within reach + r_j of c: each
 // box whose distance from c is at most reach (its spheres' balls lie in it).
 uint32_t gather_ball(const bvh_view& v, const float c[3], float reach, uint32_t self, float* const rows[4],
@@ -46,7 +42,7 @@ uint32_t gather_ball(const bvh_view& v, const float c[3], float reach, uint32_t 
     if (bvh_ref::is_leaf(ref)) {
       const uint32_t first = bvh_ref::first(ref);
       f8 s[4];
-      leaf_spheres(v, first, s);
+      leaf_spheres(v, ref, s);
       const f8 dx = s[0] - c[0], dy = s[1] - c[1], dz = s[2] - c[2], lim = reach + s[3];
       const uint32_t keep = bits_of(i8((dx * dx + dy * dy) + dz * dz <= lim * lim));
       n = add_kept(s, first, bvh_ref::count(ref), keep, self, rows, n, cap);
@@ -81,7 +77,7 @@ uint32_t gather_capsule(const bvh_view& v, const float c[3], float r, const floa
     if (bvh_ref::is_leaf(ref)) {
       const uint32_t first = bvh_ref::first(ref);
       f8 s[4];
-      leaf_spheres(v, first, s);
+      leaf_spheres(v, ref, s);
       const f8 wx = s[0] - c[0], wy = s[1] - c[1], wz = s[2] - c[2];
       const f8 a = (wx * l[0] + wy * l[1]) + wz * l[2];
       const f8 px = wx - a * l[0], py = wy - a * l[1], pz = wz - a * l[2];

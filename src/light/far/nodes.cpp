@@ -127,6 +127,7 @@ class builder {
 octree_result build_octree(const octree_input& in, int threads) {
   builder b(in, threads > 1);
   if (in.n == 0) return std::move(b.result);
+  b.result.nodes.reserve(in.n / 8 + 64);  // mapped, not touched, beyond what is used
   child top;
 #pragma omp parallel num_threads(std::max(threads, 1))
 #pragma omp single

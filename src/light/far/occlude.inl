@@ -26,12 +26,6 @@ struct xor_orders {
 };
 constexpr xor_orders visit_order{};
 
-RAYCAST_INLINE f8 load8(const float* p) {
-  f8 v;
-  __builtin_memcpy(&v, p, sizeof v);
-  return v;
-}
-
 // A ray's constants for the box tests.
 struct far_ray {
   float o[3], inv[3];
@@ -39,6 +33,7 @@ struct far_ray {
   uint32_t sign = 0;
   f8 d[3];
 
+  far_ray() = default;
   RAYCAST_INLINE far_ray(const float org[3], const float dir[3]) {
     for (int a = 0; a < 3; ++a) {
       float da = dir[a];
@@ -62,11 +57,19 @@ struct far_ray {
   }
 };
 
+// Leaf ref's spheres, a lane each (lanes past its count hold what follows).
+RAYCAST_INLINE void leaf_spheres(const bvh_view& v, uint32_t ref, f8 s[4]) {
+  const uint32_t n = bvh_ref::count(ref);
+  const float* b = v.leaf + size_t(bvh_ref::first(ref)) * 4;
+  s[0] = load8(b), s[1] = load8(b + n), s[2] = load8(b + 2 * n), s[3] = load8(b + 3 * n);
+}
+
 // Whether a sphere of leaf `ref` but skip meets the segment [t0, tmax].
 RAYCAST_INLINE bool leaf_blocks(const bvh_view& v, uint32_t ref, const far_ray& ray, float t0, float tmax,
                                 uint32_t skip) {
   const uint32_t first = bvh_ref::first(ref), n = bvh_ref::count(ref);
-  const f8 s[4] = {load8(v.x + first), load8(v.y + first), load8(v.z + first), load8(v.r + first)};
+  f8 s[4];
+  leaf_spheres(v, ref, s);
   uint32_t hit = bits_of(blocks_beyond<f8, i8>(ray.o, ray.d, s, t0, tmax)) & ((1u << n) - 1);
   if (skip - first < n) hit &= ~(1u << (skip - first));
   return hit != 0;
@@ -74,8 +77,8 @@ RAYCAST_INLINE bool leaf_blocks(const bvh_view& v, uint32_t ref, const far_ray& 
 
 // The children of node n the segment meets, `order` its slots' bits in
 // visiting order (o ^ sign the slot): the leaves tested here, the first inner
-// node returned (or empty) and the rest pushed, last first. Whether a leaf
-// blocked the segment.
+// node returned in next (or empty) and the rest pushed, last first. Whether
+// a leaf blocked the segment.
 RAYCAST_INLINE bool visit(const bvh_view& v, const bvh_node& n, uint32_t order, const far_ray& ray, float t0,
                           float tmax, uint32_t skip, uint32_t* stack, int& sp, uint32_t& next) {
   next = bvh_ref::empty;

@@ -2,12 +2,6 @@
 // spheres a vector step, done at the first that blocks. Included by
 // light/kernels_impl.cpp inside its width's namespace.
 
-RAYCAST_INLINE f16 load16(const float* p) {
-  f16 v;
-  __builtin_memcpy(&v, p, sizeof v);
-  return v;
-}
-
 bool list_blocks(const sphere_blocks& list, const float o[3], const float d[3], float tmax) {
   const f16 dir[3] = {d[0] - f16{}, d[1] - f16{}, d[2] - f16{}};
   for (uint32_t i = 0; i < list.count; i += 16) {
