@@ -73,7 +73,7 @@ void bench_ours(benchmark::State& state, const family* f, int64_t n, const varia
   render_options o;
   o.threads = all ? available_cores() : 1;
   frame fr{w, h, std::vector<unsigned char>(size_t(w * h) * 3)};
-  double prep = 0, render = 0, first = 0, light = 0, lists = 0, bytes = 0;
+  double prep = 0, render = 0, first = 0, light = 0, lists = 0, list_s = 0, bytes = 0;
   for (auto _ : state) {
     steady::time_point t0 = steady::now();
     auto r = std::make_unique<renderer>(s, o);
@@ -85,6 +85,7 @@ void bench_ours(benchmark::State& state, const family* f, int64_t n, const varia
     state.PauseTiming();
     light += r->light_seconds();
     lists += double(r->light_lists());
+    list_s += r->light_list_seconds();
     bytes += double(r->light_bytes());
     r.reset();
     const renderer p(primary, o);
@@ -98,6 +99,7 @@ void bench_ours(benchmark::State& state, const family* f, int64_t n, const varia
   state.counters["primary_s"] = per_iteration(first);
   state.counters["light_s"] = per_iteration(light);  // of prepare_s: the far field's build
   state.counters["lists"] = per_iteration(lists);     // spheres whose near-field lists the frame gathered
+  state.counters["lists_s"] = per_iteration(list_s);  // of render_s, the threads' seconds gathering them
   state.counters["light_mb"] = per_iteration(bytes * 1e-6);  // the light's structures after the frame
 }
 

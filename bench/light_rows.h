@@ -8,9 +8,9 @@
 //       scene, the row index and the sphere grid: prepare_s) and one frame
 //       (render_s); primary_s: the same frame without secondary rays (another
 //       renderer, not in the row's time); light_s: the far field's build (of
-//       prepare_s); lists and light_mb: the spheres whose near-field lists the
-//       frame gathered, and the light's megabytes after it; 1 thread or all
-//       cores
+//       prepare_s); lists, lists_s and light_mb: the spheres whose near-field
+//       lists the frame gathered, the threads' seconds gathering them (of
+//       render_s), and the light's megabytes after it; 1 thread or all cores
 //   light/FAMILY/embree/N/VARIANT/t1   the Embree peer's BVH (build_s), its
 //       primary frame (primary_s), shadow rays (shadow_s) and AO rays (ao_s)
 //       with rtcOccluded16; render_s is their sum

@@ -149,7 +149,7 @@ light_structures structures_of(const scene& s, int width = 0, int turns = -1) {
 
 // Sphere k's point C + r n in the light's frame (n a unit vector).
 void on_sphere(const sphere_bvh& b, uint32_t k, const vec3& n, float p[3]) {
-  const float* c = b.sphere(k);
+  const sphere4 c = b.sphere(k);
   for (int a = 0; a < 3; ++a) p[a] = c[a] + c[3] * float(n[a]);
 }
 

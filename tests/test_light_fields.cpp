@@ -107,7 +107,7 @@ far_count far_against_every_sphere(const sphere_bvh& b, const light_kernels& k, 
       for (int c = 0; c < 3; ++c) df[c] = c == a ? (n[a] < 0 ? -1.0f : 1.0f) : q % 8 == 1 ? -0.0f : q % 16 == 5 ? 1e-40f : 0.0f;
     }
     const uint32_t p = b.position(q);
-    const float* c = b.at(p);
+    const sphere4 c = b.at(p);
     const bool outside = q % 5 == 0;
     float o[3];
     for (int a = 0; a < 3; ++a) o[a] = outside ? -3.0f * df[a] : c[a] + c[3] * float(n[a]);
@@ -115,7 +115,7 @@ far_count far_against_every_sphere(const sphere_bvh& b, const light_kernels& k, 
     const float tmax = q % 3 == 0 ? INFINITY : (outside ? 3.0f : t0) + float(u(rng) * 0.5);
     const uint32_t skip = outside ? ~0u : p;
     bool want = false;
-    for (uint32_t j = 0; j < b.size() && !want; ++j) want = j != skip && beyond_ref(o, df, b.at(j), t0, tmax);
+    for (uint32_t j = 0; j < b.size() && !want; ++j) want = j != skip && beyond_ref(o, df, b.at(j).v, t0, tmax);
     ++w.rays;
     w.blocked += want;
     w.mismatches += k.far_occluded(v, o, df, t0, tmax, skip) != want;
@@ -150,7 +150,7 @@ TEST(LightFields, RaysWalkedInTurnsGetTheVerdictsOfEachAlone) {
     for (uint32_t k = 0; k < b.size(); ++k) {
       const vec3 n = unit_vector(vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5)), d = cosine_direction(n, u(rng), u(rng));
       const uint32_t p = b.position(k);
-      const float* c = b.at(p);
+      const sphere4 c = b.at(p);
       far_query f;
       for (int a = 0; a < 3; ++a) f.o[a] = c[a] + c[3] * float(n[a]), f.d[a] = float(d[a]);
       f.t0 = k % 3 == 0 ? 0.0f : c[3] * float(k % 5);
@@ -195,7 +195,7 @@ TEST(LightFields, EverySphereIsInOneLeaf) {
     EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), ptrdiff_t(b.size()));
     for (uint32_t k = 0; k < b.size(); ++k) {
       const sphere sp = s.sphere_at(k);
-      const float* c = b.sphere(k);
+      const sphere4 c = b.sphere(k);
       const double unit = std::ldexp(1.0, -b.scale_exp);
       EXPECT_EQ(c[3], float(sp.radius * unit));
       EXPECT_EQ(c[0], float((sp.center.x - b.origin[0]) * unit));
@@ -206,9 +206,9 @@ TEST(LightFields, EverySphereIsInOneLeaf) {
 // The range queries the near field gathers with: exactly the spheres in
 // range (the same float test as brute force; compared by their x, y, z, r),
 // at every lane width.
-using sphere4 = std::array<float, 4>;
-std::vector<sphere4> sorted_rows(float* const rows[4], uint32_t n) {
-  std::vector<sphere4> v(n);
+using coords = std::array<float, 4>;
+std::vector<coords> sorted_rows(float* const rows[4], uint32_t n) {
+  std::vector<coords> v(n);
   for (uint32_t i = 0; i < n; ++i) v[i] = {rows[0][i], rows[1][i], rows[2][i], rows[3][i]};
   std::sort(v.begin(), v.end());
   return v;
@@ -230,12 +230,12 @@ TEST(LightFields, RangeQueriesFindExactlyTheSpheresInRange) {
       const light_kernels& k = light_kernels_for(width);
       size_t differ = 0, found = 0, alongs = 0;
       for (uint32_t p = 0; p < b.size(); p += 7) {
-        const float* c = b.at(p);
+        const sphere4 c = b.at(p);
         const float reach = c[3] * float(1 + 8 * u(rng)), slack = 1e-6f;
-        std::vector<sphere4> want, want_capsule;
+        std::vector<coords> want, want_capsule;
         for (uint32_t j = 0; j < b.size(); ++j) {
           if (j == p) continue;
-          const float* t = b.at(j);
+          const sphere4 t = b.at(j);
           const float dx = t[0] - c[0], dy = t[1] - c[1], dz = t[2] - c[2], lim = reach + t[3];
           if ((dx * dx + dy * dy) + dz * dz <= lim * lim) want.push_back({t[0], t[1], t[2], t[3]});
           const float a = (dx * l[0] + dy * l[1]) + dz * l[2];
@@ -244,15 +244,15 @@ TEST(LightFields, RangeQueriesFindExactlyTheSpheresInRange) {
         }
         std::sort(want.begin(), want.end());
         std::sort(want_capsule.begin(), want_capsule.end());
-        const uint32_t n = k.gather_ball(v, c, reach, p, rows, uint32_t(b.size()));
+        const uint32_t n = k.gather_ball(v, c.v, reach, p, rows, uint32_t(b.size()));
         differ += sorted_rows(rows, n) != want;
-        const uint32_t m = k.gather_capsule(v, c, c[3], l, slack, p, rows, along.data(), uint32_t(b.size()));
+        const uint32_t m = k.gather_capsule(v, c.v, c[3], l, slack, p, rows, along.data(), uint32_t(b.size()));
         differ += sorted_rows(rows, m) != want_capsule;
         for (uint32_t i = 0; i < m; ++i)  // each one's distance along the light
           alongs += along[i] != ((rows[0][i] - c[0]) * l[0] + (rows[1][i] - c[1]) * l[1]) + (rows[2][i] - c[2]) * l[2];
         found += want.size() + want_capsule.size();
         if (want.size() > 2) {  // a cap: one more than it, once more are found
-          EXPECT_EQ(k.gather_ball(v, c, reach, p, rows, 2), 3u);
+          EXPECT_EQ(k.gather_ball(v, c.v, reach, p, rows, 2), 3u);
         }
       }
       EXPECT_EQ(differ, 0u);
@@ -277,7 +277,7 @@ TEST(LightFields, TheFarFieldIsTheSameOnAnyNumberOfThreads) {
     for (uint32_t k = 0; k < one.size(); ++k) differ += one.position(k) != three.position(k);
     EXPECT_EQ(differ, 0u);
     EXPECT_EQ(std::memcmp(one.view().nodes, three.view().nodes, one.nodes() * sizeof(bvh_node)), 0);
-    EXPECT_EQ(std::memcmp(one.view().xyzr, three.view().xyzr, one.size() * 16), 0);
+    EXPECT_EQ(std::memcmp(one.view().leaf, three.view().leaf, one.size() * 16), 0);
   }
 }
 
@@ -299,10 +299,10 @@ TEST(LightFields, TheNearFieldsListsHoldTheSpheresInReach) {
       const near_lists a = near.of(p), again = near.of(p);  // kept: the same record, gathered once
       EXPECT_EQ(a.ball.blocks, again.ball.blocks);
       EXPECT_EQ(near.lists(), before + 1);
-      const float* c = b.at(p);
+      const sphere4 c = b.at(p);
       size_t want = 0;
       for (uint32_t j = 0; j < b.size(); ++j) {
-        const float* t = b.at(j);
+        const sphere4 t = b.at(j);
         const float dx = t[0] - c[0], dy = t[1] - c[1], dz = t[2] - c[2];
         want += j != p && std::sqrt((dx * dx + dy * dy) + dz * dz) <= c[3] + set.reach + t[3];
       }

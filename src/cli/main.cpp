@@ -61,6 +61,8 @@ struct run_stats {
   double prepare = 0, render = 0, write = 0;  // seconds
   double light = 0;                           // of prepare: shadow and AO structures (0: none)
   size_t light_bytes = 0;
+  size_t light_lists = 0, cache_bytes = 0;    // of render: near-field lists gathered, and their caches
+  double list_seconds = 0;                    // ... and the threads' seconds gathering them
   uint64_t rays = 0;                          // pixels x samples
   size_t spheres = 0;
 };
@@ -86,6 +88,9 @@ int run(cli::job& j, run_stats& st) {
                      [&bar](int64_t rows_done, const char* phase) { bar.show(rows_done, phase); });
   st.render = bt.render;
   st.write = bt.write;
+  st.light_lists = r.light_lists();
+  st.list_seconds = r.light_list_seconds();
+  st.cache_bytes = r.light_bytes() - st.light_bytes;
   st.rays = uint64_t(W) * uint64_t(H) * r.samples();
   return 0;
 }
@@ -100,14 +105,17 @@ void print_stats(const cli::job& j, const run_stats& st, double total) {
   if (st.light_bytes > 0)
     std::fprintf(stderr, "  light     %10.4f s  (of prepare: %.1f MB for shadow and AO rays)\n", st.light,
                  double(st.light_bytes) / 1e6);
+  std::fprintf(stderr, "  render    %10.4f s\n", st.render);
+  if (st.light_bytes > 0)
+    std::fprintf(stderr, "  lists     %10zu    (of render: the seen spheres' near-field lists, %.4f s, %.1f MB of caches)\n",
+                 st.light_lists, st.list_seconds, double(st.cache_bytes) / 1e6);
   std::fprintf(stderr,
-               "  render    %10.4f s\n"
                "  write     %10.4f s\n"
                "  total     %10.4f s\n"
                "  rays/s    %10.4g  (%llu rays)\n"
                "  spheres   %10zu\n"
                "  peak RSS  %10.1f MB\n",
-               st.render, st.write, total, rays_per_second, static_cast<unsigned long long>(st.rays), st.spheres,
+               st.write, total, rays_per_second, static_cast<unsigned long long>(st.rays), st.spheres,
                double(ru.ru_maxrss) * 1024.0 / 1e6);
 }
 

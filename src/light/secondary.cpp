@@ -37,7 +37,7 @@ bool blocks_one(const float o[3], const float d[3], const float* s, float tmax) 
 // One lit lane's hit: its sphere, origin and normal.
 struct hit_at {
   uint32_t position;
-  const float* sphere;  // x y z r, light frame
+  sphere4 sphere;       // x y z r, light frame
   float p[3], n[3];     // P = C + r n_out; n facing the ray
   bool inside;
   uint32_t skip() const { return inside ? none : position; }
@@ -87,7 +87,7 @@ struct far_work {
 // goes to the far field (w) and false is returned.
 bool shadowed(const secondary_rays& r, const hit_at& h, const near_lists& lists, far_work& w, uint8_t lane) {
   const float inf = std::numeric_limits<float>::infinity();
-  if (h.inside && blocks_one(h.p, r.light, h.sphere, inf)) return true;
+  if (h.inside && blocks_one(h.p, r.light, h.sphere.v, inf)) return true;
   if (lists.shadow_whole) return r.kernels->list_blocks(lists.shadow, h.p, r.light, inf);
   w.add(h.p, r.light, 0.0f, inf, h.skip(), {lane, 0, true});
   return false;
@@ -102,7 +102,7 @@ uint32_t blocked_near(const secondary_rays& r, const hit_at& h, const near_lists
   const float reach = r.near->settings().reach, tmax = r.ao_distance;
   uint32_t blocked = 0;
   if (h.inside)
-    for (uint32_t a = 0; a < m; ++a) blocked |= uint32_t(blocks_one(h.p, dir[a], h.sphere, tmax)) << a;
+    for (uint32_t a = 0; a < m; ++a) blocked |= uint32_t(blocks_one(h.p, dir[a], h.sphere.v, tmax)) << a;
   float t0 = 0.0f;
   uint32_t skip = h.skip();
   if (lists.ball_whole) {

@@ -60,6 +60,7 @@ class renderer {
   double light_seconds() const { return light_seconds_; }
   size_t light_bytes() const { return secondary_ ? secondary_->bytes() : 0; }
   size_t light_lists() const { return secondary_ ? secondary_->near().lists() : 0; }
+  double light_list_seconds() const { return secondary_ ? secondary_->near().seconds() : 0; }  // of render, every thread's
 
   // Fills the band's pixels (any rows of the image, and any column window:
   // image_band), the same bytes whatever the thread count, band or window.

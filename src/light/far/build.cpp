@@ -28,13 +28,19 @@ uint32_t spread(uint32_t v) {
 sphere_bvh::sphere_bvh(const scene& s, int threads) {
   threads = std::max(threads, 1);
   if (s.sphere_count() == 0) return;
-  frame_spheres(s, threads, leaf_);  // in the scene's order, until the leaves are filled
-  sort_by_morton(leaf_, threads);
+  frame(s, threads);
+  sort_by_morton(s, threads);
 }
 
-// origin, scale_exp and the spheres in that frame, in the scene's order
-// (4 floats a sphere); the largest and a typical radius.
-void sphere_bvh::frame_spheres(const scene& s, int threads, out_of_order_array<float>& out) {
+// A scene sphere in the light's frame (the same bits wherever it is made).
+sphere4 sphere_bvh::in_frame(const raycast::sphere& sp) const {
+  const double unit = std::ldexp(1.0, -scale_exp);  // a power of two: the products are exact
+  return {{float((sp.center[0] - origin[0]) * unit), float((sp.center[1] - origin[1]) * unit),
+           float((sp.center[2] - origin[2]) * unit), float(sp.radius * unit)}};
+}
+
+// origin and scale_exp, the largest and a typical radius.
+void sphere_bvh::frame(const scene& s, int threads) {
   const size_t n = s.sphere_count();
   double lo[3], hi[3];
   for (int a = 0; a < 3; ++a) lo[a] = std::numeric_limits<double>::infinity(), hi[a] = -lo[a];
@@ -52,74 +58,86 @@ void sphere_bvh::frame_spheres(const scene& s, int threads, out_of_order_array<f
     half = std::max(half, hi[a] - origin[a]);
   }
   std::frexp(half, &scale_exp);  // half < 2^scale_exp
-  const double unit = std::ldexp(1.0, -scale_exp);  // a power of two: the products are exact
-  out.resize(n * 4 + 8);
   float most = 0;
 #pragma omp parallel for schedule(static) num_threads(threads) reduction(max : most)
-  for (size_t k = 0; k < n; ++k) {
-    const raycast::sphere sp = s.sphere_at(k);
-    for (int a = 0; a < 3; ++a) out[k * 4 + a] = float((sp.center[a] - origin[a]) * unit);
-    out[k * 4 + 3] = float(sp.radius * unit);
-    most = std::max(most, out[k * 4 + 3]);
-  }
+  for (size_t k = 0; k < n; ++k) most = std::max(most, in_frame(s.sphere_at(k))[3]);
   max_radius_ = most;
   const size_t step = n / 4096 + 1;
   std::vector<float> r;
-  for (size_t k = 0; k < n; k += step) r.push_back(out[k * 4 + 3]);
+  for (size_t k = 0; k < n; k += step) r.push_back(in_frame(s.sphere_at(k))[3]);
   std::nth_element(r.begin(), r.begin() + ptrdiff_t(r.size() / 2), r.end());
   typical_radius_ = r[r.size() / 2];
 }
 
 // The spheres by position: sorted by the Morton code of their centres (ten
 // bits an axis over the centres' bounding cube; ties in the scene's order),
-// then the nodes over them.
-void sphere_bvh::sort_by_morton(const out_of_order_array<float>& in, int threads) {
-  const size_t n = in.size() / 4 - 2;
+// then the nodes and leaves over them. Read from the scene twice (for the
+// codes, then in their order) rather than copied: the build's peak memory
+// is the keys, the sorted spheres and the nodes.
+void sphere_bvh::sort_by_morton(const scene& s, int threads) {
+  const size_t n = s.sphere_count();
   float lo[3], hi[3];
   for (int a = 0; a < 3; ++a) lo[a] = std::numeric_limits<float>::infinity(), hi[a] = -lo[a];
-  for (size_t k = 0; k < n; ++k)
-    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], in[k * 4 + a]), hi[a] = std::max(hi[a], in[k * 4 + a]);
+#pragma omp parallel for schedule(static) num_threads(threads) reduction(min : lo[:3]) reduction(max : hi[:3])
+  for (size_t k = 0; k < n; ++k) {
+    const sphere4 c = in_frame(s.sphere_at(k));
+    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
+  }
   const float side = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-30f});
   const float scale = 1023.0f / side;
   out_of_order_array<uint64_t> keys;
   keys.resize(n);
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (size_t k = 0; k < n; ++k) {
+    const sphere4 c = in_frame(s.sphere_at(k));
     uint32_t code = 0;
-    for (int a = 0; a < 3; ++a) code |= spread(uint32_t(std::clamp((in[k * 4 + a] - lo[a]) * scale, 0.0f, 1023.0f))) << a;
+    for (int a = 0; a < 3; ++a) code |= spread(uint32_t(std::clamp((c[a] - lo[a]) * scale, 0.0f, 1023.0f))) << a;
     keys[k] = uint64_t(code) << 32 | k;
   }
   radix_sort(keys, 32, 30, threads);
-  xyzr_.resize(n * 4);
+  out_of_order_array<float> sorted;
+  sorted.resize(n * 4 + 8);
   rank_.resize(n);
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (size_t p = 0; p < n; ++p) {
     const uint32_t k = uint32_t(keys[p]);
-    for (int a = 0; a < 4; ++a) xyzr_[p * 4 + a] = in[size_t(k) * 4 + a];
+    const sphere4 c = in_frame(s.sphere_at(k));
+    for (int a = 0; a < 4; ++a) sorted[p * 4 + a] = c[a];
     rank_[k] = uint32_t(p);
   }
-  build_nodes(keys, threads);
-  fill_leaves(threads);
+  build_nodes(keys, sorted, threads);
+  keys = {};
+  fill_leaves(sorted, threads);
 }
 
-// Each leaf's spheres as rows (bvh_view::leaf), leaf by leaf from the nodes.
-void sphere_bvh::fill_leaves(int threads) {
+// Each leaf's spheres as rows (bvh_view::leaf), and each sphere's place in
+// its leaf, leaf by leaf from the nodes: a leaf's spheres x y z r take the
+// same floats as its rows, so each is turned in place.
+void sphere_bvh::fill_leaves(out_of_order_array<float>& sorted, int threads) {
   const size_t n = size();
-  for (size_t i = n * 4; i < leaf_.size(); ++i) leaf_[i] = std::numeric_limits<float>::quiet_NaN();
+  place_.resize(n);
+  for (size_t i = n * 4; i < sorted.size(); ++i) sorted[i] = std::numeric_limits<float>::quiet_NaN();
   const auto fill = [&](uint32_t ref) {
     const uint32_t first = bvh_ref::first(ref), c = bvh_ref::count(ref);
-    for (uint32_t i = 0; i < c; ++i)
-      for (uint32_t a = 0; a < 4; ++a) leaf_[size_t(first) * 4 + a * c + i] = xyzr_[size_t(first + i) * 4 + a];
+    float* at = &sorted[size_t(first) * 4];
+    float was[4 * bvh_ref::most_in_leaf];
+    std::copy(at, at + 4 * c, was);
+    for (uint32_t i = 0; i < c; ++i) {
+      for (uint32_t a = 0; a < 4; ++a) at[a * c + i] = was[i * 4 + a];
+      place_[first + i] = uint8_t(i | (c - 1) << 3);
+    }
   };
   if (bvh_ref::is_leaf(root_)) fill(root_);
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (size_t i = 0; i < nodes_.size(); ++i)
     for (uint32_t c : nodes_[i].child)
       if (c != bvh_ref::empty && bvh_ref::is_leaf(c)) fill(c);
+  leaf_ = std::move(sorted);
 }
 
-void sphere_bvh::build_nodes(const out_of_order_array<uint64_t>& keys, int threads) {
-  const octree_input in{keys.data(), xyzr_.data(), uint32_t(size())};
+void sphere_bvh::build_nodes(const out_of_order_array<uint64_t>& keys, const out_of_order_array<float>& sorted,
+                             int threads) {
+  const octree_input in{keys.data(), sorted.data(), uint32_t(size())};
   octree_result t = build_octree(in, threads);
   nodes_ = std::move(t.nodes);
   root_ = t.root;
@@ -132,7 +150,6 @@ bvh_view sphere_bvh::view() const {
   if (size() == 0) return v;
   v.nodes = nodes_.data();
   v.root = root_;
-  v.xyzr = xyzr_.data();
   v.leaf = leaf_.data();
   v.max_r = max_radius_;
   return v;

@@ -14,9 +14,10 @@
 // spheres widened by 2^-16 (grid units), far above the rounding of a box
 // test, so no ray that meets a sphere misses the boxes around it.
 //
-// Memory: 16 bytes a sphere in each of two layouts (x y z r together, for a
-// hit's sphere, and the leaves' rows, for their vector loads), 4 bytes a
-// sphere for its position, and 224 bytes a node: 40 to 50 bytes a sphere. Built on the preparation's threads, the same
+// Memory: 16 bytes a sphere in the leaves' rows, 5 bytes a sphere for its
+// position and its place in its leaf, and 224 bytes a node: about 30 bytes
+// a sphere (and 16 more while it is built: the Morton keys and the sort's
+// second array). Built on the preparation's threads, the same
 // hierarchy on any number of them.
 #pragma once
 #include <cstddef>
@@ -51,11 +52,16 @@ inline constexpr uint32_t count(uint32_t ref) { return (ref & 15u) + 1; }
 struct bvh_view {
   const bvh_node* nodes = nullptr;
   uint32_t root = bvh_ref::empty;      // empty: no sphere
-  const float* xyzr = nullptr;         // by position, 4 floats a sphere
   // A leaf's n spheres as four rows of n (x, y, z, r), at 4 x its first
   // position: a leaf reads 16 n bytes in a row; 8 floats past the last.
   const float* leaf = nullptr;
   float max_r = 0;                     // the largest radius
+};
+
+// A sphere's centre (light frame) and radius (grid units): x y z r.
+struct sphere4 {
+  float v[4];
+  float operator[](int a) const { return v[a]; }
 };
 
 class sphere_bvh {
@@ -64,11 +70,15 @@ class sphere_bvh {
   sphere_bvh(const scene& s, int threads = 1);
 
   size_t size() const { return rank_.size(); }
-  // Sphere k's (its index in the scene) position in the arrays, and the
-  // sphere at position p: centre (light frame) and radius (grid units).
+  // Sphere k's (its index in the scene) position in the Morton order, and
+  // the sphere at position p, read from its leaf's rows.
   uint32_t position(uint32_t k) const { return rank_[k]; }
-  const float* at(uint32_t p) const { return &xyzr_[size_t(p) * 4]; }
-  const float* sphere(uint32_t k) const { return at(position(k)); }
+  sphere4 at(uint32_t p) const {
+    const uint32_t first = p - (place_[p] & 7u), n = (place_[p] >> 3) + 1u;
+    const float* row = &leaf_[size_t(first) * 4 + (p - first)];
+    return {{row[0], row[n], row[2 * n], row[3 * n]}};
+  }
+  sphere4 sphere(uint32_t k) const { return at(position(k)); }
   bvh_view view() const;
 
   double origin[3] = {0, 0, 0};
@@ -82,16 +92,19 @@ class sphere_bvh {
 
   size_t nodes() const { return nodes_.size(); }
   size_t leaves() const { return leaves_; }
-  size_t bytes() const { return xyzr_.size() * 4 + leaf_.size() * 4 + rank_.size() * 4 + nodes_.size() * sizeof(bvh_node); }
+  size_t bytes() const { return leaf_.size() * 4 + rank_.size() * 4 + place_.size() + nodes_.size() * sizeof(bvh_node); }
 
  private:
-  void frame_spheres(const scene& s, int threads, out_of_order_array<float>& scene_order);
-  void sort_by_morton(const out_of_order_array<float>& scene_order, int threads);  // then fills the leaves over it
-  void build_nodes(const out_of_order_array<uint64_t>& keys, int threads);
-  void fill_leaves(int threads);
+  sphere4 in_frame(const raycast::sphere& sp) const;
+  void frame(const scene& s, int threads);
+  void sort_by_morton(const scene& s, int threads);
+  void build_nodes(const out_of_order_array<uint64_t>& keys, const out_of_order_array<float>& sorted, int threads);
+  void fill_leaves(out_of_order_array<float>& sorted, int threads);
 
-  out_of_order_array<float> xyzr_;  // 4 a sphere, by position
   out_of_order_array<float> leaf_;  // bvh_view::leaf
+  // By position: the sphere's place in its leaf (bits 0 to 2) and its
+  // leaf's count less one (bits 3 to 5).
+  out_of_order_array<uint8_t> place_;
   out_of_order_array<uint32_t> rank_;
   out_of_order_array<bvh_node> nodes_;
   uint32_t root_ = bvh_ref::empty;

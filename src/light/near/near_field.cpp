@@ -1,6 +1,7 @@
 #include "light/near/near_field.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -65,13 +66,17 @@ near_settings near_settings_for(const sphere_bvh& bvh, bool shadows, const float
 }
 
 // A thread's ring of records and the table of where each sphere's is: the
-// ring's words written so far (a record lies at head % ring words and is
-// whole while head has not gone a ring past it), and by position hash, each
-// kept sphere's position and record.
+// ring's words written since it began (a record lies at head % ring words
+// and is whole while head has not gone a ring past it), and by position
+// hash, each kept sphere's position and record. The ring starts at 256 KiB
+// and doubles (forgetting what it held) when it comes round to its start
+// after a sphere was asked for again whose record it had overwritten, up to
+// 2 MiB: a small picture's rows need less.
 struct near_field::cache {
   uint64_t owner = 0;
-  std::vector<float> ring;
+  filled_array<float> ring;
   uint64_t head = 0;
+  bool overrun = false;  // a sphere's record was overwritten before it was asked for again
   struct entry {
     uint32_t position = ~0u;
     uint64_t at = 0;
@@ -81,7 +86,7 @@ struct near_field::cache {
 };
 
 namespace {
-constexpr uint64_t ring_words = near_field::ring_bytes / 4;
+constexpr uint64_t most_ring_words = near_field::ring_bytes / 4, first_ring_words = most_ring_words / 8;
 }
 
 near_field::near_field(const sphere_bvh& bvh, const near_settings& s, const light_kernels& k)
@@ -97,7 +102,8 @@ float* near_field::gather(uint32_t p, cache& c, uint64_t& at) const {
   float* const ball[4] = {&storage[0], &storage[room], &storage[2 * room], &storage[3 * room]};
   float* const shadow[4] = {&storage[4 * room], &storage[5 * room], &storage[6 * room], &storage[7 * room]};
   float* const along = &storage[8 * room];
-  const float* s = bvh_.at(p);
+  const sphere4 sp = bvh_.at(p);
+  const float* s = sp.v;
   uint32_t nb = 0, ns = 0;
   bool ball_whole = settings_.reach > 0, shadow_whole = settings_.shadows;
   if (ball_whole) {
@@ -115,10 +121,20 @@ float* near_field::gather(uint32_t p, cache& c, uint64_t& at) const {
   }
   const uint32_t words = header_words + (blocks_of(nb) + blocks_of(ns)) * block_words;
   float* rec = nullptr;
-  if (words * 4 <= ring_words) {  // a record of up to a quarter ring
-    if (c.head % ring_words + words > ring_words) c.head += ring_words - c.head % ring_words;  // to the ring's start
+  if (words * 8 <= first_ring_words) {  // a record of up to an eighth of the smallest ring
+    const uint64_t ring = c.ring.size();
+    if (c.head % ring + words > ring) {  // at the ring's end: grow it (and forget it), or go to its start
+      if (c.overrun && ring < most_ring_words) {
+        c.ring.assign(2 * ring, 0.0f);
+        for (cache::entry& e : c.table) e = {};
+        c.head = 0, c.overrun = false;
+        bytes_.fetch_add(ring * 4, std::memory_order_relaxed);
+      } else {
+        c.head += ring - c.head % ring;
+      }
+    }
     at = c.head;
-    rec = c.ring.data() + at % ring_words;
+    rec = c.ring.data() + at % c.ring.size();
     c.head += words;
   } else {
     c.big.resize(words);
@@ -141,16 +157,20 @@ float* near_field::gather(uint32_t p, cache& c, uint64_t& at) const {
 near_lists near_field::of(uint32_t p) const {
   thread_local cache c;
   if (c.owner != id_) {
-    if (c.ring.empty()) c.ring.resize(ring_words), c.table.resize(table_entries);
-    for (cache::entry& e : c.table) e = {};
+    c.ring.assign(first_ring_words, 0.0f);
+    c.table.assign(table_entries, {});
     c.owner = id_, c.head = 0;
-    threads_.fetch_add(1, std::memory_order_relaxed);
+    bytes_.fetch_add(first_ring_words * 4 + table_entries * sizeof(cache::entry), std::memory_order_relaxed);
   }
   cache::entry& e = c.table[(p * 2654435761u) >> 20];
   // Whole while no later record has come a ring round onto it.
-  if (e.position == p && c.head <= e.at + ring_words) return read(c.ring.data() + e.at % ring_words);
+  if (e.position == p && c.head <= e.at + c.ring.size()) return read(c.ring.data() + e.at % c.ring.size());
+  c.overrun = c.overrun || e.position == p;
   uint64_t at = 0;
+  const auto t0 = std::chrono::steady_clock::now();
   const float* rec = gather(p, c, at);
+  const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count();
+  nanoseconds_.fetch_add(uint64_t(ns), std::memory_order_relaxed);
   if (rec != c.big.data()) e = {p, at};
   return read(rec);
 }

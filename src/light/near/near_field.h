@@ -15,9 +15,9 @@
 // meets, found in whichever list or structure holds them, so where a list
 // was gathered (and how often) changes no verdict.
 //
-// Where they are kept: each render thread's ring of 2 MiB, the lists written
-// one after another, the oldest overwritten, and a table of 4096 spheres
-// (by position) saying where each one's are. A row of pixels meets a few
+// Where they are kept: each render thread's ring of up to 2 MiB, the lists
+// written one after another, the oldest overwritten, and a table of 4096
+// spheres (by position) saying where each one's are. A row of pixels meets a few
 // hundred spheres and the next row the same ones, so a sphere's lists are
 // gathered about once a frame for each thread that renders its rows, and
 // read from the caches: no memory grows with the scene or the picture.
@@ -65,9 +65,11 @@ class near_field {
 
   const near_settings& settings() const { return settings_; }
   size_t lists() const { return lists_.load(std::memory_order_relaxed); }  // gathered so far, every thread
-  // Each thread's ring and table that has asked.
+  // Seconds gathering them, summed over the threads.
+  double seconds() const { return double(nanoseconds_.load(std::memory_order_relaxed)) * 1e-9; }
+  // The threads' rings (up to ring_bytes each) and tables.
   static constexpr size_t ring_bytes = size_t(2) << 20, table_entries = 4096;
-  size_t bytes() const { return threads_.load(std::memory_order_relaxed) * (ring_bytes + table_entries * 16); }
+  size_t bytes() const { return bytes_.load(std::memory_order_relaxed); }
 
  private:
   struct cache;
@@ -78,7 +80,8 @@ class near_field {
   const near_settings settings_;
   const light_kernels& k_;
   const uint64_t id_;  // this field's, for the threads' caches
-  mutable std::atomic<size_t> lists_{0}, threads_{0};
+  mutable std::atomic<size_t> lists_{0}, bytes_{0};
+  mutable std::atomic<uint64_t> nanoseconds_{0};
 };
 
 }  // namespace raycast
