@@ -140,11 +140,11 @@ double grazing(std::span<const sphere> world, const point3& o, const vec3& d, do
 }
 
 // The structures of a lit box's rays (light/secondary.h), with the light and
-// an AO plan of 8 rays, at the given width.
+// its AO plan, at the given width.
 light_structures structures_of(const scene& s, int width = 0, int turns = -1) {
   const vec3 l = unit_vector(s.light.direction.value_or(vec3(0.3, 1.0, 0.6)));
   const float lf[3] = {float(l.x), float(l.y), float(l.z)};
-  return light_structures(s, lf, sampling::make_ao_plan(default_sampler, 8, 0), 1, width, turns);
+  return light_structures(s, lf, sampling::make_ao_plan(default_sampler, s.light.ao_samples, 0), 1, width, turns);
 }
 
 // Sphere k's point C + r n in the light's frame (n a unit vector).
@@ -325,9 +325,9 @@ TEST(Light, AoDirectionsMadeInVectorsAreTheOneAtATimeBits) {
   EXPECT_LE(worst, 2e-6);
 }
 
-// The same for shadow rays (each sphere's shadow list), from points on every
-// sphere's lit side, at every lane width; and on a cloud, whose shadow
-// lists run through it.
+// The same for shadow rays, from points on every sphere's lit side, at every
+// lane width: a packed box's (its spheres' shadow lists) and a cloud's (an
+// open scene: light-space bins, and no nodes in the far field).
 TEST(Light, ShadowVerdictsAgreeWithTheReferenceButForGrazingRays) {
   scene_params cp = particle_cloud(4000);
   for (sphere& sp : cp.spheres) sp.shade = shading::lit;
@@ -339,6 +339,8 @@ TEST(Light, ShadowVerdictsAgreeWithTheReferenceButForGrazingRays) {
     for (const scene* s : {&box, &cloud}) {
       SCOPED_TRACE(std::to_string(width) + " lanes, " + (s == &box ? "box" : "cloud"));
       const light_structures ls = structures_of(*s, width);
+      EXPECT_EQ(ls.rays().bins != nullptr, s == &cloud);
+      EXPECT_EQ(ls.bvh().has_nodes(), s == &box);
       std::mt19937 rng(11);
       std::uniform_real_distribution<double> u(0.0, 1.0);
       size_t rays = 0, disagree = 0, shadowed = 0, not_grazing = 0;

@@ -15,7 +15,9 @@
 
 #include "cloud.h"
 #include "light/far/bvh.h"
+#include "light/far/key_sort.h"
 #include "light/far/radix_sort.h"
+#include "light/far/shadow_bins.h"
 #include "light/kernels.h"
 #include "light/near/near_field.h"
 #include "reference/hittable.h"
@@ -327,6 +329,104 @@ TEST(LightFields, TheNearFieldsListsHoldTheSpheresInReach) {
     EXPECT_GT(listed, 0u);
     EXPECT_EQ(near.lists(), whole + cut);
   }
+}
+
+// Shadow rays get the same verdicts from the light-space bins (open
+// scenes' shadow rays) and from their spheres' shadow lists (packed ones'):
+// from points on the lit sides of a packed box's spheres, a cloud's, huge
+// spheres' among small ones, and a column of spheres along the light among
+// others (its cells list hundreds, each sorted by reach on its own); and the
+// bins are the same built on one thread or three.
+scene column_along(const vec3& l) {
+  std::mt19937 rng(15);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  scene_params p;
+  for (int k = 0; k < 1000; ++k) {
+    const point3 c = k % 5 < 2 ? point3(u(rng) * 4 - 2, u(rng) * 4 - 2, u(rng) * 4 - 2)
+                               : point3(0.02 * u(rng), 0.02 * u(rng), 0.02 * u(rng)) + (u(rng) * 8 - 4) * l;
+    p.spheres.push_back(sphere{c, 0.01 + 0.02 * u(rng)});
+  }
+  for (sphere& sp : p.spheres) sp.shade = shading::lit;
+  return make_scene(p);
+}
+
+TEST(LightFields, ShadowRaysGetTheSameVerdictsFromTheBinsAndTheShadowLists) {
+  const vec3 ld = unit_vector(vec3(0.3, 1.0, 0.6));
+  const float l[3] = {float(ld.x), float(ld.y), float(ld.z)};
+  std::vector<scene> all = scenes();
+  all.push_back(column_along(ld));
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (const scene& s : all) {
+    const sphere_bvh b(s);
+    const shadow_bins bins(b, l), three(b, l, 3);
+    EXPECT_EQ(bins.bytes(), three.bytes());
+    EXPECT_EQ(bins.longest_list(), three.longest_list());
+    if (&s == &all.back()) {
+      EXPECT_GT(bins.longest_list(), 300u);
+    }
+    near_settings set;
+    set.shadows = true;
+    for (int a = 0; a < 3; ++a) set.light[a] = l[a];
+    for (const int width : light_widths()) {
+      const light_kernels& k = light_kernels_for(width);
+      const near_field near(b, set, k);
+      size_t rays = 0, shadowed = 0, differ = 0;
+      for (uint32_t p = 0; p < b.size(); p += 3) {
+        const sphere4 c = b.at(p);
+        const vec3 n = cosine_direction(ld, u(rng), u(rng));
+        float o[3];
+        for (int a = 0; a < 3; ++a) o[a] = c[a] + c[3] * float(n[a]);
+        const near_lists lists = near.of(p);
+        ASSERT_TRUE(lists.shadow_whole);
+        const bool by_bins = bins.occluded(o, p);
+        ++rays;
+        shadowed += by_bins;
+        differ += by_bins != k.list_blocks(lists.shadow, o, l, INFINITY);
+        differ += by_bins != three.occluded(o, p);
+      }
+      EXPECT_GT(shadowed, rays / 20);
+      EXPECT_EQ(differ, 0u) << width << " lanes, of " << rays << " rays among " << b.size() << " spheres";
+    }
+  }
+}
+
+// The bins' build groups their entries by cell with key_sort: the same
+// groups, in the same order within each, as a stable sort by key, over one
+// key, keys in few and in many bands, keys no record has, records all of
+// one key, and records in runs (parts) filled by as many threads or one.
+TEST(LightFields, KeySortIsAStableSortByKey) {
+  std::mt19937 rng(21);
+  for (size_t keys : {size_t(1), size_t(7), size_t(5000), size_t(300000)})
+    for (size_t n : {size_t(0), size_t(1), size_t(100), size_t(40000), size_t(200000)})
+      for (int parts : {1, 3})
+        for (bool one_key : {false, true}) {
+          std::vector<std::pair<uint32_t, uint32_t>> rec(n);  // key, order given
+          for (size_t i = 0; i < n; ++i) rec[i] = {one_key ? uint32_t(keys / 2) : uint32_t(rng() % keys), uint32_t(i)};
+          const auto run = [&](int p) { return std::pair(part_begin(n, p, parts), part_begin(n, p + 1, parts)); };
+          key_sort<uint32_t> sort(keys, n, parts);
+          for (int p = 0; p < parts; ++p)
+            for (size_t i = run(p).first; i < run(p).second; ++i) sort.count(p, rec[i].first);
+          out_of_order_array<uint32_t> out, first;
+          sort.start(out);
+#pragma omp parallel for num_threads(parts)
+          for (int p = 0; p < parts; ++p)
+            for (size_t i = run(p).first; i < run(p).second; ++i) sort.put(p, rec[i].first, rec[i].second);
+          size_t seen = 0;
+          sort.finish(first, [&](uint32_t* b, uint32_t* e) {
+#pragma omp atomic
+            seen += size_t(e - b);
+          }, parts);
+          std::stable_sort(rec.begin(), rec.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+          ASSERT_EQ(first.size(), keys + 1);
+          EXPECT_EQ(first[0], 0u);
+          EXPECT_EQ(first[keys], n);
+          EXPECT_EQ(seen, n);
+          size_t bad = 0;
+          for (size_t k = 0; k < keys; ++k)
+            for (uint32_t j = first[k]; j < first[k + 1]; ++j) bad += rec[j].first != k || rec[j].second != out[j];
+          EXPECT_EQ(bad, 0u) << keys << " keys, " << n << " records, " << parts << " parts";
+        }
 }
 
 // The radix sort orders by the chosen bits and keeps the order of equal

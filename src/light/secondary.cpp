@@ -8,6 +8,7 @@
 #include <limits>
 #include <vector>
 
+#include "light/blocks.h"
 #include "light/directions.h"
 #include "light/frame.h"
 #include "scene/sphere.h"
@@ -19,20 +20,6 @@ constexpr uint32_t group = 8;  // a hit's AO rays made and tested together
 constexpr uint32_t none = ~0u;
 // Hierarchies of more bytes than this (light/far/bvh.h) are walked in turns.
 constexpr size_t walk_in_turns_from = size_t(8) << 20;
-
-// lanes::blocks for one sphere (x y z r) and one ray: the same float
-// operations, so the same verdict (a hit seen from inside asks it of its own
-// sphere).
-bool blocks_one(const float o[3], const float d[3], const float* s, float tmax) {
-  const float ox = o[0] - s[0], oy = o[1] - s[1], oz = o[2] - s[2];
-  const float r2 = s[3] * s[3];
-  if ((ox * ox + oy * oy) + oz * oz <= r2) return true;
-  const float b = (ox * d[0] + oy * d[1]) + oz * d[2];
-  if (!(b < 0.0f)) return false;
-  const float vx = ox - b * d[0], vy = oy - b * d[1], vz = oz - b * d[2];
-  const float m2 = (vx * vx + vy * vy) + vz * vz, gap = r2 - m2, beyond = -b - tmax;
-  return m2 <= r2 && (beyond <= 0.0f || beyond * beyond <= gap);
-}
 
 // One lit lane's hit: its sphere, origin and normal.
 struct hit_at {
@@ -83,11 +70,14 @@ struct far_work {
 };
 
 // Whether the hit's shadow ray is blocked by its own sphere (seen from
-// inside) or its shadow list; where the list was too long to keep, its ray
-// goes to the far field (w) and false is returned.
-bool shadowed(const secondary_rays& r, const hit_at& h, const near_lists& lists, far_work& w, uint8_t lane) {
+// inside), its shadow list or, in an open scene, the light-space bins;
+// where the list was too long to keep, its ray goes to the far field (w)
+// and false is returned.
+bool shadowed(const secondary_rays& r, const hit_at& h, const near_lists& lists, far_work& w, uint8_t lane,
+              const shadow_bins::query* q = nullptr) {
   const float inf = std::numeric_limits<float>::infinity();
   if (h.inside && blocks_one(h.p, r.light, h.sphere.v, inf)) return true;
+  if (r.bins) return q ? r.bins->occluded(*q, h.p, h.skip()) : r.bins->occluded(h.p, h.skip());
   if (lists.shadow_whole) return r.kernels->list_blocks(lists.shadow, h.p, r.light, inf);
   w.add(h.p, r.light, 0.0f, inf, h.skip(), {lane, 0, true});
   return false;
@@ -147,7 +137,7 @@ hit_at hit_on(const secondary_rays& r, uint32_t k, const float p[3], const float
 
 light_structures::light_structures(const scene& s, const float light[3], const sampling::ao_plan& ao, int threads,
                                    int width, int turns)
-    : bvh_(s, threads) {
+    : bvh_(s, threads, ao.count > 0 || !s.light.shadows) {
   rays_.bvh = &bvh_;
   rays_.view = bvh_.view();
   rays_.kernels = &light_kernels_for(width);
@@ -156,8 +146,10 @@ light_structures::light_structures(const scene& s, const float light[3], const s
   rays_.ao = ao;
   rays_.ao_distance = float(std::ldexp(s.light.ao_distance, -bvh_.scale_exp));
   rays_.far_in_turns = turns < 0 ? bvh_.bytes() > walk_in_turns_from : turns > 0;
+  const bool open = rays_.shadows && bvh_.free_path() > sphere_bvh::open_free_path;
+  if (open) rays_.bins = (bins_ = std::make_unique<shadow_bins>(bvh_, light, threads)).get();
   near_ = std::make_unique<near_field>(
-      bvh_, near_settings_for(bvh_, rays_.shadows, light, ao.count > 0, rays_.ao_distance), *rays_.kernels);
+      bvh_, near_settings_for(bvh_, rays_.shadows && !open, light, ao.count > 0, rays_.ao_distance), *rays_.kernels);
   rays_.near = near_.get();
 }
 
@@ -179,19 +171,42 @@ bool shadow_blocked(const secondary_rays& r, uint32_t k, const float p[3], bool 
   return !w.blocked.empty() && w.blocked[0];
 }
 
+namespace {
+
+// The light-space bins' cells of a batch's shadow rays (bit l of `rays`),
+// located and read ahead in two steps over the lanes, so that their cache
+// misses overlap: each cell's bounds, then its list's far end.
+void locate_in_bins(const secondary_rays& r, const hit_at* h, uint32_t rays, shadow_bins::query* q) {
+  for (uint32_t b = rays; b != 0; b &= b - 1) {
+    const int l = __builtin_ctz(b);
+    q[l] = r.bins->locate(h[l].p);
+    r.bins->prefetch(q[l], 0);
+  }
+  for (uint32_t b = rays; b != 0; b &= b - 1) r.bins->prefetch(q[__builtin_ctz(b)], 1);
+}
+
+}  // namespace
+
 void light_lanes(const secondary_rays& r, const lit_lanes& ls, float light[lit_lanes::most]) {
   thread_local far_work w;
   w.clear();
-  uint32_t open[lit_lanes::most];
+  uint32_t open[lit_lanes::most], casts = 0;
   bool shadow[lit_lanes::most];
+  hit_at h[lit_lanes::most];
+  shadow_bins::query q[lit_lanes::most];
   for (uint32_t bits = ls.lit; bits != 0; bits &= bits - 1) {
     const int l = __builtin_ctz(bits);
-    const hit_at h = hit_of(r, ls, l);
-    const bool casts_shadow = r.shadows && ls.diffuse[l] > 0.0f;
+    h[l] = hit_of(r, ls, l);
+    if (r.shadows && ls.diffuse[l] > 0.0f) casts |= 1u << l;
+  }
+  if (r.bins) locate_in_bins(r, h, casts, q);
+  for (uint32_t bits = ls.lit; bits != 0; bits &= bits - 1) {
+    const int l = __builtin_ctz(bits);
+    const bool casts_shadow = (casts >> l) & 1u;
     near_lists lists;
-    if (casts_shadow || r.ao.count > 0) lists = r.near->of(h.position);
-    shadow[l] = casts_shadow && shadowed(r, h, lists, w, uint8_t(l));
-    open[l] = r.ao.count > 0 ? open_near(r, ls, l, h, lists, w) : 0;
+    if ((casts_shadow && !r.bins) || r.ao.count > 0) lists = r.near->of(h[l].position);
+    shadow[l] = casts_shadow && shadowed(r, h[l], lists, w, uint8_t(l), &q[l]);
+    open[l] = r.ao.count > 0 ? open_near(r, ls, l, h[l], lists, w) : 0;
   }
   w.resolve(r);
   for (size_t i = 0; i < w.q.size(); ++i) {

@@ -19,6 +19,7 @@
 #include <memory>
 
 #include "light/far/bvh.h"
+#include "light/far/shadow_bins.h"
 #include "light/kernels.h"
 #include "light/near/near_field.h"
 #include "scene/sampler.h"
@@ -32,6 +33,7 @@ namespace raycast {
 struct secondary_rays {
   const sphere_bvh* bvh = nullptr;
   const near_field* near = nullptr;
+  const shadow_bins* bins = nullptr;  // shadow rays in an open scene (else their spheres' shadow lists)
   const light_kernels* kernels = nullptr;
   bvh_view view;               // bvh's
   float light[3] = {0, 0, 0};  // unit, toward the light (shadows)
@@ -45,7 +47,9 @@ struct secondary_rays {
 
 // The structures a render's secondary rays ask, built for its scene when
 // it casts them: the far field over every sphere, the near field (empty
-// until the render's rays ask for their spheres' lists). light: unit, toward
+// until the render's rays ask for their spheres' lists), and in an open
+// scene light-space bins for the shadow rays (there the far field's nodes
+// are built for AO alone). light: unit, toward
 // the light (world axes); ao: the render's plan; on `threads` threads; width:
 // the kernels' lanes (light/kernels.h; 0: the widest this CPU runs); turns:
 // whether far rays walk in turns (secondary_rays::far_in_turns; -1: where
@@ -57,11 +61,12 @@ class light_structures {
   const secondary_rays& rays() const { return rays_; }
   const sphere_bvh& bvh() const { return bvh_; }
   const near_field& near() const { return *near_; }
-  size_t bytes() const { return bvh_.bytes() + near_->bytes(); }
+  size_t bytes() const { return bvh_.bytes() + near_->bytes() + (bins_ ? bins_->bytes() : 0); }
 
  private:
   sphere_bvh bvh_;
   std::unique_ptr<near_field> near_;
+  std::unique_ptr<shadow_bins> bins_;
   secondary_rays rays_;
 };
 

@@ -25,11 +25,11 @@ uint32_t spread(uint32_t v) {
 
 }  // namespace
 
-sphere_bvh::sphere_bvh(const scene& s, int threads) {
+sphere_bvh::sphere_bvh(const scene& s, int threads, bool open_nodes) {
   threads = std::max(threads, 1);
   if (s.sphere_count() == 0) return;
   frame(s, threads);
-  sort_by_morton(s, threads);
+  sort_by_morton(s, threads, open_nodes || free_path_ <= open_free_path);
 }
 
 // A scene sphere in the light's frame (the same bits wherever it is made).
@@ -58,10 +58,27 @@ void sphere_bvh::frame(const scene& s, int threads) {
     half = std::max(half, hi[a] - origin[a]);
   }
   std::frexp(half, &scale_exp);  // half < 2^scale_exp
+  // The largest radius, and the cross-section summed by blocks of 2^16
+  // spheres in their order (the same sum on any number of threads).
   float most = 0;
+  std::vector<double> block((n + 0xffff) >> 16);
 #pragma omp parallel for schedule(static) num_threads(threads) reduction(max : most)
-  for (size_t k = 0; k < n; ++k) most = std::max(most, in_frame(s.sphere_at(k))[3]);
+  for (size_t b = 0; b < block.size(); ++b) {
+    double sum = 0;
+    for (size_t k = b << 16; k < std::min(n, (b + 1) << 16); ++k) {
+      const float r = in_frame(s.sphere_at(k))[3];
+      most = std::max(most, r);
+      sum += double(r) * double(r);
+    }
+    block[b] = sum;
+  }
   max_radius_ = most;
+  double cross_section = 0, volume = 1;
+  for (double x : block) cross_section += x;
+  for (int a = 0; a < 3; ++a) volume *= std::ldexp(hi[a] - lo[a], -scale_exp);
+  cross_section *= 3.14159265358979323846;
+  free_path_ = cross_section > 0 ? volume / cross_section / std::cbrt(volume / double(n))
+                                 : std::numeric_limits<double>::infinity();
   const size_t step = n / 4096 + 1;
   std::vector<float> r;
   for (size_t k = 0; k < n; k += step) r.push_back(in_frame(s.sphere_at(k))[3]);
@@ -71,41 +88,44 @@ void sphere_bvh::frame(const scene& s, int threads) {
 
 // The spheres by position: sorted by the Morton code of their centres (ten
 // bits an axis over the centres' bounding cube; ties in the scene's order),
-// then the nodes and leaves over them. Read from the scene twice (for the
+// then the nodes and leaves over them; without nodes, in the scene's order. Read from the scene twice (for the
 // codes, then in their order) rather than copied: the build's peak memory
 // is the keys, the sorted spheres and the nodes.
-void sphere_bvh::sort_by_morton(const scene& s, int threads) {
+void sphere_bvh::sort_by_morton(const scene& s, int threads, bool nodes) {
   const size_t n = s.sphere_count();
-  float lo[3], hi[3];
-  for (int a = 0; a < 3; ++a) lo[a] = std::numeric_limits<float>::infinity(), hi[a] = -lo[a];
+  out_of_order_array<uint64_t> keys;  // without nodes: none, the scene's order kept
+  if (nodes) {
+    float lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) lo[a] = std::numeric_limits<float>::infinity(), hi[a] = -lo[a];
 #pragma omp parallel for schedule(static) num_threads(threads) reduction(min : lo[:3]) reduction(max : hi[:3])
-  for (size_t k = 0; k < n; ++k) {
-    const sphere4 c = in_frame(s.sphere_at(k));
-    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
-  }
-  const float side = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-30f});
-  const float scale = 1023.0f / side;
-  out_of_order_array<uint64_t> keys;
-  keys.resize(n);
+    for (size_t k = 0; k < n; ++k) {
+      const sphere4 c = in_frame(s.sphere_at(k));
+      for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
+    }
+    const float side = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-30f});
+    const float scale = 1023.0f / side;
+    keys.resize(n);
 #pragma omp parallel for schedule(static) num_threads(threads)
-  for (size_t k = 0; k < n; ++k) {
-    const sphere4 c = in_frame(s.sphere_at(k));
-    uint32_t code = 0;
-    for (int a = 0; a < 3; ++a) code |= spread(uint32_t(std::clamp((c[a] - lo[a]) * scale, 0.0f, 1023.0f))) << a;
-    keys[k] = uint64_t(code) << 32 | k;
+    for (size_t k = 0; k < n; ++k) {
+      const sphere4 c = in_frame(s.sphere_at(k));
+      uint32_t code = 0;
+      for (int a = 0; a < 3; ++a) code |= spread(uint32_t(std::clamp((c[a] - lo[a]) * scale, 0.0f, 1023.0f))) << a;
+      keys[k] = uint64_t(code) << 32 | k;
+    }
+    radix_sort(keys, 32, 30, threads);
   }
-  radix_sort(keys, 32, 30, threads);
   out_of_order_array<float> sorted;
   sorted.resize(n * 4 + 8);
   rank_.resize(n);
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (size_t p = 0; p < n; ++p) {
-    const uint32_t k = uint32_t(keys[p]);
+    const uint32_t k = nodes ? uint32_t(keys[p]) : uint32_t(p);
     const sphere4 c = in_frame(s.sphere_at(k));
     for (int a = 0; a < 4; ++a) sorted[p * 4 + a] = c[a];
     rank_[k] = uint32_t(p);
   }
-  build_nodes(keys, sorted, threads);
+  if (nodes) build_nodes(keys, sorted, threads);
+  else leaves_ = (n + 7) / 8;
   keys = {};
   fill_leaves(sorted, threads);
 }
@@ -127,7 +147,12 @@ void sphere_bvh::fill_leaves(out_of_order_array<float>& sorted, int threads) {
       place_[first + i] = uint8_t(i | (c - 1) << 3);
     }
   };
-  if (bvh_ref::is_leaf(root_)) fill(root_);
+  if (nodes_.empty() && root_ == bvh_ref::empty) {  // no nodes: runs of eight
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (size_t first = 0; first < n; first += 8)
+      fill(bvh_ref::leaf(uint32_t(first), uint32_t(std::min<size_t>(8, n - first))));
+  }
+  if (root_ != bvh_ref::empty && bvh_ref::is_leaf(root_)) fill(root_);
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (size_t i = 0; i < nodes_.size(); ++i)
     for (uint32_t c : nodes_[i].child)
