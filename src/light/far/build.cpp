@@ -117,12 +117,14 @@ void sphere_bvh::sort_by_morton(const scene& s, int threads, bool nodes) {
   out_of_order_array<float> sorted;
   sorted.resize(n * 4 + 8);
   rank_.resize(n);
+  // Each sphere to its place, read in the scene's order and written out of
+  // order (a store waits on nothing; a read out of order would).
 #pragma omp parallel for schedule(static) num_threads(threads)
-  for (size_t p = 0; p < n; ++p) {
-    const uint32_t k = nodes ? uint32_t(keys[p]) : uint32_t(p);
+  for (size_t p = 0; p < n; ++p) rank_[nodes ? uint32_t(keys[p]) : p] = uint32_t(p);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (size_t k = 0; k < n; ++k) {
     const sphere4 c = in_frame(s.sphere_at(k));
-    for (int a = 0; a < 4; ++a) sorted[p * 4 + a] = c[a];
-    rank_[k] = uint32_t(p);
+    for (int a = 0; a < 4; ++a) sorted[size_t(rank_[k]) * 4 + a] = c[a];
   }
   if (nodes) build_nodes(keys, sorted, threads);
   else leaves_ = (n + 7) / 8;
