@@ -10,6 +10,7 @@
 
 #include "cloud.h"
 #include "embree_peer.h"
+#include "tachyon_peer.h"
 #include "render/render.h"
 #include "rows.h"
 
@@ -37,8 +38,13 @@ const family families[] = {
 struct variant {
   const char* name;
   uint32_t ao;
+  bool unbounded = false;  // AO unbounded in a family whose AO is bounded (the boxes): Tachyon's kind
 };
-const variant variants[] = {{"shadows", 0}, {"shadows-ao8", 8}};
+const variant variants[] = {{"shadows", 0}, {"shadows-ao8", 8}, {"shadows-ao8-unbounded", 8, true}};
+
+// Whether a family's row of variant v has unbounded AO (or none): what
+// Tachyon renders, whose AO has no distance.
+bool unbounded(const family& f, const variant& v) { return !f.bounded_ao || v.unbounded || v.ao == 0; }
 
 scene lit_scene(const family& f, int64_t n, const variant& v, int64_t w, int64_t h, bool secondary = true) {
   api::scene p = f.make(n);
@@ -51,7 +57,7 @@ scene lit_scene(const family& f, int64_t n, const variant& v, int64_t w, int64_t
   p.light.direction = f.light;
   p.light.shadows = secondary;
   p.light.ao_samples = secondary ? v.ao : 0;
-  if (f.bounded_ao && !p.spheres.empty()) p.light.ao_distance = 5 * p.spheres[0].radius;
+  if (!unbounded(f, v) && !p.spheres.empty()) p.light.ao_distance = 5 * p.spheres[0].radius;
   return make_scene(p);
 }
 
@@ -67,7 +73,7 @@ void bench_ours(benchmark::State& state, const family* f, int64_t n, const varia
   render_options o;
   o.threads = all ? available_cores() : 1;
   frame fr{w, h, std::vector<unsigned char>(size_t(w * h) * 3)};
-  double prep = 0, render = 0, first = 0;
+  double prep = 0, render = 0, first = 0, light = 0, lists = 0, list_s = 0, bytes = 0;
   for (auto _ : state) {
     steady::time_point t0 = steady::now();
     auto r = std::make_unique<renderer>(s, o);
@@ -77,6 +83,10 @@ void bench_ours(benchmark::State& state, const family* f, int64_t n, const varia
     benchmark::ClobberMemory();
     render += seconds_since(t0);
     state.PauseTiming();
+    light += r->light_seconds();
+    lists += double(r->light_lists());
+    list_s += r->light_list_seconds();
+    bytes += double(r->light_bytes());
     r.reset();
     const renderer p(primary, o);
     t0 = steady::now();
@@ -87,6 +97,10 @@ void bench_ours(benchmark::State& state, const family* f, int64_t n, const varia
   state.counters["prepare_s"] = per_iteration(prep);
   state.counters["render_s"] = per_iteration(render);
   state.counters["primary_s"] = per_iteration(first);
+  state.counters["light_s"] = per_iteration(light);  // of prepare_s: the far field's build
+  state.counters["lists"] = per_iteration(lists);     // spheres whose near-field lists the frame gathered
+  state.counters["lists_s"] = per_iteration(list_s);  // of render_s, the threads' seconds gathering them
+  state.counters["light_mb"] = per_iteration(bytes * 1e-6);  // the light's structures after the frame
 }
 
 void bench_embree(benchmark::State& state, const family* f, int64_t n, const variant* v, int64_t w, int64_t h) {
@@ -112,6 +126,29 @@ void bench_embree(benchmark::State& state, const family* f, int64_t n, const var
   state.counters["shadow_s"] = per_iteration(shadow);
   state.counters["ao_s"] = per_iteration(occlusion);
   state.counters["render_s"] = per_iteration(primary + shadow + occlusion);
+}
+
+// Tachyon's frame of the same scene (tachyon_peer.h): its preprocessing
+// (prepare_s) and ray tracing (render_s) by its own timers, on one thread
+// or all cores; frame_mismatch: the fraction of pixels that hit a sphere in
+// one picture and not the other (480x270, the same camera), once a row.
+void bench_tachyon(benchmark::State& state, const family* f, int64_t n, const variant* v, int64_t w, int64_t h,
+                   bool all) {
+  if (tachyon_peer::program().empty())
+    return state.SkipWithError("skipped: no tachyon program here (Debian: apt install tachyon)");
+  const scene s = lit_scene(*f, n, *v, w, h);
+  const tachyon_peer peer(s);
+  const double mismatch = peer.framing_mismatch(480, 270);
+  double prep = 0, render = 0;
+  for (auto _ : state) {
+    const tachyon_peer::timers t = peer.render(all ? available_cores() : 1, true, s.light.ao_samples);
+    if (!t.error.empty()) return state.SkipWithError(t.error.c_str());
+    prep += t.preprocess;
+    render += t.trace;
+  }
+  state.counters["prepare_s"] = per_iteration(prep);
+  state.counters["render_s"] = per_iteration(render);
+  state.counters["frame_mismatch"] = mismatch;
 }
 
 // Ambient occlusion's Monte Carlo error against run time: a lit box of 2000
@@ -196,6 +233,7 @@ void register_light_rows(bool quick) {
     for (int64_t n : quick ? std::vector<int64_t>{1000} : std::vector<int64_t>{10'000, 100'000, 1'000'000, 10'000'000}) {
       if (quick && f.name != std::string("box")) continue;
       for (const variant& v : variants) {
+        if (v.unbounded && !f.bounded_ao) continue;  // the clouds' AO is unbounded already
         const std::string base = strf("light/%s/%%s/%lld/%s/%%s", f.name, static_cast<long long>(n), v.name);
         const std::string fields = strf("kind=light family=%s spheres=%lld variant=%s size=%s", f.name,
                                         static_cast<long long>(n), v.name, size_text(w, h).c_str());
@@ -204,6 +242,11 @@ void register_light_rows(bool quick) {
                   benchmark::kMillisecond, bench_ours, &f, n, &v, w, h, all);
         add_row(strf(base.c_str(), "embree", "t1"), fields + " peer=embree threads=1", benchmark::kMillisecond,
                 bench_embree, &f, n, &v, w, h);
+        if (!unbounded(f, v) || n > 1'000'000) continue;  // Tachyon: unbounded AO only, and minutes a frame beyond
+        for (bool all : {false, true})
+          add_row(strf(base.c_str(), "tachyon", all ? "tall" : "t1"),
+                  fields + " peer=tachyon threads=" + (all ? "all" : "1"), benchmark::kMillisecond, bench_tachyon, &f,
+                  n, &v, w, h, all);
       }
     }
 }

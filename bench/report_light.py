@@ -63,21 +63,44 @@ def plot_ao(rows, ctx, file):
     return True
 
 
+def light_cells(o, e, t, t2):
+    """One light row's cells: ours, render/primary, Embree, Embree/ours, Tachyon, Tachyon/ours."""
+    mine = o.prepare_s + o.render_s if o and "render_s" in o else None
+    ours = f"{o.prepare_s * 1e3:.0f} + {o.render_s * 1e3:.0f} ({o.primary_s * 1e3:.0f})" if mine else "-"
+    per = f"{o.render_s / o.primary_s:.1f}x" if mine and o.primary_s else "-"
+    has_e = e and "build_s" in e
+    emb = f"{e.build_s * 1e3:.0f} + {e.primary_s * 1e3:.0f} + {e.shadow_s * 1e3:.0f} + {e.ao_s * 1e3:.0f}" if has_e else "-"
+    ratio = f"{(e.build_s + e.render_s) / mine:.2f}x" if mine and has_e else "-"
+    has_t = t and "render_s" in t
+    tach = f"{t.prepare_s * 1e3:.0f} + {t.render_s * 1e3:.0f}" if has_t else "-"
+    if has_t and t2 and "render_s" in t2:
+        tach += f" ({(t2.prepare_s + t2.render_s) * 1e3:.0f})"
+    tratio = f"{(t.prepare_s + t.render_s) / mine:.2f}x" if mine and has_t else "-"
+    return ours, per, emb, ratio, tach, tratio
+
+
 def print_light(rows, ctx):
     cells = {}
     for r in of_kind(rows, "light"):
         cells.setdefault((r.family, int(r.spheres), r.variant), {})[(r.peer, r.threads)] = r
     if not cells:
         return
-    print(f"\nLight (light/ rows): shadows, and shadows + 8 AO rays a hit, against Embree's rtcOccluded16; "
-          f"{ctx.get('cpu_model', '?')}, {ctx.get('date', '')[:10]}, 1 thread unless said (ms)")
-    print(f"  {'family':10} {'N':>8} {'variant':12} {'ours prep+render (primary)':>28} {'Embree build+prim+shadow+AO':>30}"
-          f" {'Embree/ours':>11} {'2 thr/1':>8}")
+    print(f"\nLight (light/ rows): shadows, and shadows + 8 AO rays a hit, against Embree's rtcOccluded16 and "
+          f"Tachyon; {ctx.get('cpu_model', '?')}, {ctx.get('date', '')[:10]}, 1 thread unless said (ms)")
+    print("  render/primary: our lit frame's render over its primary frame's; Tachyon: its preprocessing + ray "
+          "tracing (all cores)")
+    print(f"  {'family':10} {'N':>8} {'variant':21} {'ours prep+render (primary)':>28} {'render/primary':>14}"
+          f" {'Embree build+prim+shadow+AO':>30} {'Embree/ours':>11} {'Tachyon prep+trace (all)':>26}"
+          f" {'Tachyon/ours':>12} {'2 thr/1':>8}")
     for (fam, n, var), c in sorted(cells.items()):
-        o, e, o2 = c.get(("ours", "1")), c.get(("embree", "1")), c.get(("ours", "all"))
-        ours = f"{o.prepare_s * 1e3:.0f} + {o.render_s * 1e3:.0f} ({o.primary_s * 1e3:.0f})" if o else "-"
-        emb = (f"{e.build_s * 1e3:.0f} + {e.primary_s * 1e3:.0f} + {e.shadow_s * 1e3:.0f} + {e.ao_s * 1e3:.0f}"
-               if e and "build_s" in e else "-")
-        ratio = f"{(e.build_s + e.render_s) / (o.prepare_s + o.render_s):.2f}x" if o and e and "build_s" in e else "-"
-        scale = f"{o.render_s / o2.render_s:.2f}x" if o and o2 else "-"
-        print(f"  {fam:10} {n:8d} {var:12} {ours:>28} {emb:>30} {ratio:>11} {scale:>8}")
+        o, o2 = c.get(("ours", "1")), c.get(("ours", "all"))
+        ours, per, emb, ratio, tach, tratio = light_cells(o, c.get(("embree", "1")), c.get(("tachyon", "1")),
+                                                          c.get(("tachyon", "all")))
+        scale = f"{o.render_s / o2.render_s:.2f}x" if o and o2 and "render_s" in o and "render_s" in o2 else "-"
+        print(f"  {fam:10} {n:8d} {var:21} {ours:>28} {per:>14} {emb:>30} {ratio:>11} {tach:>26} {tratio:>12}"
+              f" {scale:>8}")
+    bad = sorted({f"{r.frame_mismatch:.4f}" for r in of_kind(rows, "light", peer="tachyon") if "frame_mismatch" in r})
+    if bad:
+        print("  Tachyon's pictures against ours (480x270, hit or not): " + ", ".join(bad) + " of the pixels differ")
+    for m in sorted({r.error for r in of_kind(rows, "light") if r.error}):
+        print(f"  skipped rows: {m}")

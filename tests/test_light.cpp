@@ -14,10 +14,8 @@
 
 #include "backend_test.h"
 #include "cloud.h"
-#include "light/grid.h"
-#include "light/key_sort.h"
+#include "light/kernels.h"
 #include "light/secondary.h"
-#include "light/shadow_bins.h"
 #include "reference/hittable.h"
 #include "simd/cpu.h"
 #include "render_support.h"
@@ -61,10 +59,9 @@ TEST_P(LightBackends, EveryBackendAndThreadCountGivesTheScalarBytes) {
   EXPECT_EQ(render(s, GetParam(), 2, 4).bytes, render(s, backend::scalar, 1, 4).bytes);
 }
 
-// A lit cloud (long shadow rays: the renderer asks the light-space bins,
-// where the packed box's, its AO cells built, walk those) gives the same
-// bytes too.
-TEST_P(LightBackends, ACloudsShadowsThroughTheBinsAreTheScalarBytes) {
+// A lit cloud (long shadow rays, each sphere's shadow list through the
+// whole cloud) gives the same bytes too.
+TEST_P(LightBackends, ACloudsShadowsAreTheScalarBytes) {
   api::scene p = particle_cloud(3000);
   p.cam.width = 192;
   p.cam.height = 108;
@@ -72,7 +69,6 @@ TEST_P(LightBackends, ACloudsShadowsThroughTheBinsAreTheScalarBytes) {
   p.light.direction = vec3(-0.5, 1.0, 0.3);
   p.light.shadows = true;
   scene s = raycast::make_scene(p);
-  ASSERT_GT(sphere_grid(s, false).free_path(), sphere_grid::short_free_path);
   const image want = render(s, backend::scalar);
   EXPECT_EQ(render(s, GetParam()).bytes, want.bytes);
   EXPECT_EQ(render(s, GetParam(), 2).bytes, want.bytes);
@@ -143,368 +139,68 @@ double grazing(std::span<const sphere> world, const point3& o, const vec3& d, do
   return g;
 }
 
-// Verdict by verdict: the grid's float rays (light/grid.h) against the
-// reference's blocked() in double, from the same hit points in the same
-// directions, on a box whose spheres touch (packing 0.3 at random: many
-// near-contacts).
-TEST(Light, GridVerdictsAgreeWithTheReferenceButForGrazingRays) {
-  const scene s = lit_box(4000, 0);
-  const sphere_grid grid(s);
-  const double unit = std::ldexp(1.0, -grid.scale_exp);
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  size_t rays = 0, disagree = 0, not_grazing = 0;
-  for (uint32_t k = 0; k < s.spheres.size(); ++k) {
-    const sphere& sp = s.spheres[k];
-    for (int q = 0; q < 16; ++q) {
-      const vec3 n = unit_vector(vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5));
-      const vec3 d = cosine_direction(n, u(rng), u(rng));
-      const double tmax = q % 2 ? INFINITY : 5 * sp.radius;
-      const point3 p = to_glm(sp.center) + sp.radius * n;
-      const bool want = blocked(s.spheres, p, d, tmax, &sp);
-      const float* c = grid.sphere(k);
-      const float nf[3] = {float(n.x), float(n.y), float(n.z)}, df[3] = {float(d.x), float(d.y), float(d.z)};
-      float pf[3];
-      for (int a = 0; a < 3; ++a) pf[a] = c[a] + c[3] * nf[a];
-      const bool got = grid.occluded(pf, df, float(tmax * unit), k);
-      ++rays;
-      if (got == want) continue;
-      ++disagree;
-      not_grazing += grazing(s.spheres, p, d, tmax, &sp) > 1e-3;
-    }
-  }
-  RecordProperty("secondary_rays", int(rays));
-  RecordProperty("disagreeing", int(disagree));
-  EXPECT_LE(double(disagree), 1e-4 * double(rays)) << disagree << " of " << rays;
-  EXPECT_EQ(not_grazing, 0u) << "verdicts that differ though no sphere is within 1e-3 r of the ray";
+// The structures of a lit box's rays (light/secondary.h), with the light and
+// its AO plan, at the given width.
+light_structures structures_of(const scene& s, int width = 0, int turns = -1) {
+  const vec3 l = unit_vector(to_glm(s.light.direction.value_or(api::vec3{0.3, 1.0, 0.6})));
+  const float lf[3] = {float(l.x), float(l.y), float(l.z)};
+  return light_structures(s, lf, sampling::make_ao_plan(default_sampler, s.light.ao_samples, 0), 1, width, turns);
 }
 
-// Rays through sphere_grid g against testing every sphere with the same
-// float test: one ray a sphere, from a point on it (every fifth from beyond
-// the grid's box, toward its middle), in a cosine-weighted direction about
-// a random normal (every fourth along an axis, the other components +0 or
-// -0), a third unbounded, the rest short (or, from outside, just long
-// enough to reach the spheres).
-// The float test (sphere_grid::blocks) of every sphere but skip.
-bool blocked_by_any(const sphere_grid& g, const float o[3], const float d[3], float tmax, uint32_t skip) {
-  for (uint32_t q = 0; q < g.size(); ++q)
-    if (q != skip && g.blocks(g.position(q), o, d, tmax)) return true;
-  return false;
-}
-
-// 3000 spheres of mixed sizes at random places, most reaching over their
-// cells' faces into others.
-scene mixed_sizes() {
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  api::scene p;
-  for (int k = 0; k < 3000; ++k)
-    p.spheres.push_back(sphere{point3(u(rng) * 4 - 2, u(rng) * 2 - 1, u(rng) * 3 - 8), 0.01 + 0.12 * u(rng) * u(rng)});
-  return raycast::make_scene(p);
-}
-
-struct walk_count {
-  size_t rays = 0, blocked = 0, mismatches = 0;
-};
-walk_count walk_against_every_sphere(const sphere_grid& g, uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  walk_count w;
-  for (uint32_t k = 0; k < g.size(); ++k) {
-    const vec3 n = unit_vector(vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5));
-    vec3 d = cosine_direction(n, u(rng), u(rng));
-    if (k % 4 == 1) {
-      const int a = int(k / 4 % 3);
-      d = vec3(k % 8 == 1 ? -0.0 : 0.0, -0.0, 0.0);
-      d[a] = n[a] < 0 ? -1.0 : 1.0;
-    }
-    const float* c = g.sphere(k);
-    const bool outside = k % 5 == 0;
-    float o[3], df[3];
-    for (int a = 0; a < 3; ++a) {
-      o[a] = outside ? float(-3 * d[a]) : c[a] + c[3] * float(n[a]);
-      df[a] = float(d[a]);
-    }
-    const float reach = outside ? 3.0f : 0.0f;
-    const float tmax = k % 3 == 0 ? INFINITY : reach + float(u(rng) * 0.5);
-    const uint32_t skip = outside ? uint32_t(-1) : k;
-    const bool want = blocked_by_any(g, o, df, tmax, skip);
-    ++w.rays;
-    w.blocked += want;
-    w.mismatches += g.occluded(o, df, tmax, skip) != want;
-  }
-  return w;
-}
-
-// The grid's walk finds exactly what testing every sphere finds: on spheres
-// of mixed sizes at random places (most reaching over their cells' faces
-// into others), ...
-TEST(Light, GridWalkFindsWhatTestingEverySphereFinds) {
-  const sphere_grid g(mixed_sizes());
-  ASSERT_GT(g.references(), 2 * g.size()) << "most spheres should reach into other cells";
-  const walk_count w = walk_against_every_sphere(g, 6);
-  EXPECT_GT(w.blocked, w.rays / 10);
-  EXPECT_LT(w.blocked, w.rays * 9 / 10);
-  EXPECT_EQ(w.mismatches, 0u) << "of " << w.rays << " rays";
-}
-
-// ... on a packed box jittered within lattice cells (its spheres hardly
-// reach into other cells) ...
-TEST(Light, GridWalkFindsWhatTestingEverySphereFindsInAPackedBox) {
-  const sphere_grid g(raycast::make_scene(particle_box(2000)));
-  const walk_count w = walk_against_every_sphere(g, 7);
-  EXPECT_GT(w.blocked, w.rays / 10);
-  EXPECT_EQ(w.mismatches, 0u) << "of " << w.rays << " rays";
-}
-
-// ... and on a grid made coarser for a hundred huge spheres among small ones.
-scene huge_among_small() {
-  std::mt19937 rng(8);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  api::scene p;
-  for (int k = 0; k < 1000; ++k)  // small ones over a box, big ones' centres near its middle
-    p.spheres.push_back(k % 5 ? sphere{point3(u(rng) * 4 - 2, u(rng) * 3 - 1.5, u(rng) * 3 - 9.5), 0.05}
-                              : sphere{point3(u(rng) * 0.5 - 0.25, u(rng) * 0.5 - 0.25, u(rng) * 0.5 - 8.25),
-                                       1.2 + 0.1 * u(rng)});
-  for (sphere& sp : p.spheres) sp.shade = shading::lit;
-  return raycast::make_scene(p);
-}
-
-// Small spheres over a box, and as many again in a clump in its middle, a
-// few cells across: those cells list hundreds of spheres each, so a walk
-// through them tests lists longer than any buffer of its own.
-scene clumped() {
-  std::mt19937 rng(12);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  api::scene p;
-  for (int k = 0; k < 3000; ++k)
-    p.spheres.push_back(k % 2 ? sphere{point3(u(rng) * 4 - 2, u(rng) * 4 - 2, u(rng) * 4 - 10), 0.01}
-                              : sphere{point3(u(rng) * 0.3 - 0.15, u(rng) * 0.3 - 0.15, u(rng) * 0.3 - 8.15), 0.005});
-  return raycast::make_scene(p);
-}
-
-TEST(Light, GridWalkFindsWhatTestingEverySphereFindsInACoarseGrid) {
-  const sphere_grid g(huge_among_small());
-  ASSERT_LT(g.cells() * 4, g.size()) << "the grid should have been made coarser";
-  const walk_count w = walk_against_every_sphere(g, 9);
-  EXPECT_GT(w.blocked, w.rays / 10);
-  EXPECT_LT(w.blocked, w.rays * 19 / 20);
-  EXPECT_EQ(w.mismatches, 0u) << "of " << w.rays << " rays";
-}
-
-// A hit's rays walked together (sphere_grid::occluded for a group) find,
-// ray by ray, what testing every sphere finds: from a point on each sphere,
-// eight cosine-weighted directions about a random normal (in every third
-// group some along an axis, their other components +0, -0 or below the
-// normal floats), most groups short (at most 4 cells: each lane's cells
-// tested as it enters them), some longer and every fifth unbounded (each
-// lane's cells gathered and tested together), a group of fewer than eight
-// now and then; on the grids of the test below (mixed sizes, the lattice
-// and random boxes, huge spheres among small ones, clumps). Each verdict is
-// also the same ray's walked alone.
-struct group_count {
-  size_t groups = 0, in_lanes = 0, long_in_lanes = 0, rays = 0, blocked = 0, mismatches = 0, differ_from_lone = 0;
-};
-group_count groups_against_every_sphere(const sphere_grid& g, uint32_t seed, int lanes) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  group_count w;
-  for (uint32_t k = 0; k < g.size(); k += 2) {
-    const vec3 n = unit_vector(vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5));
-    const float* c = g.sphere(k);
-    float o[3], d[sphere_grid::group][3];
-    for (int a = 0; a < 3; ++a) o[a] = c[a] + c[3] * float(n[a]);
-    const int m = k % 7 == 3 ? 1 + int(k / 7 % 7) : sphere_grid::group;
-    for (int l = 0; l < m; ++l) {
-      vec3 dl = cosine_direction(n, u(rng), u(rng));
-      if (k % 3 == 1 && l % 2 == 0) {
-        const int a = (l / 2 + int(k)) % 3;
-        dl = vec3(l % 4 ? -0.0 : 0.0, -0.0, 0.0);
-        dl[a] = n[a] < 0 ? -1.0 : 1.0;
-      }
-      for (int a = 0; a < 3; ++a) d[l][a] = float(dl[a]);
-      if (k % 3 == 1 && l % 4 == 2)  // along an axis, the others below the normal floats
-        for (int a = 0; a < 3; ++a) d[l][a] = std::abs(d[l][a]) == 1.0f ? d[l][a] : a % 2 ? 1e-40f : -3e-41f;
-    }
-    const bool unbounded = k % 5 == 0;
-    const float tmax = unbounded ? std::numeric_limits<float>::infinity() : float(u(rng) * 5) * g.cell_side();
-    ++w.groups;
-    w.in_lanes += g.walks_in_lanes();
-    w.long_in_lanes += g.walks_in_lanes() && tmax > 4 * g.cell_side();
-    const uint32_t got = g.occluded(o, d, m, tmax, k, lanes);
-    for (int l = 0; l < m; ++l) {
-      const bool want = blocked_by_any(g, o, d[l], tmax, k);
-      ++w.rays;
-      w.blocked += want;
-      w.mismatches += ((got >> l) & 1u) != uint32_t(want);
-      w.differ_from_lone += ((got >> l) & 1u) != uint32_t(g.occluded(o, d[l], tmax, k));
-    }
-  }
-  return w;
-}
-
-TEST(Light, AHitsRaysWalkedTogetherFindWhatTestingEverySphereFinds) {
-  // The lattice box lists most spheres in one cell, the random one in several.
-  const sphere_grid grids[] = {sphere_grid(mixed_sizes()), sphere_grid(raycast::make_scene(particle_box(2000))),
-                               sphere_grid(raycast::make_scene(particle_box_random(2000))), sphere_grid(huge_among_small()),
-                               sphere_grid(clumped())};
-  ASSERT_GT(grids[2].references(), 4 * grids[2].size()) << "random centres should reach into several cells";
-  for (const int lanes : sphere_grid::lane_widths()) {
-    for (const sphere_grid& g : grids) {
-      SCOPED_TRACE(std::to_string(lanes) + " lanes");
-      const group_count w = groups_against_every_sphere(g, 11, lanes);
-      EXPECT_EQ(w.mismatches, 0u) << "of " << w.rays << " rays among " << g.size() << " spheres";
-      EXPECT_EQ(w.differ_from_lone, 0u) << "verdicts unlike the same ray's walked alone";
-      EXPECT_GT(w.in_lanes, w.groups * 7 / 10) << "most groups should walk in lanes";
-      EXPECT_GT(w.long_in_lanes, w.groups / 10) << "long groups should walk in lanes too";
-      EXPECT_GT(w.blocked, w.rays / 10);
-      EXPECT_LT(w.blocked, w.rays * 9 / 10);
-    }
-  }
-}
-
-// The walk in eight lanes is there wherever the CPU runs AVX2 on x86-64 (and
-// RAYCAST_MAX_ISA does not cap it below avx2), and taken by default.
-TEST(Light, AHitsRaysWalkInTheWidestLanesThisCpuRuns) {
-  std::vector<int> want{4};
-#if defined(__x86_64__)
-  if (cpu().avx2) want.push_back(8);
-#endif
-  EXPECT_EQ(sphere_grid::lane_widths(), want);
-  if (want.back() == 4) GTEST_SKIP() << "no AVX2 here: only the 4-lane walk ran";
-}
-
-// The point C + r n of sphere k in the grid's frame (n a unit vector).
-void on_sphere(const sphere_grid& g, uint32_t k, const vec3& n, float p[3]) {
-  const float* c = g.sphere(k);
+// Sphere k's point C + r n in the light's frame (n a unit vector).
+void on_sphere(const sphere_bvh& b, uint32_t k, const vec3& n, float p[3]) {
+  const sphere4 c = b.sphere(k);
   for (int a = 0; a < 3; ++a) p[a] = c[a] + c[3] * float(n[a]);
 }
 
-// Shadow rays ask the bins (light/shadow_bins.h) where rays are long and
-// walk the grid's cells where they are short; both give every ray the same
-// verdict, so the choice changes no byte: from points on the lit sides of
-// a packed box's spheres, a cloud's, huge spheres' among small ones (whose
-// bins are made coarser), and a column of spheres along the light among
-// others (its cells list hundreds, each sorted by reach on its own).
-scene column_along(const vec3& l) {
-  std::mt19937 rng(15);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  api::scene p;
-  for (int k = 0; k < 1000; ++k) {
-    const point3 c = k % 5 < 2 ? point3(u(rng) * 4 - 2, u(rng) * 4 - 2, u(rng) * 4 - 2)
-                               : point3(0.02 * u(rng), 0.02 * u(rng), 0.02 * u(rng)) + (u(rng) * 8 - 4) * l;
-    p.spheres.push_back(sphere{c, 0.01 + 0.02 * u(rng)});
-  }
-  for (sphere& sp : p.spheres) sp.shade = shading::lit;
-  return raycast::make_scene(p);
-}
-
-TEST(Light, ShadowRaysGetTheSameVerdictsFromTheBinsAndTheCells) {
-  const vec3 l = unit_vector(vec3(0.3, 1.0, 0.6));
-  const scene box = lit_box(3000, 0), huge = huge_among_small(), column = column_along(l);
-  api::scene cp = particle_cloud(3000);
-  for (sphere& sp : cp.spheres) sp.shade = shading::lit;
-  const scene cloud = raycast::make_scene(cp);
-  const float lf[3] = {float(l.x), float(l.y), float(l.z)};
-  std::mt19937 rng(12);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  for (const scene* s : {&box, &cloud, &huge, &column}) {
-    const sphere_grid grid(*s);
-    const shadow_bins bins(grid, lf);
-    if (s == &column) {
-      EXPECT_GT(bins.longest_list(), 300u);
-    } else if (s != &huge) {
-      EXPECT_EQ(grid.free_path() <= sphere_grid::short_free_path, s == &box) << grid.free_path();
-    }
-    size_t rays = 0, shadowed = 0, differ = 0;
-    for (uint32_t k = 0; k < s->spheres.size(); ++k)
-      for (int q = 0; q < 8; ++q) {
-        const vec3 n = cosine_direction(l, u(rng), u(rng));
-        float pf[3];
-        on_sphere(grid, k, n, pf);
-        const bool by_bins = bins.occluded(pf, k);
-        ++rays;
-        shadowed += by_bins;
-        differ += by_bins != grid.occluded(pf, lf, INFINITY, k);
-      }
-    EXPECT_GT(shadowed, rays / 20);
-    EXPECT_EQ(differ, 0u) << "of " << rays << " rays";
-  }
-}
-
-// The grid and the bins are the same built on one thread or several (the
-// renderer builds them on its threads for scenes of 2^15 spheres and more).
-TEST(Light, GridAndBinsAreTheSameOnAnyNumberOfThreads) {
-  const vec3 l = unit_vector(vec3(0.3, 1.0, 0.6));
-  const float lf[3] = {float(l.x), float(l.y), float(l.z)};
-  api::scene cp = particle_cloud(5000);
-  for (sphere& sp : cp.spheres) sp.shade = shading::lit;
-  const scene box = lit_box(5000, 0), cloud = raycast::make_scene(cp), column = column_along(l);
-  std::mt19937 rng(23);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  for (const scene* s : {&box, &cloud, &column}) {
-    const sphere_grid one(*s, true, 1), three(*s, true, 3);
-    ASSERT_EQ(one.size(), three.size());
-    EXPECT_EQ(one.cells(), three.cells());
-    EXPECT_EQ(one.references(), three.references());
-    EXPECT_EQ(one.free_path(), three.free_path());
-    size_t differ = 0;
-    for (uint32_t k = 0; k < one.size(); ++k)
-      differ += one.position(k) != three.position(k) || std::memcmp(one.at(k), three.at(k), 4 * sizeof(float)) != 0;
-    EXPECT_EQ(differ, 0u);
-    const shadow_bins b1(one, lf, 1), b3(one, lf, 3);
-    EXPECT_EQ(b1.bytes(), b3.bytes());
-    EXPECT_EQ(b1.longest_list(), b3.longest_list());
-    size_t rays = 0, verdicts = 0;
-    for (uint32_t k = 0; k < one.size(); ++k)
-      for (int q = 0; q < 4; ++q) {
-        const vec3 n = cosine_direction(l, u(rng), u(rng));
-        float pf[3];
-        on_sphere(one, k, n, pf);
-        ++rays;
-        verdicts += b1.occluded(pf, k) != b3.occluded(pf, k);
-        verdicts += one.occluded(pf, lf, 0.05f, k) != three.occluded(pf, lf, 0.05f, k);
-      }
-    EXPECT_EQ(verdicts, 0u) << "of " << rays << " rays";
-  }
-}
-
-// The bins' and the grid's builds group records by cell with key_sort: the
-// same groups, in the same order within each, as a stable sort by key, over
-// one key, keys in few and in many bands, keys no record has, records all
-// of one key, and records in runs (parts) filled by as many threads or one.
-TEST(Light, KeySortIsAStableSortByKey) {
-  std::mt19937 rng(21);
-  for (size_t keys : {size_t(1), size_t(7), size_t(5000), size_t(300000)})
-    for (size_t n : {size_t(0), size_t(1), size_t(100), size_t(40000), size_t(200000)})
-      for (int parts : {1, 3})
-        for (bool one_key : {false, true}) {
-          std::vector<std::pair<uint32_t, uint32_t>> rec(n);  // key, order given
-          for (size_t i = 0; i < n; ++i) rec[i] = {one_key ? uint32_t(keys / 2) : uint32_t(rng() % keys), uint32_t(i)};
-          const auto run = [&](int p) { return std::pair(part_begin(n, p, parts), part_begin(n, p + 1, parts)); };
-          key_sort<uint32_t> sort(keys, n, parts);
-          for (int p = 0; p < parts; ++p)
-            for (size_t i = run(p).first; i < run(p).second; ++i) sort.count(p, rec[i].first);
-          out_of_order_array<uint32_t> out, first;
-          sort.start(out);
-#pragma omp parallel for num_threads(parts)
-          for (int p = 0; p < parts; ++p)
-            for (size_t i = run(p).first; i < run(p).second; ++i) sort.put(p, rec[i].first, rec[i].second);
-          size_t seen = 0;
-          sort.finish(first, [&](uint32_t* b, uint32_t* e) {
-#pragma omp atomic
-            seen += size_t(e - b);
-          }, parts);
-          std::stable_sort(rec.begin(), rec.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-          ASSERT_EQ(first.size(), keys + 1);
-          EXPECT_EQ(first[0], 0u);
-          EXPECT_EQ(first[keys], n);
-          EXPECT_EQ(seen, n);
-          size_t bad = 0;
-          for (size_t k = 0; k < keys; ++k)
-            for (uint32_t j = first[k]; j < first[k + 1]; ++j) bad += rec[j].first != k || rec[j].second != out[j];
-          EXPECT_EQ(bad, 0u) << keys << " keys, " << n << " records, " << parts << " parts";
+// Verdict by verdict: a hit's AO rays as the renderer casts them (its
+// sphere's near list, the far field past it) against the reference's
+// blocked() in double, from the same hit points in the same directions, on
+// a box whose spheres touch (packing 0.3 at random: many near-contacts),
+// at every lane width, bounded and unbounded (its far rays walked one at a
+// time and in turns).
+TEST(Light, AoVerdictsAgreeWithTheReferenceButForGrazingRays) {
+  for (const int width : light_widths()) {
+    SCOPED_TRACE(std::to_string(width) + " lanes");
+    for (const int turns : {-1, 0, 1}) {
+      const bool unbounded = turns >= 0;
+      scene s = lit_box(4000, 8);
+      if (unbounded) s.light.ao_distance = INFINITY;
+      const light_structures ls = structures_of(s, width, turns);
+      const sphere_bvh& b = ls.bvh();
+      std::mt19937 rng(7);
+      std::uniform_real_distribution<double> u(0.0, 1.0);
+      size_t rays = 0, disagree = 0, not_grazing = 0, blocked_rays = 0;
+      for (uint32_t k = 0; k < s.spheres.size(); ++k) {
+        const sphere& sp = s.spheres[k];
+        const vec3 n = unit_vector(vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5));
+        const float nf[3] = {float(n.x), float(n.y), float(n.z)};
+        float pf[3], d[8][3];
+        on_sphere(b, k, n, pf);
+        vec3 dd[8];
+        for (int q = 0; q < 8; ++q) {
+          dd[q] = cosine_direction(n, u(rng), u(rng));
+          for (int a = 0; a < 3; ++a) d[q][a] = float(dd[q][a]);
         }
+        const uint32_t got = ao_blocked(ls.rays(), k, pf, nf, false, d, 8);
+        for (int q = 0; q < 8; ++q) {
+          const point3 p = to_glm(sp.center) + sp.radius * n;
+          const bool want = blocked(s.spheres, p, dd[q], s.light.ao_distance, &sp);
+          ++rays;
+          blocked_rays += want;
+          if (((got >> q) & 1u) == uint32_t(want)) continue;
+          ++disagree;
+          not_grazing += grazing(s.spheres, p, dd[q], s.light.ao_distance, &sp) > 1e-3;
+        }
+      }
+      RecordProperty("ao_rays", int(rays));
+      RecordProperty("disagreeing", int(disagree));
+      EXPECT_GT(blocked_rays, rays / 10);
+      EXPECT_LT(blocked_rays, rays * 9 / 10);
+      EXPECT_LE(double(disagree), 1e-4 * double(rays)) << disagree << " of " << rays;
+      EXPECT_EQ(not_grazing, 0u) << "verdicts that differ though no sphere is within 1e-3 r of the ray";
+    }
+  }
 }
 
 // The AO directions' turn about the normal, computed without the C
@@ -535,10 +231,10 @@ TEST(Light, TheTurnOfAnAoDirectionIsCosAndSinWithinAFloatUlp) {
 // from two points a group: each dimension is linear in its index's bits);
 // each ray's are the numbers ao_numbers gives it alone, for every sampler,
 // counts that do and do not fill whole groups, and later samples of a pixel
-// (random's and stratified's also as their rule in scene/sampler.h says).
+// (random's and stratified's also as their rule in sampling/sampler.h says).
 // And a hit's 16 Sobol rays are a (0, 4, 2)-net: every box of 1/16 of the
 // square with power-of-two sides holds one of them.
-// Random's and stratified's numbers as scene/sampler.h states them.
+// Random's and stratified's numbers as sampling/sampler.h states them.
 void rule_numbers(const sampling::ao_plan& p, const sampling::ao_seeds& px, uint32_t s, uint32_t k, float& u1,
                   float& u2) {
   const uint32_t r = sampling::mix(px.a + (s * p.count + k + 1) * sampling::golden);
@@ -609,8 +305,8 @@ TEST(Light, AoDirectionsMadeInVectorsAreTheOneAtATimeBits) {
     if (glm::length(normals[q]) < 1e-3) continue;
     const vec3 nd = unit_vector(normals[q]);
     const float n[3] = {float(nd.x), float(nd.y), float(nd.z)};
-    const uint32_t m = uint32_t(q % sphere_grid::group) + 1;
-    float u1[sphere_grid::group], u2[sphere_grid::group], got[sphere_grid::group][3];
+    const uint32_t m = uint32_t(q % 8) + 1;
+    float u1[8], u2[8], got[8][3];
     for (uint32_t a = 0; a < m; ++a) {
       u1[a] = q < 40 ? edge[(q + a) % 5] : u(rng);
       u2[a] = q < 40 ? edge[(q / 5 + a) % 5] : u(rng);
@@ -629,65 +325,86 @@ TEST(Light, AoDirectionsMadeInVectorsAreTheOneAtATimeBits) {
   EXPECT_LE(worst, 2e-6);
 }
 
-// The same for shadow rays through the light-space bins (light/shadow_bins.h),
-// from points on every sphere's lit side.
-TEST(Light, ShadowBinVerdictsAgreeWithTheReferenceButForGrazingRays) {
-  const scene s = lit_box(4000, 0);
-  const sphere_grid grid(s, false);
+// The same for shadow rays, from points on every sphere's lit side, at every
+// lane width: a packed box's (its spheres' shadow lists) and a cloud's (an
+// open scene: light-space bins, and no nodes in the far field).
+TEST(Light, ShadowVerdictsAgreeWithTheReferenceButForGrazingRays) {
+  api::scene cp = particle_cloud(4000);
+  for (sphere& sp : cp.spheres) sp.shade = shading::lit;
+  cp.light.direction = vec3(0.3, 1.0, 0.6);
+  cp.light.shadows = true;
+  const scene box = lit_box(4000, 0), cloud = raycast::make_scene(cp);
   const vec3 l = unit_vector(vec3(0.3, 1.0, 0.6));
-  const float lf[3] = {float(l.x), float(l.y), float(l.z)};
-  const shadow_bins bins(grid, lf);
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  size_t rays = 0, disagree = 0, shadowed = 0, not_grazing = 0;
-  for (uint32_t k = 0; k < s.spheres.size(); ++k) {
-    const sphere& sp = s.spheres[k];
-    for (int q = 0; q < 16; ++q) {
-      const vec3 n = cosine_direction(l, u(rng), u(rng));  // a point on the lit side
-      const point3 p = to_glm(sp.center) + sp.radius * n;
-      const bool want = blocked(s.spheres, p, l, INFINITY, &sp);
-      float pf[3];
-      on_sphere(grid, k, n, pf);
-      const bool got = bins.occluded(pf, k);
-      ++rays;
-      shadowed += want;
-      if (got == want) continue;
-      ++disagree;
-      not_grazing += grazing(s.spheres, p, l, INFINITY, &sp) > 1e-3;
+  for (const int width : light_widths())
+    for (const scene* s : {&box, &cloud}) {
+      SCOPED_TRACE(std::to_string(width) + " lanes, " + (s == &box ? "box" : "cloud"));
+      const light_structures ls = structures_of(*s, width);
+      EXPECT_EQ(ls.rays().bins != nullptr, s == &cloud);
+      EXPECT_EQ(ls.bvh().has_nodes(), s == &box);
+      std::mt19937 rng(11);
+      std::uniform_real_distribution<double> u(0.0, 1.0);
+      size_t rays = 0, disagree = 0, shadowed = 0, not_grazing = 0;
+      for (uint32_t k = 0; k < s->spheres.size(); ++k) {
+        const sphere& sp = s->spheres[k];
+        for (int q = 0; q < 4; ++q) {
+          const vec3 n = cosine_direction(l, u(rng), u(rng));  // a point on the lit side
+          const point3 p = to_glm(sp.center) + sp.radius * n;
+          const bool want = blocked(s->spheres, p, l, INFINITY, &sp);
+          float pf[3];
+          on_sphere(ls.bvh(), k, n, pf);
+          const bool got = shadow_blocked(ls.rays(), k, pf, false);
+          ++rays;
+          shadowed += want;
+          if (got == want) continue;
+          ++disagree;
+          not_grazing += grazing(s->spheres, p, l, INFINITY, &sp) > 1e-3;
+        }
+      }
+      RecordProperty("shadow_rays", int(rays));
+      RecordProperty("disagreeing", int(disagree));
+      EXPECT_GT(shadowed, rays / 20) << "some shadow rays are blocked";
+      EXPECT_LT(shadowed, rays * 19 / 20);
+      EXPECT_LE(double(disagree), 1e-4 * double(rays)) << disagree << " of " << rays;
+      EXPECT_EQ(not_grazing, 0u);
     }
-  }
-  RecordProperty("shadow_rays", int(rays));
-  RecordProperty("disagreeing", int(disagree));
-  EXPECT_GT(shadowed, rays / 10) << "a box's shadow rays are often blocked";
-  EXPECT_LE(double(disagree), 1e-4 * double(rays)) << disagree << " of " << rays;
-  EXPECT_EQ(not_grazing, 0u);
 }
 
 // Touching and overlapping spheres: no light passes between them.
 TEST(Light, NoLightPassesBetweenTouchingOrOverlappingSpheres) {
   api::scene p;
   p.spheres = {sphere{point3(0, 0, -5), 1.0}, sphere{point3(2, 0, -5), 1.0}, sphere{point3(0, 1.5, -5), 1.0}};
+  p.light.direction = vec3(0, 1, 0);
+  p.light.shadows = true;
+  p.light.ao_samples = 8;
   const scene s = raycast::make_scene(p);
-  const sphere_grid g(s);
-  const double unit = std::ldexp(1.0, -g.scale_exp);
-  const auto grid_point = [&](const point3& w, float out[3]) {
-    for (int a = 0; a < 3; ++a) out[a] = float((w[a] - g.origin[a]) * unit);
-  };
-  // From sphere 0's point of contact with sphere 1, any ray into sphere 1's side.
-  float o[3];
-  grid_point(point3(1, 0, -5), o);
-  const float along[3] = {0.6f, 0.8f, 0.0f}, grazing_up[3] = {0.001f, 0.9999995f, 0.0f};
-  EXPECT_TRUE(g.occluded(o, along, INFINITY, 0));
-  EXPECT_TRUE(g.occluded(o, grazing_up, INFINITY, 0));
-  // From sphere 0's surface inside sphere 2 (they overlap): blocked whatever the direction.
-  grid_point(point3(0, 1, -5), o);
-  const float up[3] = {0, 1, 0}, side[3] = {1, 0, 0};
-  EXPECT_TRUE(g.occluded(o, up, INFINITY, 0));
-  EXPECT_TRUE(g.occluded(o, side, INFINITY, 0));
-  // Away from both, open.
-  grid_point(point3(-1, 0, -5), o);
-  const float left[3] = {-1, 0, 0};
-  EXPECT_FALSE(g.occluded(o, left, INFINITY, 0));
+  for (const int width : light_widths()) {
+    const light_structures ls = structures_of(s, width);
+    const sphere_bvh& g = ls.bvh();
+    const double unit = std::ldexp(1.0, -g.scale_exp);
+    const auto grid_point = [&](const point3& w, float out[3]) {
+      for (int a = 0; a < 3; ++a) out[a] = float((w[a] - g.origin[a]) * unit);
+    };
+    const auto one = [&](const float o[3], const float n[3], const float d[3]) {
+      const float dir[1][3] = {{d[0], d[1], d[2]}};
+      return ao_blocked(ls.rays(), 0, o, n, false, dir, 1) != 0;
+    };
+    // From sphere 0's point of contact with sphere 1, any ray into sphere 1's side.
+    float o[3];
+    grid_point(point3(1, 0, -5), o);
+    const float right[3] = {1, 0, 0}, along[3] = {0.6f, 0.8f, 0.0f}, grazing_up[3] = {0.001f, 0.9999995f, 0.0f};
+    EXPECT_TRUE(one(o, right, along));
+    EXPECT_TRUE(one(o, right, grazing_up));
+    // From sphere 0's surface inside sphere 2 (they overlap): blocked whatever the direction.
+    grid_point(point3(0, 1, -5), o);
+    const float up[3] = {0, 1, 0}, side[3] = {0.6f, 0.8f, 0.0f};
+    EXPECT_TRUE(one(o, up, up));
+    EXPECT_TRUE(one(o, up, side));
+    EXPECT_TRUE(shadow_blocked(ls.rays(), 0, o, false));
+    // Away from both, open.
+    grid_point(point3(-1, 0, -5), o);
+    const float left[3] = {-1, 0, 0};
+    EXPECT_FALSE(one(o, left, left));
+  }
 }
 
 // No acne: a lit sphere alone casts no shadow on itself and occludes none of

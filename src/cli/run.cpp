@@ -81,6 +81,8 @@ void render_frame(const job& j, described_scene&& d, size_t k, const progress& b
     movie->add_frame(img.data.data(), img.stride());
     st.output.write += seconds_since(w);
   }
+  const api::job::stats after = frame_job.statistics();  // with what the render gathered
+  st.job.light_lists = after.light_lists, st.job.list_seconds = after.list_seconds, st.job.list_bytes = after.list_bytes;
   st.rays += uint64_t(frame_job.width()) * uint64_t(frame_job.height()) * st.job.samples;
   ++st.frames;
 }
@@ -167,12 +169,17 @@ void print_stats(const run_stats& st, double total) {
                  double(st.job.light_bytes) / 1e6);
   std::fprintf(stderr,
                "  open      %10.4f s  (the output file, and the image library where its format needs it)\n"
-               "  render    %10.4f s\n"
+               "  render    %10.4f s\n",
+               st.output.open, st.output.render);
+  if (st.job.light_bytes > 0)
+    std::fprintf(stderr, "  lists     %10zu    (of render: the seen spheres' near-field lists, %.4f s, %.1f MB)\n",
+                 st.job.light_lists, st.job.list_seconds, double(st.job.list_bytes) / 1e6);
+  std::fprintf(stderr,
                "  write     %10.4f s\n"
                "  total     %10.4f s\n"
                "  rays/s    %10.4g  (%llu rays)\n"
                "  spheres   %10zu\n",
-               st.output.open, st.output.render, st.output.write, total, rays_per_second,
+               st.output.write, total, rays_per_second,
                static_cast<unsigned long long>(st.rays), st.job.spheres);
   if (st.frames > 1) std::fprintf(stderr, "  frames    %10zu\n", st.frames);
   std::fprintf(stderr, "  peak RSS  %10.1f MB\n", double(ru.ru_maxrss) * 1024.0 / 1e6);

@@ -99,7 +99,9 @@ int64_t job::height() const { return p_->reg.height(); }
 std::string job::backend() const { return std::string(to_string(p_->r->selected())); }
 
 job::stats job::statistics() const {
-  return {p_->r->light_seconds(), p_->r->light_bytes(), p_->r->samples(), p_->spheres};
+  const renderer& r = *p_->r;
+  return {r.light_seconds(), r.light_bytes() - r.light_list_bytes(), r.samples(), p_->spheres,
+          r.light_lists(), r.light_list_seconds(), r.light_list_bytes()};
 }
 
 void job::render_into(void* data, size_t stride, pixel_type pixels) const {

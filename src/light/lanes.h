@@ -1,78 +1,142 @@
-// The vector of light/: four floats (or int32s), a lane each, in GCC's and
-// clang's vector types. light/ is compiled for the build's baseline: these
-// are SSE2 registers on x86-64 and NEON ones on AArch64, with the same float
-// operations lane by lane as one at a time (no FMA: the rooms build with
-// -ffp-contract=off), so a lane's result is the scalar code's bits.
+// The vectors of light/: GCC's and clang's vector types, a lane a float (or
+// an int32 mask, 0 or -1). Three compilations of the light's kernels
+// (light/kernels.h) each see one instruction set: the build's baseline
+// (SSE2 on x86-64, NEON on AArch64: four floats a register), AVX2 (eight)
+// and AVX-512 (sixteen). The data they read is laid out the same for all:
+// a node's eight children (f8), a block of sixteen spheres (f16); each
+// compilation splits those into its own registers. The same float operations
+// lane by lane (no FMA: the rooms build with -ffp-contract=off), so a lane's
+// result is the one-at-a-time code's bits at every width.
 //
-// On x86-64 the grid's walk in lanes (grid_lanes.cpp) is compiled a second
-// time, with -mavx2 and RAYCAST_LIGHT_LANES=8: eight lanes, a hit's eight AO
-// rays in one vector, taken where the CPU runs AVX2 (sphere_grid::occluded).
-// The same float operations lane by lane again, so the same bits. Each
-// width's vocabulary lives in its own inline namespace (w4, w8), so that the
-// two compilations share no function: a helper the AVX2 one leaves out of
-// line cannot stand in for the baseline's.
+// Each width's vocabulary lives in its own inline namespace (w4, w8, w16), so
+// that the compilations share no function: a helper the AVX-512 one leaves
+// out of line cannot stand in for the baseline's.
 #pragma once
 #include <cstdint>
+
+#include "simd/inline.h"
 
 #if !defined(RAYCAST_LIGHT_LANES) || RAYCAST_LIGHT_LANES == 4
 #define RAYCAST_LANES_NAMESPACE w4
 #define RAYCAST_LANES_WIDTH 4
 #if defined(__SSE2__)
-#include <xmmintrin.h>
+#include <emmintrin.h>
 #endif
-#elif RAYCAST_LIGHT_LANES == 8 && defined(__AVX__)
+#elif RAYCAST_LIGHT_LANES == 8 && defined(__AVX2__)
 #define RAYCAST_LANES_NAMESPACE w8
 #define RAYCAST_LANES_WIDTH 8
 #include <immintrin.h>
+#elif RAYCAST_LIGHT_LANES == 16 && defined(__AVX512F__)
+#define RAYCAST_LANES_NAMESPACE w16
+#define RAYCAST_LANES_WIDTH 16
+#include <immintrin.h>
 #else
-#error "RAYCAST_LIGHT_LANES: 4, or 8 with AVX2"
+#error "RAYCAST_LIGHT_LANES: 4, 8 with AVX2, or 16 with AVX-512"
 #endif
 
 namespace raycast {
 namespace lanes {
 inline namespace RAYCAST_LANES_NAMESPACE {
 
-constexpr int width = RAYCAST_LANES_WIDTH;
-typedef float fvec __attribute__((vector_size(width * sizeof(float))));
-typedef int32_t ivec __attribute__((vector_size(width * sizeof(float))));  // also masks: 0 or -1 a lane
-typedef uint32_t uvec __attribute__((vector_size(width * sizeof(float))));
+constexpr int width = RAYCAST_LANES_WIDTH;  // floats a register of this compilation
+typedef float f4 __attribute__((vector_size(16)));
+typedef int32_t i4 __attribute__((vector_size(16)));
+typedef float f8 __attribute__((vector_size(32)));
+typedef int32_t i8 __attribute__((vector_size(32)));
+typedef float f16 __attribute__((vector_size(64)));
+typedef int32_t i16 __attribute__((vector_size(64)));
+
+// Unaligned loads of eight and sixteen floats (as vectors of the same types:
+// a load through memcpy costs GCC a store and a reload).
+typedef float f8_unaligned __attribute__((vector_size(32), aligned(4), may_alias));
+typedef float f16_unaligned __attribute__((vector_size(64), aligned(4), may_alias));
+RAYCAST_INLINE f8 load8(const float* p) { return *reinterpret_cast<const f8_unaligned*>(p); }
+RAYCAST_INLINE f16 load16(const float* p) { return *reinterpret_cast<const f16_unaligned*>(p); }
 
 // a where m is set, b elsewhere.
-inline fvec pick(ivec m, fvec a, fvec b) { return fvec((ivec(a) & m) | (ivec(b) & ~m)); }
-// x in every lane.
-inline fvec splat(float x) { return x - fvec{}; }  // x - +0 is x, -0 included
+template <class F, class I>
+RAYCAST_INLINE F pick(I m, F a, F b) {
+  return F((I(a) & m) | (I(b) & ~m));
+}
 // Each lane's square root (sqrtps: correctly rounded, as std::sqrt).
-inline fvec sqrt(fvec x) {
-  for (int l = 0; l < width; ++l) x[l] = __builtin_sqrtf(x[l]);
+template <class F>
+RAYCAST_INLINE F sqrt(F x) {
+  for (int l = 0; l < int(sizeof(F) / sizeof(float)); ++l) x[l] = __builtin_sqrtf(x[l]);
   return x;
 }
-// Bit l set where lane l of m is: SSE2's and AVX's movmskps (the lanes'
-// sign bits), elsewhere each lane's weight summed.
-inline uint32_t bits_of(ivec m) {
-#if RAYCAST_LANES_WIDTH == 8
-  return uint32_t(_mm256_movemask_ps(__m256(m)));
-#elif defined(__SSE2__) && RAYCAST_LANES_WIDTH == 4
+template <class F>
+RAYCAST_INLINE F max(F a, F b) {
+  return a > b ? a : b;  // maxps: b where either is NaN
+}
+template <class F>
+RAYCAST_INLINE F min(F a, F b) {
+  return a < b ? a : b;
+}
+
+// Bit l set where lane l of m is (its sign bit): movmskps on x86, each
+// lane's weight summed elsewhere.
+RAYCAST_INLINE uint32_t bits_of(i4 m) {
+#if defined(__SSE2__)
   return uint32_t(_mm_movemask_ps(__m128(m)));
 #else
-  static_assert(width == 4, "one weight a lane below");
-  const uvec w = uvec(m) & uvec{1, 2, 4, 8};
-  return (w[0] | w[1]) | (w[2] | w[3]);
+  const i4 w = m & i4{1, 2, 4, 8};
+  return uint32_t((w[0] | w[1]) | (w[2] | w[3]));
+#endif
+}
+RAYCAST_INLINE uint32_t bits_of(i8 m) {
+#if RAYCAST_LANES_WIDTH >= 8
+  return uint32_t(_mm256_movemask_ps(__m256(m)));
+#else
+  i4 h[2];
+  __builtin_memcpy(h, &m, sizeof m);
+  return bits_of(h[0]) | bits_of(h[1]) << 4;
+#endif
+}
+RAYCAST_INLINE uint32_t bits_of(i16 m) {
+#if RAYCAST_LANES_WIDTH == 16
+  return uint32_t(_mm512_cmplt_epi32_mask(__m512i(m), _mm512_setzero_si512()));
+#else
+  i8 h[2];
+  __builtin_memcpy(h, &m, sizeof m);
+  return bits_of(h[0]) | bits_of(h[1]) << 8;
 #endif
 }
 
-// sphere_grid::blocks() in lanes: whether the segment o + t d[.][l], t in
-// [0, tmax], meets the solid ball of the sphere s[.][l] (centre x y z,
-// radius), lane by lane: the same float operations in the same order, so
-// the same bits as blocks() (a negative gap's root is taken of 0 instead,
-// in a lane whose m2 <= r2 is false, so it cannot change the lane's result).
-inline ivec blocks_in_lanes(const float o[3], const fvec d[3], const fvec s[4], float tmax) {
-  const fvec ox = o[0] - s[0], oy = o[1] - s[1], oz = o[2] - s[2];
-  const fvec r2 = s[3] * s[3];
-  const fvec b = (ox * d[0] + oy * d[1]) + oz * d[2];
-  const fvec vx = ox - b * d[0], vy = oy - b * d[1], vz = oz - b * d[2];
-  const fvec m2 = (vx * vx + vy * vy) + vz * vz, gap = r2 - m2;
-  const fvec near = -b - sqrt(pick(ivec(gap > 0.0f), gap, fvec{}));
-  return ivec((ox * ox + oy * oy) + oz * oz <= r2) | (ivec(b < 0.0f) & ivec(m2 <= r2) & ivec(near <= tmax));
+// Whether the segment o + t d, t in [0, tmax], meets the solid ball of each
+// lane's sphere (centre x y z, radius r): a start inside it, or the near root
+// -b - sqrt(gap) of a ball ahead within tmax, from Hearn and Baker's squared
+// distance m2 of the line from the centre (no cancellation against
+// |o - c|^2), gap = r^2 - m2. The root is compared squared: -b - tmax <= 0,
+// or its square at most gap (no square root; unbounded rays compare
+// -infinity). The one test of every occlusion query (light/README.md), in
+// the same float operations in the same order lane by lane, so the same
+// bits at every width and in secondary.cpp's one-ray form.
+template <class F, class I>
+RAYCAST_INLINE I blocks(const float o[3], const F d[3], const F s[4], float tmax) {
+  const F ox = o[0] - s[0], oy = o[1] - s[1], oz = o[2] - s[2];
+  const F r2 = s[3] * s[3];
+  const F b = (ox * d[0] + oy * d[1]) + oz * d[2];
+  const F vx = ox - b * d[0], vy = oy - b * d[1], vz = oz - b * d[2];
+  const F m2 = (vx * vx + vy * vy) + vz * vz, gap = r2 - m2, beyond = -b - tmax;
+  const I near = I(beyond <= 0.0f) | I(beyond * beyond <= gap);
+  return I((ox * ox + oy * oy) + oz * oz <= r2) | (I(b < 0.0f) & I(m2 <= r2) & near);
+}
+
+// The same ball met by the segment t in [t0, tmax] of a ray that starts
+// outside it (the far field's: every ball that holds the start is in the
+// near field's list): the line's roots -b -+ sqrt(gap), the near one within
+// tmax and the far one past t0, both compared squared; and a start inside
+// where t0 is 0.
+template <class F, class I>
+RAYCAST_INLINE I blocks_beyond(const float o[3], const F d[3], const F s[4], float t0, float tmax) {
+  const F ox = o[0] - s[0], oy = o[1] - s[1], oz = o[2] - s[2];
+  const F r2 = s[3] * s[3];
+  const F b = (ox * d[0] + oy * d[1]) + oz * d[2];
+  const F vx = ox - b * d[0], vy = oy - b * d[1], vz = oz - b * d[2];
+  const F m2 = (vx * vx + vy * vy) + vz * vz, gap = r2 - m2, beyond = -b - tmax, before = t0 + b;
+  const I near = I(beyond <= 0.0f) | I(beyond * beyond <= gap), far = I(before <= 0.0f) | I(before * before <= gap);
+  const I inside = I((ox * ox + oy * oy) + oz * oz <= r2) & (t0 <= 0.0f ? ~I{} : I{});
+  return inside | (I(m2 <= r2) & near & far);
 }
 
 }  // inline namespace RAYCAST_LANES_NAMESPACE

@@ -81,6 +81,11 @@ class job {
     size_t light_bytes = 0;
     uint32_t samples = 1;      // per pixel
     size_t spheres = 0;
+    // Of the renders so far: the seen spheres' near-field lists gathered, the
+    // threads' seconds gathering them, and the bytes they hold.
+    size_t light_lists = 0;
+    double list_seconds = 0;
+    size_t list_bytes = 0;
   };
   stats statistics() const;
 

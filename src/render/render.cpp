@@ -140,23 +140,10 @@ void renderer::set_light(const scene& s) {
   }
   if (s.light.secondary()) {
     const auto start = std::chrono::steady_clock::now();
-    const int team = preparation_threads(s, threads_);
-    grid_.emplace(s, s.light.ao_samples > 0, team);  // the cells for AO rays
-    secondary_.grid = &*grid_;
-    for (int k = 0; k < 3; ++k) secondary_.light[k] = light_[k];
-    secondary_.shadows = s.light.shadows;
-    // Where AO built the cells and a ray meets a sphere within a few of them
-    // (a packed box), shadow rays walk them: as fast as the bins there,
-    // without their build. Elsewhere they ask light-space bins: rays in
-    // clouds are long, and without AO the bins cost less to build than the
-    // cells of a packed box of 10^8 random spheres.
-    if (s.light.shadows && !(grid_->has_cells() && grid_->free_path() <= sphere_grid::short_free_path))
-      secondary_.bins = &bins_.emplace(*grid_, light_, team);
-    secondary_.ao = ao_;
-    secondary_.ao_distance = float(std::ldexp(s.light.ao_distance, -grid_->scale_exp));
+    secondary_.emplace(s, light_, ao_, preparation_threads(s, threads_));
     light_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
-  plan_->set_light(s.light.direction ? light_ : nullptr, s.light.secondary() ? &secondary_ : nullptr);
+  plan_->set_light(s.light.direction ? light_ : nullptr, secondary_ ? &secondary_->rays() : nullptr);
 }
 
 void renderer::render_rows(const image_band& band, int64_t r0, int64_t r1, bool paired) const {
@@ -185,7 +172,7 @@ void renderer::render(const image_band& band) const {
   // to render: smaller jobs (the default 400x225 sky) stay on one thread.
   const int64_t W = scene_.cam.image_width;
   // Rays: a lit hit's secondary rays count as much as its primary one.
-  const int64_t per_pixel = int64_t(samples()) * (1 + (secondary_.grid ? int64_t(ao_.count) + secondary_.shadows : 0));
+  const int64_t per_pixel = int64_t(samples()) * (1 + (secondary_ ? int64_t(ao_.count) + secondary_->rays().shadows : 0));
   const int64_t work = rows * (band.cols_end(W) - band.col_begin) * per_pixel;
   int64_t nthreads = std::min<int64_t>({threads_, units, std::max<int64_t>(1, work >> 17)});
   if (nthreads > 1) nthreads = threads_that_start(int(nthreads));

@@ -7,7 +7,6 @@
 #include "prepare/culling.h"
 #include "prepare/float_scene.h"
 #include "kernels/precision.h"
-#include "light/grid.h"
 #include "light/secondary.h"
 #include "render/backend.h"
 #include "render/plan.h"
@@ -55,10 +54,14 @@ class renderer {
   uint32_t samples() const { return samples_ ? samples_->plan().count : 1; }
   const camera& cam() const { return scene_.cam; }
   // Seconds the constructor spent on the structures of shadow and AO rays
-  // (light/: the grid, the light's bins; 0 where the scene casts none), and
-  // their bytes.
+  // (light/: the far field's hierarchy; 0 where the scene casts none), and
+  // their bytes: the hierarchy's, and the near field's lists gathered so
+  // far (renders gather them: light_lists()).
   double light_seconds() const { return light_seconds_; }
-  size_t light_bytes() const { return (grid_ ? grid_->bytes() : 0) + (bins_ ? bins_->bytes() : 0); }
+  size_t light_bytes() const { return secondary_ ? secondary_->bytes() : 0; }
+  size_t light_lists() const { return secondary_ ? secondary_->near().lists() : 0; }
+  double light_list_seconds() const { return secondary_ ? secondary_->near().seconds() : 0; }  // of render, every thread's
+  size_t light_list_bytes() const { return secondary_ ? secondary_->near().bytes() : 0; }
 
   // Fills the band's pixels (any rows of the image, and any column window:
   // image_band), the same bytes whatever the thread count, band or window.
@@ -80,13 +83,11 @@ class renderer {
   row_index rows_;            // SIMD backends, scenes with spheres
   std::optional<sampling::sample_table> samples_;  // more than one sample
   // Lit spheres' light (scene/light.h), for the SIMD backends: the
-  // directional light's unit direction, and the grid that shadow and
+  // directional light's unit direction, and the structures that shadow and
   // ambient-occlusion rays ask, built only when the scene casts them.
   float light_[3] = {0, 0, 0};
   sampling::ao_plan ao_;
-  std::optional<sphere_grid> grid_;
-  std::optional<shadow_bins> bins_;
-  secondary_rays secondary_;
+  std::optional<light_structures> secondary_;
   double light_seconds_ = 0;
 };
 

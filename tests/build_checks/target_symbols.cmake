@@ -1,6 +1,6 @@
 # Each target's objects (simd/targets.h: the kernels and the vector ops'
-# tables, compiled with that target's flags; and w8, light/'s walk in eight
-# AVX2 lanes, light/lanes.h) may define weak or COMDAT
+# tables, compiled with that target's flags; and w8 and w16, light/'s kernels
+# in eight AVX2 and sixteen AVX-512 lanes, light/lanes.h) may define weak or COMDAT
 # symbols -- inline functions and template instances the linker keeps one
 # copy of for the whole program -- only inside that target's own namespace.
 # Anywhere else, the copy the linker keeps could be the AVX-512 one, and every

@@ -1,7 +1,8 @@
-#include "light/shadow_bins.h"
+#include "light/far/shadow_bins.h"
 
+#include "light/blocks.h"
+#include "light/far/key_sort.h"
 #include "light/frame.h"
-#include "light/key_sort.h"
 
 #include <algorithm>
 #include <cmath>
@@ -62,11 +63,11 @@ void sort_by_reach(shadow_bins::entry* begin, shadow_bins::entry* end) {
 
 }  // namespace
 
-shadow_bins::shadow_bins(const sphere_grid& grid, const float light[3], int threads)
-    : grid_(&grid), threads_(std::max(threads, 1)) {
+shadow_bins::shadow_bins(const sphere_bvh& spheres, const float light[3], int threads)
+    : spheres_(&spheres), threads_(std::max(threads, 1)) {
   for (int k = 0; k < 3; ++k) l_[k] = light[k];
   frame_about(l_, u_, v_);  // the plane's axes
-  const size_t n = grid.size();
+  const size_t n = spheres.size();
   if (n == 0) return;
   // The discs' bounds across L.
   float lo0 = std::numeric_limits<float>::infinity(), lo1 = lo0, hi0 = -lo0, hi1 = -lo0;
@@ -84,16 +85,17 @@ shadow_bins::shadow_bins(const sphere_grid& grid, const float light[3], int thre
 }
 
 shadow_bins::entry shadow_bins::entry_of(uint32_t p) const {
-  const float* s = grid_->at(p);  // by position
+  const sphere4 sp = spheres_->at(p);
+  const float* s = sp.v;
   return {dot(l_, s) + s[3] + margin, p, dot(u_, s), dot(v_, s), s[3] + margin};
 }
 
 void shadow_bins::bin(const float hi[2]) {
-  const size_t n = grid_->size();
+  const size_t n = spheres_->size();
   // Cells twice a typical sphere's diameter: a disc lies in about 2.25 of
   // them (4 at one diameter, for a tenth more time and 35 bytes a sphere
   // more); the entries are each cell's candidates, whose test is the same.
-  double g = std::max(std::sqrt(double(hi[0] - lo_[0]) * double(hi[1] - lo_[1]) / double(n)), 4 * grid_->typical_radius());
+  double g = std::max(std::sqrt(double(hi[0] - lo_[0]) * double(hi[1] - lo_[1]) / double(n)), 4 * spheres_->typical_radius());
   double inv = 1.0 / g;
   const auto range_of = [&](const entry& e, int r[4]) {  // the cells of a disc: x0, x1, y0, y1
     const float p[2] = {e.u, e.v};
@@ -165,11 +167,10 @@ void shadow_bins::prefetch(const query& q, int step) const {
   else if (first_[q.cell + 1] > first_[q.cell]) __builtin_prefetch(entries_.data() + first_[q.cell + 1] - 1);
 }
 
-bool shadow_bins::occluded(const query& q, const float p[3], uint32_t skip_index) const {
+bool shadow_bins::occluded(const query& q, const float p[3], uint32_t skip) const {
   if (q.cell == none) return false;
   const size_t c = q.cell;
   const float u = q.u, v = q.v, depth = q.depth;
-  const uint32_t skip = skip_index < grid_->size() ? grid_->position(skip_index) : skip_index;
   const entry* begin = entries_.data() + first_[c];
   const entry* end = entries_.data() + first_[c + 1];
   // The spheres that reach past P along L, from the far end of the list
@@ -180,7 +181,7 @@ bool shadow_bins::occluded(const query& q, const float p[3], uint32_t skip_index
     --e;
     const float du = u - e->u, dv = v - e->v;
     if (du * du + dv * dv > e->r * e->r) continue;  // the ray passes outside its disc
-    if (e->k != skip && grid_->blocks(e->k, p, l_, inf)) return true;
+    if (e->k != skip && blocks_one(p, l_, spheres_->at(e->k).v, inf)) return true;
   }
   return false;
 }
