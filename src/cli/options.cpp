@@ -5,6 +5,7 @@
 #include "render/backend.h"
 #include "scene/camera.h"
 #include "text/names.h"
+#include "text/quote.h"
 
 #include <CLI/CLI.hpp>
 
@@ -261,20 +262,7 @@ std::string output_name(const job& j, size_t k) {
   return name;
 }
 
-std::string printable(std::string_view s) {
-  static constexpr char hex[] = "0123456789abcdef";
-  std::string r;
-  for (const unsigned char c : s) {
-    if (c < 0x20 || c == 0x7f) {
-      r += "\\x";
-      r += hex[c >> 4];
-      r += hex[c & 15];
-    } else {
-      r += char(c);
-    }
-  }
-  return r;
-}
+std::string printable(std::string_view s) { return control_escaped(s); }
 
 parse_result parse_args(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
   CLI::App app{

@@ -4,13 +4,14 @@
 
 #include "formats/ply.h"
 #include "text/names.h"
+#include "text/quote.h"
 
 namespace raycast::ply_detail {
 
 std::string shown(std::string_view text, size_t most) {
-  if (text.size() <= most) return std::string(text);
+  if (text.size() <= most) return control_escaped(text);
   while (most > 0 && (static_cast<unsigned char>(text[most]) & 0xc0) == 0x80) --most;  // not inside a UTF-8 sequence
-  return std::string(text.substr(0, most)) + "\u2026";
+  return control_escaped(text.substr(0, most)) + "\u2026";
 }
 [[noreturn]] void fail(std::string path, std::string why, uint64_t offset) {
   throw ply_error{shown(path), shown(why, 512) + at_byte(offset)};
