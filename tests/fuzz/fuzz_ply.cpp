@@ -5,7 +5,9 @@
 // of the first byte choose; the rest is the file). Checked:
 //   - a refusal is one line naming where: a path ("header", "vertex",
 //     "vertex.NAME", "vertex[K].NAME" or "" for the whole file) and a
-//     message ending in "(at byte N)" with N within the file;
+//     message ending in "(at byte N)" with N within the file; or, where
+//     the file reads but the options cannot make spheres of it (no radius,
+//     no such column), the setting it names;
 //   - an accepted file has at least one sphere, and every sphere passes the
 //     scene's own checks (validate());
 //   - a small render of it (16 x 9, the scalar and best backends) gives the
@@ -35,9 +37,25 @@ using namespace raycast;
   std::abort();
 }
 
-void check_refusal(const scene_file_error& e, size_t size) {
+// Whether the file's bytes alone are read (the refusal is then the
+// options' for this file: no radius given where the file has none, a
+// --color-by column it lacks).
+bool read_frame_alone(const byte_source& src) {
+  try {
+    (void)read_ply_frame(src);
+    return true;
+  } catch (const formats::format_error&) {
+    return false;
+  }
+}
+
+void check_refusal(const scene_file_error& e, size_t size, bool frame_was_read) {
   if (e.message.empty() || e.message.find('\n') != std::string::npos) fail("not one line: " + e.message);
   if (e.io) return;  // a read that failed: strerror's words
+  if (frame_was_read) {  // names the setting, not a byte
+    if (e.path.empty()) fail("an options' refusal naming no setting: " + e.message);
+    return;
+  }
   const size_t at = e.message.rfind("(at byte ");
   if (e.path.empty() && e.message.starts_with("changed while being read")) fail("a memory source cannot change");
   if (at == std::string::npos || e.message.back() != ')') fail("no byte offset: " + e.message);
@@ -65,7 +83,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const byte_source src = memory_source(bytes);
   auto read = read_ply(src, o);
   if (auto* e = std::get_if<scene_file_error>(&read)) {
-    check_refusal(*e, bytes.size());
+    check_refusal(*e, bytes.size(), read_frame_alone(src));
     return 0;
   }
   api::scene p = std::move(std::get<scene_file_contents>(read).scene);
