@@ -503,6 +503,7 @@ TEST_F(Cli, StatsSayWhatTheLightsStructuresTook) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const size_t at = r.err.find("\n  light ");
     EXPECT_EQ(at != std::string::npos, lit) << r.err;
+    EXPECT_EQ(r.err.find("\n  lists ") != std::string::npos, lit) << r.err;
     if (at == std::string::npos) continue;
     std::istringstream fields(r.err.substr(at + 1));
     std::string label;
@@ -514,6 +515,13 @@ TEST_F(Cli, StatsSayWhatTheLightsStructuresTook) {
     EXPECT_GE(light, 0.0);
     EXPECT_LE(light, prepare) << r.err;
     EXPECT_NE(r.err.find(" MB for shadow and AO rays)"), std::string::npos) << r.err;
+    // The render gathered the near-field lists of the spheres it saw: both.
+    const size_t l = r.err.find("\n  lists ");
+    ASSERT_NE(l, std::string::npos) << r.err;
+    size_t lists = 0;
+    std::istringstream(r.err.substr(l + 9)) >> lists;
+    EXPECT_EQ(lists, 2u) << r.err;
+    EXPECT_NE(r.err.find("near-field lists, "), std::string::npos) << r.err;
   }
 }
 
