@@ -17,17 +17,8 @@ using raycast_test::read_file;
 using raycast_test::run_options;
 using raycast_test::run_result;
 
-void expect_usage_error(const run_result& r, const std::string& line) {
-  EXPECT_EQ(r.signal, 0) << how_it_ended(r);
-  EXPECT_EQ(r.exit_code, 2) << how_it_ended(r) << "; standard error: " << r.err;
-  EXPECT_EQ(r.err, "raycast: error: " + line + "\n");
-}
-
-void expect_success(const run_result& r) {
-  EXPECT_EQ(r.signal, 0) << how_it_ended(r) << "; standard error: " << r.err;
-  EXPECT_EQ(r.exit_code, 0) << how_it_ended(r) << "; standard error: " << r.err;
-  EXPECT_TRUE(r.err.empty()) << r.err;
-}
+using raycast_test::expect_success;
+using raycast_test::expect_usage_error;
 
 // SOURCE_DATE_EPOCH: the DateTime EXR and TIFF record, so two runs a second
 // apart give the same bytes.

@@ -21,7 +21,7 @@ using namespace raycast_test;
 
 const fs::path files = RAYCAST_FORMATS_FILES;
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+using raycast_test::contains;
 
 // Pixels that are not the sky's blue-white lerp: the particles in view.
 size_t particle_pixels(const ppm& p) {

@@ -27,18 +27,8 @@ using raycast_test::write_file;
 
 namespace fs = std::filesystem;
 
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
-
-// One line "raycast: error: ..." on standard error, nothing on standard output.
-void expect_one_error_line(const run_result& r, const std::string& mentions) {
-  EXPECT_EQ(count_lines(r.err), 1u) << r.err;
-  EXPECT_FALSE(r.err.empty() || r.err.back() != '\n') << r.err;
-  EXPECT_EQ(r.err.rfind("raycast: error: ", 0), 0u) << r.err;
-  EXPECT_TRUE(contains(r.err, mentions)) << "want '" << mentions << "' in: " << r.err;
-  EXPECT_TRUE(r.out.empty()) << r.out;
-}
+using raycast_test::contains;
+using raycast_test::expect_one_error_line;
 
 class Cli : public ::testing::Test {
  protected:

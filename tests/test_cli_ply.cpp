@@ -29,7 +29,7 @@ class CliPly : public ::testing::Test {
   }
 };
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+using raycast_test::contains;
 
 TEST_F(CliPly, APlyFileRendersItsJsonScenesBytes) {
   const std::vector<particle> ps = random_particles(2000, 21);

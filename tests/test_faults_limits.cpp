@@ -48,17 +48,8 @@ constexpr uid_t nobody = 65534;
 constexpr gid_t nogroup = 65534;
 
 
-void expect_usage_error(const run_result& r, const std::string& line) {
-  EXPECT_EQ(r.signal, 0) << how_it_ended(r);
-  EXPECT_EQ(r.exit_code, 2) << how_it_ended(r) << "; standard error: " << r.err;
-  EXPECT_EQ(r.err, "raycast: error: " + line + "\n");
-}
-
-void expect_success(const run_result& r) {
-  EXPECT_EQ(r.signal, 0) << how_it_ended(r) << "; standard error: " << r.err;
-  EXPECT_EQ(r.exit_code, 0) << how_it_ended(r) << "; standard error: " << r.err;
-  EXPECT_TRUE(r.err.empty()) << r.err;
-}
+using raycast_test::expect_success;
+using raycast_test::expect_usage_error;
 
 // A 400x225 PPM as raycast writes it by default.
 void expect_default_ppm(const fs::path& p) {

@@ -47,6 +47,8 @@ inline void write_file(const fs::path& p, const std::string& text) {
 
 inline size_t count_lines(const std::string& s) { return size_t(std::count(s.begin(), s.end(), '\n')); }
 
+inline bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
 // Built without the image module (RAYCAST_IMAGE_MODULE=OFF, the aarch64
 // cross build), raycast writes PPM only.
 inline bool have_image_module() {
@@ -58,6 +60,15 @@ struct run_result {
   int signal = 0;      // when a signal ended it
   std::string out, err;
 };
+
+// One line "raycast: error: ..." on standard error, nothing on standard output.
+inline void expect_one_error_line(const run_result& r, const std::string& mentions) {
+  EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+  EXPECT_FALSE(r.err.empty() || r.err.back() != '\n') << r.err;
+  EXPECT_EQ(r.err.rfind("raycast: error: ", 0), 0u) << r.err;
+  EXPECT_TRUE(contains(r.err, mentions)) << "want '" << mentions << "' in: " << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
 
 struct run_options {
   // RLIMIT_FSIZE for the child, with SIGXFSZ ignored: writes past it fail with
@@ -365,6 +376,20 @@ inline void expect_runtime_error(const run_result& r, const std::string& file, c
   EXPECT_EQ(r.err, "raycast: error: " + file + ": " + cause + "\n");
   EXPECT_EQ(count_lines(r.err), 1u) << r.err;
   EXPECT_TRUE(r.out.empty()) << r.out.size() << " bytes on standard output";
+}
+
+// A usage error: exit 2 and exactly this one line.
+inline void expect_usage_error(const run_result& r, const std::string& line) {
+  EXPECT_EQ(r.signal, 0) << how_it_ended(r);
+  EXPECT_EQ(r.exit_code, 2) << how_it_ended(r) << "; standard error: " << r.err;
+  EXPECT_EQ(r.err, "raycast: error: " + line + "\n");
+}
+
+// Exit 0 and nothing on standard error.
+inline void expect_success(const run_result& r) {
+  EXPECT_EQ(r.signal, 0) << how_it_ended(r) << "; standard error: " << r.err;
+  EXPECT_EQ(r.exit_code, 0) << how_it_ended(r) << "; standard error: " << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
 }
 
 }  // namespace raycast_test
