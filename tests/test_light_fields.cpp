@@ -177,6 +177,49 @@ TEST(LightFields, RaysWalkedInTurnsGetTheVerdictsOfEachAlone) {
   }
 }
 
+// A hit's rays walked together from one origin get what testing every
+// sphere finds: one to eight rays from a point on every eighth sphere
+// (some along an axis), past t0 = 0 or a few radii, to infinity or a short
+// way, their own sphere skipped or not.
+TEST(LightFields, RaysFromOneOriginGetWhatTestingEverySphereFinds) {
+  for (const scene& s : scenes()) {
+    const sphere_bvh b(s);
+    const bvh_view v = b.view();
+    for (const int width : light_widths()) {
+      const light_kernels& k = light_kernels_for(width);
+      std::mt19937 rng(23);
+      std::uniform_real_distribution<double> u(0.0, 1.0);
+      size_t rays = 0, blocked = 0, differ = 0;
+      for (uint32_t q = 0; q < b.size(); q += 8) {
+        const vec3 n = unit_vector(vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5));
+        const uint32_t p = b.position(q), m = q / 8 % 8 + 1;
+        const sphere4 c = b.at(p);
+        float o[3], d[8][3];
+        for (int a = 0; a < 3; ++a) o[a] = c[a] + c[3] * float(n[a]);
+        for (uint32_t r = 0; r < m; ++r) {
+          const vec3 dr = cosine_direction(n, u(rng), u(rng));
+          for (int a = 0; a < 3; ++a) d[r][a] = r == 3 ? (a == int(q % 3) ? (n[a] < 0 ? -1.0f : 1.0f) : 0.0f) : float(dr[a]);
+        }
+        const float t0 = q % 3 == 1 ? c[3] * float(1 + q % 5) : 0.0f;
+        const float tmax = q % 4 == 0 ? INFINITY : t0 + c[3] * 20;
+        const uint32_t skip = q % 7 == 0 ? ~0u : p;
+        const uint32_t got = k.far_occluded_one_origin(v, o, d, m, t0, tmax, skip);
+        for (uint32_t r = 0; r < m; ++r) {
+          bool want = false;
+          for (uint32_t j = 0; j < b.size() && !want; ++j) want = j != skip && beyond_ref(o, d[r], b.at(j).v, t0, tmax);
+          ++rays;
+          blocked += want;
+          differ += ((got >> r) & 1u) != uint32_t(want);
+        }
+        EXPECT_EQ(got >> m, 0u);
+      }
+      EXPECT_EQ(differ, 0u) << width << " lanes, " << rays << " rays";
+      EXPECT_GT(blocked, rays / 20);
+      EXPECT_LT(blocked, rays * 19 / 20);
+    }
+  }
+}
+
 // Every sphere is in one leaf, once, and leaves hold at most eight.
 TEST(LightFields, EverySphereIsInOneLeaf) {
   for (const scene& s : scenes()) {

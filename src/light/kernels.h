@@ -38,6 +38,10 @@ struct light_kernels {
   // far_occluded's verdicts for n queries (blocked[i]: 1 or 0), the rays
   // walking in turns, so that their reads overlap.
   void (*far_occluded_many)(const bvh_view& v, const far_query* q, uint32_t n, uint8_t* blocked);
+  // far_occluded's verdicts for m <= 8 rays from one origin (bit r: ray r
+  // blocked), walked together while they meet the same boxes.
+  uint32_t (*far_occluded_one_origin)(const bvh_view& v, const float o[3], const float (*d)[3], uint32_t m,
+                                      float t0, float tmax, uint32_t skip);
   // The spheres j but self (position) whose centre lies within reach + r_j
   // of c: their count (cap + 1: more than cap) and each one's x, y, z, r in
   // rows[0 .. 4) (each with room for cap + 8).

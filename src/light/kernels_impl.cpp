@@ -17,6 +17,7 @@ namespace {
 
 #include "light/far/occlude.inl"
 #include "light/far/walk_group.inl"
+#include "light/far/one_origin.inl"
 #include "light/far/gather.inl"
 #include "light/near/list_rays.inl"
 
@@ -25,6 +26,7 @@ light_kernels table() {
   k.width = width;
   k.far_occluded = far_occluded;
   k.far_occluded_many = far_occluded_many;
+  k.far_occluded_one_origin = far_occluded_one_origin;
   k.gather_ball = gather_ball;
   k.gather_capsule = gather_capsule;
   k.list_blocks = list_blocks;

@@ -44,8 +44,10 @@ hit_at hit_of(const secondary_rays& r, const lit_lanes& ls, int l) {
 
 // A batch's far-field work: the rays its hits' near lists did not answer,
 // each with the lane it counts for (and its ray, for the tests' one-hit
-// form), walked together once the batch's lanes have been gathered
-// (light_kernels::far_occluded_many), so that many rays are in flight.
+// form), walked once the batch's lanes have been gathered: in turns where
+// the hierarchy outgrows the caches (light_kernels::far_occluded_many), so
+// that many rays are in flight, else a hit's AO rays from their one origin
+// together (far_occluded_one_origin).
 struct far_work {
   struct tag {
     uint8_t lane, ray;
@@ -63,8 +65,25 @@ struct far_work {
     blocked.resize(q.size());
     if (q.empty()) return;
     if (r.far_in_turns) return r.kernels->far_occluded_many(r.view, q.data(), uint32_t(q.size()), blocked.data());
-    for (size_t i = 0; i < q.size(); ++i)
-      blocked[i] = r.kernels->far_occluded(r.view, q[i].o, q[i].d, q[i].t0, q[i].tmax, q[i].skip);
+    for (size_t i = 0, j; i < q.size(); i = j) {
+      for (j = i + 1; j < q.size() && j - i < group && same_start(q[i], q[j]); ++j) {
+      }
+      if (j - i == 1) {
+        blocked[i] = r.kernels->far_occluded(r.view, q[i].o, q[i].d, q[i].t0, q[i].tmax, q[i].skip);
+        continue;
+      }
+      float d[group][3];
+      for (size_t k = i; k < j; ++k)
+        for (int c = 0; c < 3; ++c) d[k - i][c] = q[k].d[c];
+      const uint32_t b = r.kernels->far_occluded_one_origin(r.view, q[i].o, d, uint32_t(j - i), q[i].t0, q[i].tmax,
+                                                            q[i].skip);
+      for (size_t k = i; k < j; ++k) blocked[k] = (b >> (k - i)) & 1u;
+    }
+  }
+  // Whether two queries share their origin and segment (a hit's AO rays).
+  static bool same_start(const far_query& a, const far_query& b) {
+    return a.o[0] == b.o[0] && a.o[1] == b.o[1] && a.o[2] == b.o[2] && a.t0 == b.t0 && a.tmax == b.tmax &&
+           a.skip == b.skip;
   }
   void clear() { q.clear(), of.clear(); }
 };

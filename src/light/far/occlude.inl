@@ -98,13 +98,12 @@ RAYCAST_INLINE bool visit(const bvh_view& v, const bvh_node& n, uint32_t order, 
   return false;
 }
 
-bool far_occluded(const bvh_view& v, const float o[3], const float d[3], float t0, float tmax, uint32_t skip) {
-  if (v.root == bvh_ref::empty || !(t0 <= tmax)) return false;
-  const far_ray ray(o, d);
-  if (bvh_ref::is_leaf(v.root)) return leaf_blocks(v, v.root, ray, t0, tmax, skip);
+// Whether a sphere of the subtree ref (a node or a leaf) blocks the ray.
+bool far_walk(const bvh_view& v, uint32_t ref, const far_ray& ray, float t0, float tmax, uint32_t skip) {
+  if (bvh_ref::is_leaf(ref)) return leaf_blocks(v, ref, ray, t0, tmax, skip);
   uint32_t stack[256];
   int sp = 0;
-  for (uint32_t ref = v.root;;) {
+  for (;;) {
     const bvh_node& n = v.nodes[ref];
     const uint32_t hit = ray.meets(n, t0, tmax);
     if (hit != 0 && visit(v, n, visit_order.of[ray.sign][hit], ray, t0, tmax, skip, stack, sp, ref)) return true;
@@ -112,4 +111,9 @@ bool far_occluded(const bvh_view& v, const float o[3], const float d[3], float t
     if (sp == 0) return false;
     ref = stack[--sp];
   }
+}
+
+bool far_occluded(const bvh_view& v, const float o[3], const float d[3], float t0, float tmax, uint32_t skip) {
+  if (v.root == bvh_ref::empty || !(t0 <= tmax)) return false;
+  return far_walk(v, v.root, far_ray(o, d), t0, tmax, skip);
 }
