@@ -29,17 +29,18 @@ sphere_bvh::sphere_bvh(const scene& s, int threads, bool open_nodes) {
   threads = std::max(threads, 1);
   if (s.sphere_count() == 0) return;
   frame(s, threads);
+  survey(s, threads);
   sort_by_morton(s, threads, open_nodes || free_path_ <= open_free_path);
 }
 
 // A scene sphere in the light's frame (the same bits wherever it is made).
 sphere4 sphere_bvh::in_frame(const raycast::sphere& sp) const {
-  const double unit = std::ldexp(1.0, -scale_exp);  // a power of two: the products are exact
-  return {{float((sp.center[0] - origin[0]) * unit), float((sp.center[1] - origin[1]) * unit),
-           float((sp.center[2] - origin[2]) * unit), float(sp.radius * unit)}};
+  return {{float((sp.center[0] - origin[0]) * unit_), float((sp.center[1] - origin[1]) * unit_),
+           float((sp.center[2] - origin[2]) * unit_), float(sp.radius * unit_)}};
 }
 
-// origin and scale_exp, the largest and a typical radius.
+// origin and scale_exp: the middle of the spheres' box, and the power of two
+// that brings it into [-1, 1].
 void sphere_bvh::frame(const scene& s, int threads) {
   const size_t n = s.sphere_count();
   double lo[3], hi[3];
@@ -58,26 +59,38 @@ void sphere_bvh::frame(const scene& s, int threads) {
     half = std::max(half, hi[a] - origin[a]);
   }
   std::frexp(half, &scale_exp);  // half < 2^scale_exp
-  // The largest radius, and the cross-section summed by blocks of 2^16
-  // spheres in their order (the same sum on any number of threads).
-  float most = 0;
+  unit_ = std::ldexp(1.0, -scale_exp);  // a power of two: in_frame's products are exact
+  volume_ = 1;
+  for (int a = 0; a < 3; ++a) volume_ *= std::ldexp(hi[a] - lo[a], -scale_exp);
+}
+
+// From the spheres in the light's frame: the largest and a typical radius,
+// the free path, and the centres' box (for the Morton codes). The
+// cross-section is summed by blocks of 2^16 spheres in their order: the same
+// sum on any number of threads.
+void sphere_bvh::survey(const scene& s, int threads) {
+  const size_t n = s.sphere_count();
+  float most = 0, lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) lo[a] = std::numeric_limits<float>::infinity(), hi[a] = -lo[a];
   std::vector<double> block((n + 0xffff) >> 16);
-#pragma omp parallel for schedule(static) num_threads(threads) reduction(max : most)
+#pragma omp parallel for schedule(static) num_threads(threads) reduction(max : most) reduction(min : lo[:3]) \
+    reduction(max : hi[:3])
   for (size_t b = 0; b < block.size(); ++b) {
     double sum = 0;
     for (size_t k = b << 16; k < std::min(n, (b + 1) << 16); ++k) {
-      const float r = in_frame(s.sphere_at(k))[3];
-      most = std::max(most, r);
-      sum += double(r) * double(r);
+      const sphere4 c = in_frame(s.sphere_at(k));
+      for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
+      most = std::max(most, c[3]);
+      sum += double(c[3]) * double(c[3]);
     }
     block[b] = sum;
   }
   max_radius_ = most;
-  double cross_section = 0, volume = 1;
+  for (int a = 0; a < 3; ++a) centre_lo_[a] = lo[a], centre_hi_[a] = hi[a];
+  double cross_section = 0;
   for (double x : block) cross_section += x;
-  for (int a = 0; a < 3; ++a) volume *= std::ldexp(hi[a] - lo[a], -scale_exp);
   cross_section *= 3.14159265358979323846;
-  free_path_ = cross_section > 0 ? volume / cross_section / std::cbrt(volume / double(n))
+  free_path_ = cross_section > 0 ? volume_ / cross_section / std::cbrt(volume_ / double(n))
                                  : std::numeric_limits<double>::infinity();
   const size_t step = n / 4096 + 1;
   std::vector<float> r;
@@ -88,28 +101,24 @@ void sphere_bvh::frame(const scene& s, int threads) {
 
 // The spheres by position: sorted by the Morton code of their centres (ten
 // bits an axis over the centres' bounding cube; ties in the scene's order),
-// then the nodes and leaves over them; without nodes, in the scene's order. Read from the scene twice (for the
-// codes, then in their order) rather than copied: the build's peak memory
-// is the keys, the sorted spheres and the nodes.
+// then the nodes and leaves over them; without nodes, in the scene's order.
+// The spheres in the frame (survey) are read in the codes' order, a
+// few ahead of their use, and written in order: the build's peak memory is
+// the keys, the spheres in both orders and the nodes.
 void sphere_bvh::sort_by_morton(const scene& s, int threads, bool nodes) {
   const size_t n = s.sphere_count();
   out_of_order_array<uint64_t> keys;  // without nodes: none, the scene's order kept
   if (nodes) {
-    float lo[3], hi[3];
-    for (int a = 0; a < 3; ++a) lo[a] = std::numeric_limits<float>::infinity(), hi[a] = -lo[a];
-#pragma omp parallel for schedule(static) num_threads(threads) reduction(min : lo[:3]) reduction(max : hi[:3])
-    for (size_t k = 0; k < n; ++k) {
-      const sphere4 c = in_frame(s.sphere_at(k));
-      for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
-    }
-    const float side = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-30f});
+    const float side = std::max({centre_hi_[0] - centre_lo_[0], centre_hi_[1] - centre_lo_[1],
+                                 centre_hi_[2] - centre_lo_[2], 1e-30f});
     const float scale = 1023.0f / side;
     keys.resize(n);
 #pragma omp parallel for schedule(static) num_threads(threads)
     for (size_t k = 0; k < n; ++k) {
       const sphere4 c = in_frame(s.sphere_at(k));
       uint32_t code = 0;
-      for (int a = 0; a < 3; ++a) code |= spread(uint32_t(std::clamp((c[a] - lo[a]) * scale, 0.0f, 1023.0f))) << a;
+      for (int a = 0; a < 3; ++a)
+        code |= spread(uint32_t(std::clamp((c[a] - centre_lo_[a]) * scale, 0.0f, 1023.0f))) << a;
       keys[k] = uint64_t(code) << 32 | k;
     }
     radix_sort(keys, 32, 30, threads);
@@ -126,6 +135,7 @@ void sphere_bvh::sort_by_morton(const scene& s, int threads, bool nodes) {
     const sphere4 c = in_frame(s.sphere_at(k));
     for (int a = 0; a < 4; ++a) sorted[size_t(rank_[k]) * 4 + a] = c[a];
   }
+  for (size_t i = n * 4; i < sorted.size(); ++i) sorted[i] = std::numeric_limits<float>::quiet_NaN();
   if (nodes) build_nodes(keys, sorted, threads);
   else leaves_ = (n + 7) / 8;
   keys = {};
@@ -138,7 +148,6 @@ void sphere_bvh::sort_by_morton(const scene& s, int threads, bool nodes) {
 void sphere_bvh::fill_leaves(out_of_order_array<float>& sorted, int threads) {
   const size_t n = size();
   place_.resize(n);
-  for (size_t i = n * 4; i < sorted.size(); ++i) sorted[i] = std::numeric_limits<float>::quiet_NaN();
   const auto fill = [&](uint32_t ref) {
     const uint32_t first = bvh_ref::first(ref), c = bvh_ref::count(ref);
     float* at = &sorted[size_t(first) * 4];

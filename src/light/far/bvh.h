@@ -109,6 +109,7 @@ class sphere_bvh {
  private:
   sphere4 in_frame(const raycast::sphere& sp) const;
   void frame(const scene& s, int threads);
+  void survey(const scene& s, int threads);
   void sort_by_morton(const scene& s, int threads, bool nodes);
   void build_nodes(const out_of_order_array<uint64_t>& keys, const out_of_order_array<float>& sorted, int threads);
   void fill_leaves(out_of_order_array<float>& sorted, int threads);
@@ -122,6 +123,8 @@ class sphere_bvh {
   uint32_t root_ = bvh_ref::empty;
   size_t leaves_ = 0;
   float max_radius_ = 0;
+  double unit_ = 1, volume_ = 0;       // 2^-scale_exp; the spheres' box's volume, grid units
+  float centre_lo_[3] = {}, centre_hi_[3] = {};  // the centres' box, grid units
   double typical_radius_ = 0, density_ = 0, free_path_ = 0;
 };
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <vector>
 
 namespace raycast {
 namespace {
@@ -21,25 +22,35 @@ bvh_node empty_node() {
   return n;
 }
 
-// One builder a task: its nodes (indices local to them), its leaves.
+// A range of at most task_size positions that the threads build apart.
+struct job {
+  uint32_t a, b;
+  int shift;
+  child top;
+  out_of_order_array<bvh_node> nodes;  // indices local to them
+};
+
+// Builds [a, b) depth first. Where several threads build, it runs twice
+// over the top of the tree: first to list the jobs (pass::plan), which the
+// threads then build, then to join their nodes in the order one thread
+// would have made them (pass::join). No OpenMP tasks: the build is one
+// parallel loop over the jobs.
 class builder {
  public:
-  builder(const octree_input& in, bool tasks) : in_(in), tasks_(tasks) {}
+  enum class pass { whole, plan, join };
+  builder(const octree_input& in, pass p, std::vector<job>* jobs = nullptr) : in_(in), pass_(p), jobs_(jobs) {}
   octree_result result;
 
   child range(uint32_t a, uint32_t b, int shift) {
+    if (pass_ != pass::whole && b - a <= task_size) return job_at(a, b, shift);
     if (b - a <= bvh_ref::most_in_leaf) return leaf(a, b);
     uint32_t cut[9];
     shift = split(a, b, shift, cut);
     const uint32_t at = uint32_t(result.nodes.size());
     result.nodes.push_back(empty_node());
     child kids[8];
-    if (tasks_ && b - a > task_size) {
-      in_tasks(cut, shift, kids);
-    } else {
-      for (int o = 0; o < 8; ++o)
-        if (cut[o] < cut[o + 1]) kids[o] = range(cut[o], cut[o + 1], shift);
-    }
+    for (int o = 0; o < 8; ++o)
+      if (cut[o] < cut[o + 1]) kids[o] = range(cut[o], cut[o + 1], shift);
     child me;
     me.ref = at;
     for (int a6 = 0; a6 < 3; ++a6) me.box[a6] = std::numeric_limits<float>::infinity(), me.box[a6 + 3] = -me.box[a6];
@@ -94,44 +105,49 @@ class builder {
     return c;
   }
 
-  // The children of a big range, each built by a task of its own, then
-  // appended in order after this builder's nodes (their indices moved by
-  // where they land).
-  void in_tasks(const uint32_t cut[9], int shift, child kids[8]) {
-    builder parts[8] = {{in_, true}, {in_, true}, {in_, true}, {in_, true},
-                        {in_, true}, {in_, true}, {in_, true}, {in_, true}};
-    for (int o = 0; o < 8; ++o) {
-      if (cut[o] >= cut[o + 1]) continue;
-#pragma omp task default(shared) firstprivate(o)
-      kids[o] = parts[o].range(cut[o], cut[o + 1], shift);
+  // plan: the job listed; join: its nodes appended after this builder's,
+  // their indices moved by where they land.
+  child job_at(uint32_t a, uint32_t b, int shift) {
+    if (pass_ == pass::plan) {
+      jobs_->push_back({a, b, shift, {}, {}});
+      return {};
     }
-#pragma omp taskwait
-    for (int o = 0; o < 8; ++o) {
-      if (cut[o] >= cut[o + 1]) continue;
-      const uint32_t base = uint32_t(result.nodes.size());
-      for (bvh_node& n : parts[o].result.nodes) {
-        for (uint32_t& c : n.child)
-          if (!bvh_ref::is_leaf(c)) c += base;
-        result.nodes.push_back(n);
-      }
-      if (!bvh_ref::is_leaf(kids[o].ref)) kids[o].ref += base;
+    job& j = (*jobs_)[next_++];
+    const uint32_t base = uint32_t(result.nodes.size());
+    for (bvh_node& n : j.nodes) {
+      for (uint32_t& c : n.child)
+        if (!bvh_ref::is_leaf(c)) c += base;  // empty slots have the leaf bit
+      result.nodes.push_back(n);
     }
+    j.nodes = {};
+    if (!bvh_ref::is_leaf(j.top.ref)) j.top.ref += base;
+    return j.top;
   }
 
   const octree_input& in_;
-  bool tasks_;
+  pass pass_;
+  std::vector<job>* jobs_;
+  size_t next_ = 0;
 };
 
 }  // namespace
 
 octree_result build_octree(const octree_input& in, int threads) {
-  builder b(in, threads > 1);
+  const bool apart = threads > 1 && in.n > task_size;
+  std::vector<job> jobs;
+  if (apart) {
+    builder(in, builder::pass::plan, &jobs).range(0, in.n, 27);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+    for (size_t k = 0; k < jobs.size(); ++k) {
+      builder w(in, builder::pass::whole);
+      jobs[k].top = w.range(jobs[k].a, jobs[k].b, jobs[k].shift);
+      jobs[k].nodes = std::move(w.result.nodes);
+    }
+  }
+  builder b(in, apart ? builder::pass::join : builder::pass::whole, &jobs);
   if (in.n == 0) return std::move(b.result);
   b.result.nodes.reserve(in.n / 8 + 64);  // mapped, not touched, beyond what is used
-  child top;
-#pragma omp parallel num_threads(std::max(threads, 1))
-#pragma omp single
-  top = b.range(0, in.n, 27);
+  const child top = b.range(0, in.n, 27);
   b.result.root = top.ref;
   // The leaves' count and volume in the nodes' order: the same sum on any number of threads.
   const auto add = [&](uint32_t ref, const float* box, int stride) {

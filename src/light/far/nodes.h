@@ -4,9 +4,9 @@
 // code of a range shares are skipped, so no node has one child); a range of
 // up to eight spheres is a leaf, and one whose codes are all equal is cut
 // into eight runs. Each child's box is its spheres' (widened by 2^-16), not
-// its octant's. Nodes are stored depth first; big ranges are built as tasks
-// on the preparation's threads and joined in order, so the nodes are the
-// same on any number of threads.
+// its octant's. Nodes are stored depth first; ranges of up to 2^15 under
+// a bigger one are built by the preparation's threads in one loop and joined
+// in depth-first order, so the nodes are the same on any number of threads.
 #pragma once
 #include <cstdint>
 
