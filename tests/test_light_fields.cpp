@@ -435,39 +435,54 @@ TEST(LightFields, ShadowRaysGetTheSameVerdictsFromTheBinsAndTheShadowLists) {
 }
 
 // The bins' build groups their entries by cell with key_sort: the same
-// groups, in the same order within each, as a stable sort by key, over one
-// key, keys in few and in many bands, keys no record has, records all of
-// one key, and records in runs (parts) filled by as many threads or one.
+// groups, in the same order within each, as a stable sort by key of every
+// (record, key) pair, over one key, keys in few and in many bands, keys no
+// record has, records all of one key, records of one key and of several
+// (some a band apart: a disc over two rows of cells), and records in runs
+// (parts) filled by as many threads or one.
 TEST(LightFields, KeySortIsAStableSortByKey) {
   std::mt19937 rng(21);
+  struct rec {
+    uint32_t key, order, many, stride;  // keys: key + j stride for j < many, below the count
+  };
   for (size_t keys : {size_t(1), size_t(7), size_t(5000), size_t(300000)})
     for (size_t n : {size_t(0), size_t(1), size_t(100), size_t(40000), size_t(200000)})
       for (int parts : {1, 3})
         for (bool one_key : {false, true}) {
-          std::vector<std::pair<uint32_t, uint32_t>> rec(n);  // key, order given
-          for (size_t i = 0; i < n; ++i) rec[i] = {one_key ? uint32_t(keys / 2) : uint32_t(rng() % keys), uint32_t(i)};
+          std::vector<rec> in(n);
+          for (size_t i = 0; i < n; ++i)
+            in[i] = {one_key ? uint32_t(keys / 2) : uint32_t(rng() % keys), uint32_t(i),
+                     one_key ? 1u : 1u + uint32_t(rng() % 4), 1u + uint32_t(rng() % 2) * uint32_t(rng() % 3000)};
+          const auto keys_of = [keys](const rec& r, auto&& f) {
+            for (uint32_t j = 0; j < r.many && r.key + size_t(j) * r.stride < keys; ++j) f(r.key + size_t(j) * r.stride);
+          };
+          std::vector<std::pair<uint32_t, uint32_t>> pairs;  // key, order given
+          for (const rec& r : in) keys_of(r, [&](size_t k) { pairs.emplace_back(uint32_t(k), r.order); });
           const auto run = [&](int p) { return std::pair(part_begin(n, p, parts), part_begin(n, p + 1, parts)); };
-          key_sort<uint32_t> sort(keys, n, parts);
+          key_sort<rec, decltype(keys_of)> sort(keys, pairs.size(), parts, keys_of);
+          size_t counted = 0;
           for (int p = 0; p < parts; ++p)
-            for (size_t i = run(p).first; i < run(p).second; ++i) sort.count(p, rec[i].first);
-          out_of_order_array<uint32_t> out, first;
+            for (size_t i = run(p).first; i < run(p).second; ++i) counted += sort.count(p, in[i]);
+          EXPECT_EQ(counted, pairs.size());
+          out_of_order_array<rec> out;
+          out_of_order_array<uint32_t> first;
           sort.start(out);
 #pragma omp parallel for num_threads(parts)
           for (int p = 0; p < parts; ++p)
-            for (size_t i = run(p).first; i < run(p).second; ++i) sort.put(p, rec[i].first, rec[i].second);
+            for (size_t i = run(p).first; i < run(p).second; ++i) sort.put(p, in[i]);
           size_t seen = 0;
-          sort.finish(first, [&](uint32_t* b, uint32_t* e) {
+          sort.finish(first, [&](rec* b, rec* e) {
 #pragma omp atomic
             seen += size_t(e - b);
           }, parts);
-          std::stable_sort(rec.begin(), rec.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+          std::stable_sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
           ASSERT_EQ(first.size(), keys + 1);
           EXPECT_EQ(first[0], 0u);
-          EXPECT_EQ(first[keys], n);
-          EXPECT_EQ(seen, n);
+          EXPECT_EQ(first[keys], pairs.size());
+          EXPECT_EQ(seen, pairs.size());
           size_t bad = 0;
           for (size_t k = 0; k < keys; ++k)
-            for (uint32_t j = first[k]; j < first[k + 1]; ++j) bad += rec[j].first != k || rec[j].second != out[j];
+            for (uint32_t j = first[k]; j < first[k + 1]; ++j) bad += pairs[j].first != k || pairs[j].second != out[j].order;
           EXPECT_EQ(bad, 0u) << keys << " keys, " << n << " records, " << parts << " parts";
         }
 }

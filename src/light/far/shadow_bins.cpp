@@ -104,7 +104,7 @@ void shadow_bins::bin(const float hi[2]) {
       r[2 * a + 1] = std::clamp(int((double(p[a]) + e.r - lo_[a]) * inv), 0, dims_[a] - 1);
     }
   };
-  const auto each_cell = [&](const entry& e, auto&& f) {
+  const auto each_cell = [&](const entry& e, auto&& f) {  // ascending
     int r[4];
     range_of(e, r);
     for (int y = r[2]; y <= r[3]; ++y)
@@ -117,33 +117,32 @@ void shadow_bins::bin(const float hi[2]) {
     const size_t end = part_begin(n, p + 1, parts);  // computed once: a division a sphere was 10 % of counting
     for (size_t k = part_begin(n, p, parts); k < end; ++k) f(uint32_t(k));
   };
-  key_sort<entry> sort;
   for (;;) {  // each cell's count; coarser until the entries fit (a try stops once they cannot)
     for (int a = 0; a < 2; ++a) dims_[a] = int(std::clamp(std::ceil((hi[a] - lo_[a]) * inv), 1.0, double(1 << 15)));
-    sort = key_sort<entry>(size_t(dims_[0]) * size_t(dims_[1]), n * 9 / 4, parts);
+    const size_t cells = size_t(dims_[0]) * size_t(dims_[1]);
+    key_sort<entry, decltype(each_cell)> sort(cells, n * 9 / 4, parts, each_cell);
     size_t total = 0;
 #pragma omp parallel for schedule(static, 1) num_threads(parts) reduction(+ : total)
     for (int p = 0; p < parts; ++p) {
       size_t mine = 0;
       run(p, [&](uint32_t k) {
-        if (mine <= most) each_cell(entry_of(k), [&](size_t c) { sort.count(p, c), ++mine; });
+        if (mine <= most) mine += sort.count(p, entry_of(k));
       });
       total += mine;
     }
-    if (total <= most) break;
-    g *= 2, inv = 1.0 / g;
-  }
-  inv_g_ = float(inv);
-  // Each cell's list, in the order of position, then sorted by reach. Each
-  // entry is computed again from its sphere (the same floats).
-  sort.start(entries_);
+    if (total > most) {
+      g *= 2, inv = 1.0 / g;
+      continue;
+    }
+    inv_g_ = float(inv);
+    // Each cell's list, in the order of position, then sorted by reach. Each
+    // entry is computed again from its sphere (the same floats).
+    sort.start(entries_);
 #pragma omp parallel for schedule(static, 1) num_threads(parts)
-  for (int p = 0; p < parts; ++p)
-    run(p, [&](uint32_t k) {
-      const entry e = entry_of(k);
-      each_cell(e, [&](size_t c) { sort.put(p, c, e); });
-    });
-  sort.finish(first_, sort_by_reach, parts);
+    for (int p = 0; p < parts; ++p) run(p, [&](uint32_t k) { sort.put(p, entry_of(k)); });
+    sort.finish(first_, sort_by_reach, parts);
+    return;
+  }
 }
 
 size_t shadow_bins::longest_list() const {

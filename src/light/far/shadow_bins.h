@@ -16,8 +16,8 @@
 // a typical sphere's diameter. Each entry carries its disc, so that a ray
 // passing outside it (by more than the margin: the test could not have said
 // otherwise) costs no read of the sphere. Memory: 20 bytes an entry and 4
-// bytes a cell, some 2.25 entries a sphere: about 50 bytes a sphere (and 9
-// more while it is built: each entry's cell, light/far/key_sort.h).
+// bytes a cell, some 2.25 entries a sphere: about 50 bytes a sphere (while it
+// is built, a band of entries more a thread, light/far/key_sort.h).
 #pragma once
 #include <cstdint>
 #include <vector>
