@@ -64,14 +64,61 @@ RAYCAST_INLINE F sqrt(F x) {
   for (int l = 0; l < int(sizeof(F) / sizeof(float)); ++l) x[l] = __builtin_sqrtf(x[l]);
   return x;
 }
-template <class F>
-RAYCAST_INLINE F max(F a, F b) {
-  return a > b ? a : b;  // maxps: b where either is NaN
+
+// This compilation's own register (fw: width floats) and the mask of each
+// vector type (f8's is i8).
+#if RAYCAST_LANES_WIDTH == 16
+typedef f16 fw;
+typedef i16 iw;
+#elif RAYCAST_LANES_WIDTH == 8
+typedef f8 fw;
+typedef i8 iw;
+#else
+typedef f4 fw;
+typedef i4 iw;
+#endif
+template <class F> struct mask_of;
+template <> struct mask_of<f4> { typedef i4 type; };
+template <> struct mask_of<f8> { typedef i8 type; };
+template <> struct mask_of<f16> { typedef i16 type; };
+template <class F> using mask_t = typename mask_of<F>::type;
+
+// Comparisons lane by lane (-1 where true), max and min. GCC lowers a
+// comparison (and a ?: on its result) of vectors wider than the
+// compilation's registers one lane at a time, a scalar compare and a set a
+// lane: an f16 compare in the AVX2 compilation, an f8 one in the
+// baseline's, made the AVX2 frame's AO four times the AVX-512 one's. So a
+// wider vector is worked on in register-wide pieces (the memcpy moves no
+// data: the pieces are the registers that hold it).
+template <class R, class Op, class F>
+RAYCAST_INLINE R in_pieces(F a, F b) {
+  if constexpr (sizeof(F) <= sizeof(fw)) {
+    return R(Op{}(a, b));
+  } else {
+    constexpr int k = int(sizeof(F) / sizeof(fw));
+    typedef decltype(Op{}(fw{}, fw{})) piece;
+    fw pa[k], pb[k];
+    piece r[k];
+    __builtin_memcpy(pa, &a, sizeof a);
+    __builtin_memcpy(pb, &b, sizeof b);
+    for (int j = 0; j < k; ++j) r[j] = Op{}(pa[j], pb[j]);
+    R out;
+    __builtin_memcpy(&out, r, sizeof out);
+    return out;
+  }
 }
-template <class F>
-RAYCAST_INLINE F min(F a, F b) {
-  return a < b ? a : b;
-}
+struct less_op { template <class W> RAYCAST_INLINE auto operator()(W a, W b) const { return a < b; } };
+struct less_equal_op { template <class W> RAYCAST_INLINE auto operator()(W a, W b) const { return a <= b; } };
+struct max_op { template <class W> RAYCAST_INLINE W operator()(W a, W b) const { return a > b ? a : b; } };  // maxps: b where either is NaN
+struct min_op { template <class W> RAYCAST_INLINE W operator()(W a, W b) const { return a < b ? a : b; } };
+template <class F> RAYCAST_INLINE mask_t<F> lt(F a, F b) { return in_pieces<mask_t<F>, less_op>(a, b); }
+template <class F> RAYCAST_INLINE mask_t<F> le(F a, F b) { return in_pieces<mask_t<F>, less_equal_op>(a, b); }
+// Against one number (s - F{} is s in every lane, -0 and NaN included).
+template <class F> RAYCAST_INLINE mask_t<F> lt(F a, float s) { return lt(a, s - F{}); }
+template <class F> RAYCAST_INLINE mask_t<F> le(F a, float s) { return le(a, s - F{}); }
+template <class F> RAYCAST_INLINE mask_t<F> ge(F a, float s) { return le(s - F{}, a); }
+template <class F> RAYCAST_INLINE F max(F a, F b) { return in_pieces<F, max_op>(a, b); }
+template <class F> RAYCAST_INLINE F min(F a, F b) { return in_pieces<F, min_op>(a, b); }
 
 // Bit l set where lane l of m is (its sign bit): movmskps on x86, each
 // lane's weight summed elsewhere.
@@ -118,8 +165,8 @@ RAYCAST_INLINE I blocks(const float o[3], const F d[3], const F s[4], float tmax
   const F b = (ox * d[0] + oy * d[1]) + oz * d[2];
   const F vx = ox - b * d[0], vy = oy - b * d[1], vz = oz - b * d[2];
   const F m2 = (vx * vx + vy * vy) + vz * vz, gap = r2 - m2, beyond = -b - tmax;
-  const I near = I(beyond <= 0.0f) | I(beyond * beyond <= gap);
-  return I((ox * ox + oy * oy) + oz * oz <= r2) | (I(b < 0.0f) & I(m2 <= r2) & near);
+  const I near = le(beyond, 0.0f) | le(beyond * beyond, gap);
+  return le((ox * ox + oy * oy) + oz * oz, r2) | (lt(b, 0.0f) & le(m2, r2) & near);
 }
 
 // The same ball met by the segment t in [t0, tmax] of a ray that starts
@@ -134,9 +181,9 @@ RAYCAST_INLINE I blocks_beyond(const float o[3], const F d[3], const F s[4], flo
   const F b = (ox * d[0] + oy * d[1]) + oz * d[2];
   const F vx = ox - b * d[0], vy = oy - b * d[1], vz = oz - b * d[2];
   const F m2 = (vx * vx + vy * vy) + vz * vz, gap = r2 - m2, beyond = -b - tmax, before = t0 + b;
-  const I near = I(beyond <= 0.0f) | I(beyond * beyond <= gap), far = I(before <= 0.0f) | I(before * before <= gap);
-  const I inside = I((ox * ox + oy * oy) + oz * oz <= r2) & (t0 <= 0.0f ? ~I{} : I{});
-  return inside | (I(m2 <= r2) & near & far);
+  const I near = le(beyond, 0.0f) | le(beyond * beyond, gap), far = le(before, 0.0f) | le(before * before, gap);
+  const I inside = le((ox * ox + oy * oy) + oz * oz, r2) & (t0 <= 0.0f ? ~I{} : I{});
+  return inside | (le(m2, r2) & near & far);
 }
 
 }  // inline namespace RAYCAST_LANES_NAMESPACE

@@ -44,7 +44,7 @@ uint32_t gather_ball(const bvh_view& v, const float c[3], float reach, uint32_t 
       f8 s[4];
       leaf_spheres(v, ref, s);
       const f8 dx = s[0] - c[0], dy = s[1] - c[1], dz = s[2] - c[2], lim = reach + s[3];
-      const uint32_t keep = bits_of(i8((dx * dx + dy * dy) + dz * dz <= lim * lim));
+      const uint32_t keep = bits_of(le((dx * dx + dy * dy) + dz * dz, lim * lim));
       n = add_kept(s, first, bvh_ref::count(ref), keep, self, rows, n, cap);
       if (n > cap) return n;
     } else {
@@ -54,7 +54,7 @@ uint32_t gather_ball(const bvh_view& v, const float c[3], float reach, uint32_t 
         const f8 gap = max(max(load8(node.box[a]) - c[a], c[a] - load8(node.box[a + 3])), f8{});
         d2 += gap * gap;
       }
-      for (uint32_t hit = bits_of(i8(d2 <= reach2)); hit != 0; hit &= hit - 1)
+      for (uint32_t hit = bits_of(le(d2, reach2)); hit != 0; hit &= hit - 1)
         stack[sp++] = node.child[__builtin_ctz(hit)];
     }
     if (sp == 0) return n;
@@ -82,7 +82,7 @@ uint32_t gather_capsule(const bvh_view& v, const float c[3], float r, const floa
       const f8 a = (wx * l[0] + wy * l[1]) + wz * l[2];
       const f8 px = wx - a * l[0], py = wy - a * l[1], pz = wz - a * l[2];
       const f8 lim = (r + s[3]) + slack;
-      const i8 keep = i8((px * px + py * py) + pz * pz <= lim * lim) & i8(a >= -(s[3] + slack));
+      const i8 keep = le((px * px + py * py) + pz * pz, lim * lim) & le(-(s[3] + slack), a);
       n = add_kept(s, first, bvh_ref::count(ref), bits_of(keep), self, rows, n, cap, &a, along);
       if (n > cap) return n;
     } else {
@@ -93,7 +93,7 @@ uint32_t gather_capsule(const bvh_view& v, const float c[3], float r, const floa
       const f8 ny = ((ray.sign & 2 ? hi[1] : lo[1]) - c[1]) * ray.inv[1], fy = ((ray.sign & 2 ? lo[1] : hi[1]) - c[1]) * ray.inv[1];
       const f8 nz = ((ray.sign & 4 ? hi[2] : lo[2]) - c[2]) * ray.inv[2], fz = ((ray.sign & 4 ? lo[2] : hi[2]) - c[2]) * ray.inv[2];
       const f8 enter = max(max(nx, ny), max(nz, behind - f8{})), leave = min(min(fx, fy), fz);
-      for (uint32_t b = bits_of(i8(enter <= leave)); b != 0; b &= b - 1) stack[sp++] = node.child[__builtin_ctz(b)];
+      for (uint32_t b = bits_of(le(enter, leave)); b != 0; b &= b - 1) stack[sp++] = node.child[__builtin_ctz(b)];
     }
     if (sp == 0) return n;
     ref = stack[--sp];

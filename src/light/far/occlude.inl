@@ -53,7 +53,7 @@ struct far_ray {
     const f8 ny = (load8(n.box[near_row[1]]) - o[1]) * inv[1], fy = (load8(n.box[far_row[1]]) - o[1]) * inv[1];
     const f8 nz = (load8(n.box[near_row[2]]) - o[2]) * inv[2], fz = (load8(n.box[far_row[2]]) - o[2]) * inv[2];
     const f8 enter = max(max(nx, ny), max(nz, t0 - f8{})), leave = min(min(fx, fy), min(fz, t1 - f8{}));
-    return bits_of(i8(enter <= leave));
+    return bits_of(le(enter, leave));
   }
 };
 

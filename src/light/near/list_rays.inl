@@ -37,8 +37,8 @@ RAYCAST_INLINE void cut_to_hemisphere(const sphere_blocks& list, const float o[3
     const f16 w2 = (w[0] * w[0] + w[1] * w[1]) + w[2] * w[2], lim = within + r;
     const f16 down = (w[0] * n[0] + w[1] * n[1]) + w[2] * n[2];  // how far o lies above C_j along n
     const f16 c = w2 - r * r;
-    inside |= i16(c <= 0.0f);
-    const uint32_t bits = bits_of(i16(w2 <= lim * lim) & i16(down <= r + lim * 0x1p-12f));
+    inside |= le(c, 0.0f);
+    const uint32_t bits = bits_of(le(w2, lim * lim) & le(down, r + lim * 0x1p-12f));
     const f16 row[4] = {w[0], w[1], w[2], c};
 #if RAYCAST_LANES_WIDTH == 16
     // Compressed in a register and stored whole (a compressing store to
@@ -65,7 +65,7 @@ RAYCAST_INLINE bool cut_blocks(const cut_list& cut, const float d[3], float tmax
   for (uint32_t i = 0; i < cut.count; i += 16) {
     const f16 b = (load16(cut.row[0] + i) * d[0] + load16(cut.row[1] + i) * d[1]) + load16(cut.row[2] + i) * d[2];
     const f16 gap = b * b - load16(cut.row[3] + i), beyond = -b - tmax;
-    const i16 hit = i16(b < 0.0f) & i16(gap >= 0.0f) & (i16(beyond <= 0.0f) | i16(beyond * beyond <= gap));
+    const i16 hit = lt(b, 0.0f) & ge(gap, 0.0f) & (le(beyond, 0.0f) | le(beyond * beyond, gap));
     if (bits_of(hit) != 0) return true;
   }
   return false;
