@@ -69,25 +69,58 @@ shadow_bins::shadow_bins(const sphere_bvh& spheres, const float light[3], int th
   frame_about(l_, u_, v_);  // the plane's axes
   const size_t n = spheres.size();
   if (n == 0) return;
+  // The classes' radii, each rounded up to a float: the widest the largest
+  // sphere's own.
+  disc_[0] = spheres.max_radius() + margin;
+  for (int c = 1; c < 256; ++c) {
+    const double want = double(disc_[0]) * std::exp2(-c / 16.0);
+    disc_[c] = float(want);
+    if (double(disc_[c]) < want) disc_[c] = std::nextafter(disc_[c], std::numeric_limits<float>::infinity());
+  }
   // The discs' bounds across L.
   float lo0 = std::numeric_limits<float>::infinity(), lo1 = lo0, hi0 = -lo0, hi1 = -lo0;
 #pragma omp parallel for schedule(static) num_threads(threads_) reduction(min : lo0, lo1) reduction(max : hi0, hi1)
   for (size_t k = 0; k < n; ++k) {
     const entry e = entry_of(uint32_t(k));
-    lo0 = std::min(lo0, e.u - e.r - margin);
-    lo1 = std::min(lo1, e.v - e.r - margin);
-    hi0 = std::max(hi0, e.u + e.r + margin);
-    hi1 = std::max(hi1, e.v + e.r + margin);
+    const float r = radius(e);
+    lo0 = std::min(lo0, e.u - r - margin);
+    lo1 = std::min(lo1, e.v - r - margin);
+    hi0 = std::max(hi0, e.u + r + margin);
+    hi1 = std::max(hi1, e.v + r + margin);
   }
   lo_[0] = lo0, lo_[1] = lo1;
   const float hi[2] = {hi0, hi1};
   bin(hi);
 }
 
+// The smallest class whose radius is at least r: the largest c with
+// disc_[c] >= r (the table falls with c), 0 for the largest sphere.
+uint32_t shadow_bins::radius_class(float r) const {
+  uint32_t lo = 0, hi = 255;  // disc_[lo] >= r
+  if (disc_[hi] >= r) return hi;
+  while (hi - lo > 1) {
+    const uint32_t mid = (lo + hi) / 2;
+    (disc_[mid] >= r ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+float shadow_bins::radius(const entry& e) const {
+  uint32_t b;
+  std::memcpy(&b, &e.reach, sizeof b);
+  return disc_[b & 0xffu];
+}
+
 shadow_bins::entry shadow_bins::entry_of(uint32_t p) const {
   const sphere4 sp = spheres_->at(p);
   const float* s = sp.v;
-  return {dot(l_, s) + s[3] + margin, p, dot(u_, s), dot(v_, s), s[3] + margin};
+  const float reach = ((dot(l_, s) + s[3]) + margin) + reach_offset;  // above 2: a positive float's bits
+  uint32_t b;
+  std::memcpy(&b, &reach, sizeof b);
+  b = ((b + 0xffu) & ~0xffu) | radius_class(s[3] + margin);  // rounded up, so still past the sphere
+  entry e{0.0f, p, dot(u_, s), dot(v_, s)};
+  std::memcpy(&e.reach, &b, sizeof b);
+  return e;
 }
 
 void shadow_bins::bin(const float hi[2]) {
@@ -99,9 +132,10 @@ void shadow_bins::bin(const float hi[2]) {
   double inv = 1.0 / g;
   const auto range_of = [&](const entry& e, int r[4]) {  // the cells of a disc: x0, x1, y0, y1
     const float p[2] = {e.u, e.v};
+    const double er = radius(e);
     for (int a = 0; a < 2; ++a) {
-      r[2 * a] = std::clamp(int((double(p[a]) - e.r - lo_[a]) * inv), 0, dims_[a] - 1);
-      r[2 * a + 1] = std::clamp(int((double(p[a]) + e.r - lo_[a]) * inv), 0, dims_[a] - 1);
+      r[2 * a] = std::clamp(int((double(p[a]) - er - lo_[a]) * inv), 0, dims_[a] - 1);
+      r[2 * a + 1] = std::clamp(int((double(p[a]) + er - lo_[a]) * inv), 0, dims_[a] - 1);
     }
   };
   const auto each_cell = [&](const entry& e, auto&& f) {  // ascending
@@ -152,7 +186,7 @@ size_t shadow_bins::longest_list() const {
 }
 
 shadow_bins::query shadow_bins::locate(const float p[3]) const {
-  query q{none, dot(u_, p), dot(v_, p), dot(l_, p)};
+  query q{none, dot(u_, p), dot(v_, p), dot(l_, p) + reach_offset};
   const float pu = (q.u - lo_[0]) * inv_g_, pv = (q.v - lo_[1]) * inv_g_;
   if (entries_.empty() || !(pu >= 0.0f && pv >= 0.0f)) return q;  // outside every disc (or NaN)
   const int x = int(pu), y = int(pv);
@@ -178,8 +212,8 @@ bool shadow_bins::occluded(const query& q, const float p[3], uint32_t skip) cons
   const float inf = std::numeric_limits<float>::infinity();
   for (const entry* e = end; e != begin && e[-1].reach >= depth;) {
     --e;
-    const float du = u - e->u, dv = v - e->v;
-    if (du * du + dv * dv > e->r * e->r) continue;  // the ray passes outside its disc
+    const float du = u - e->u, dv = v - e->v, r = radius(*e);
+    if (du * du + dv * dv > r * r) continue;  // the ray passes outside its disc
     if (e->k != skip && blocks_one(p, l_, spheres_->at(e->k).v, inf)) return true;
   }
   return false;
