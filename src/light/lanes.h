@@ -53,11 +53,6 @@ typedef float f16_unaligned __attribute__((vector_size(64), aligned(4), may_alia
 RAYCAST_INLINE f8 load8(const float* p) { return *reinterpret_cast<const f8_unaligned*>(p); }
 RAYCAST_INLINE f16 load16(const float* p) { return *reinterpret_cast<const f16_unaligned*>(p); }
 
-// a where m is set, b elsewhere.
-template <class F, class I>
-RAYCAST_INLINE F pick(I m, F a, F b) {
-  return F((I(a) & m) | (I(b) & ~m));
-}
 // Each lane's square root (sqrtps: correctly rounded, as std::sqrt).
 template <class F>
 RAYCAST_INLINE F sqrt(F x) {
